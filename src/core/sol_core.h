@@ -1,0 +1,84 @@
+/* sol_core.h - status codes, images and image files shared by every sol module.
+ *
+ * Conventions of the whole library (every module follows them):
+ *  - Every fallible function returns a sol_status; SOL_OK is zero.
+ *  - On error the caller's output buffers are left untouched.
+ *  - The library never prints, exits or aborts.
+ *  - Buffers are caller-owned, or freed with the module's explicit *_free function.
+ *  - Option structs are zero-initialised by the caller; a zero field means "default".
+ */
+#ifndef SOL_CORE_H
+#define SOL_CORE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum sol_status {
+    SOL_OK = 0,
+    SOL_ERR_NULL_ARG,       /* a required pointer was NULL */
+    SOL_ERR_INVALID_ARG,    /* an argument is outside its documented domain */
+    SOL_ERR_NONFINITE,      /* an input value is NaN or infinite */
+    SOL_ERR_ZERO_LENGTH,    /* a vector that must have a direction has length zero */
+    SOL_ERR_OUT_OF_RANGE,   /* a value cannot be represented by the target format */
+    SOL_ERR_NO_MEMORY,      /* an allocation failed */
+    SOL_ERR_IO,             /* a file could not be opened, read or written */
+    SOL_ERR_FORMAT,         /* a file is malformed or of an unsupported kind */
+    SOL_ERR_UNSUPPORTED,    /* the request is valid but this build does not support it */
+    SOL_ERR_NO_CONVERGENCE, /* an iterative method did not reach its tolerance */
+    SOL_ERR_SOLVER,         /* an external solver (Ceres) reported failure */
+    SOL_STATUS_COUNT
+} sol_status;
+
+/* A short, static, human-readable description ("invalid argument").
+ * Never NULL; unknown values give "unknown status". */
+const char *sol_status_string(sol_status status);
+
+/* Interleaved float image, row-major, `channels` values per pixel.
+ * 8- and 16-bit files load as code / (2^bits - 1); EXR loads its values as they are. */
+typedef struct sol_image {
+    int width;
+    int height;
+    int channels; /* 1..4 */
+    float *data;  /* width * height * channels values */
+} sol_image;
+
+/* Allocates a zero-filled image. `out` is written only on success. */
+sol_status sol_image_alloc(sol_image *out, int width, int height, int channels);
+/* Frees the pixels and zeroes the struct; safe on a zeroed or NULL image. */
+void sol_image_free(sol_image *image);
+/* Pointer to pixel (x, y); no bounds check. */
+static inline float *sol_image_pixel(const sol_image *image, int x, int y)
+{
+    return image->data + ((size_t)y * (size_t)image->width + (size_t)x) * (size_t)image->channels;
+}
+
+/* PNG through libpng. Reading accepts gray, gray+alpha, RGB, RGBA and palette files of any bit
+ * depth (expanded to 8 or 16 bits, then normalised). Writing quantises each value v in [0,1] to
+ * round(v * (2^bits - 1)) with bits 8 or 16; values outside [0,1] give SOL_ERR_OUT_OF_RANGE and
+ * NaN/Inf give SOL_ERR_NONFINITE (nothing is written). `bits_out` may be NULL. */
+sol_status sol_png_read(const char *path, sol_image *out, int *bits_out);
+sol_status sol_png_write(const char *path, const sol_image *image, int bits);
+
+/* OpenEXR through its C core API (scanline files, any compression the core reads).
+ * Channels are read by name: Y (1), Y/A (2), R,G,B (3), R,G,B,A (4); half and float both load
+ * as float. Writing stores half (`half_precision` != 0, values must fit half: |v| <= 65504,
+ * else SOL_ERR_OUT_OF_RANGE) or float, ZIP-compressed. NaN/Inf are refused with
+ * SOL_ERR_NONFINITE. */
+sol_status sol_exr_read(const char *path, sol_image *out);
+sol_status sol_exr_write(const char *path, const sol_image *image, int half_precision);
+
+/* Low-discrepancy points: the n-th point of the 2D Hammersley-free R2 sequence
+ * (Roberts 2018, additive recurrence with the plastic constant), in [0,1)^2.
+ * Deterministic, usable from parallel loops (no state). */
+void sol_r2_point(uint64_t n, double *u, double *v);
+/* Maps (u, v) in [0,1)^2 to a uniformly distributed unit vector (equal-area cylinder map). */
+void sol_sphere_uniform(double u, double v, double dir[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
