@@ -25,8 +25,11 @@ TEST_PKGS := gcc g++ make pkg-config libcriterion-dev libceres-dev libgoogle-glo
 REPRODUCE_PKGS := $(TEST_PKGS) gnuplot-nox libsquish-dev libnvtt-dev texlive-latex-base \
                   texlive-latex-recommended texlive-fonts-recommended latexmk
 
-MODULES := $(patsubst src/%/,%,$(wildcard src/*/))
-EXPERIMENTS := $(filter-out common,$(patsubst experiments/%/,%,$(wildcard experiments/*/)))
+# All three can be narrowed on the command line while one module is being worked on, e.g.
+# make BUILD=build/normals MODULES="core normals" TEST_SRC=tests/test_normals.c run-tests
+MODULES ?= $(patsubst src/%/,%,$(wildcard src/*/))
+EXPERIMENTS ?= $(filter-out common,$(patsubst experiments/%/,%,$(wildcard experiments/*/)))
+TEST_SRC ?= $(wildcard tests/*.c)
 
 # pkg-config is asked lazily (=, not :=), so `make test` on a fresh machine first installs it.
 EXR_CFLAGS = $(shell pkg-config --cflags OpenEXR 2>/dev/null)
@@ -37,12 +40,12 @@ WARNINGS := -Wall -Wextra -Wshadow -Wpointer-arith -Wstrict-prototypes -Wmissing
 C_STD := -std=c11 -D_DEFAULT_SOURCE -fopenmp  # _DEFAULT_SOURCE: M_PI, POSIX calls
 LDLIBS_ALL := -lpng -lOpenEXRCore-3_1 -lceres -lglog -lgomp -lm
 
-LIB_C := $(wildcard src/*/*.c)
-LIB_CXX := $(wildcard src/*/*.cpp)
+LIB_C := $(foreach m,$(MODULES),$(wildcard src/$(m)/*.c))
+LIB_CXX := $(foreach m,$(MODULES),$(wildcard src/$(m)/*.cpp))
 LIB_OBJ := $(LIB_C:%.c=$(BUILD)/%.o) $(LIB_CXX:%.cpp=$(BUILD)/%.o)
 LIB := $(BUILD)/libsol.a
 EXP_COMMON_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard experiments/common/*.c))
-TEST_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard tests/*.c))
+TEST_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(TEST_SRC))
 TEST_BIN := $(BUILD)/tests/sol_tests
 
 .PHONY: all lib experiments test run-tests reproduce run-experiments claims-table paper bench \

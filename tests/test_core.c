@@ -137,3 +137,24 @@ Test(core, sphere_map_gives_unit_vectors_including_the_poles)
         cr_assert_float_eq(d[0] * d[0] + d[1] * d[1] + d[2] * d[2], 1.0, 1e-12);
     }
 }
+
+Test(core, angle_is_accurate_for_nearly_parallel_and_opposite_vectors)
+{
+    double a[3] = {1, 0, 0}, b[3] = {1, 1e-9, 0}, c[3] = {-1, 1e-9, 0}, z[3] = {0, 0, 0};
+    cr_assert_float_eq(sol_angle3(a, b), 1e-9, 1e-20);
+    cr_assert_float_eq(sol_angle3(a, c), M_PI - 1e-9, 1e-15);
+    cr_assert_float_eq(sol_angle3(a, a), 0.0, 0.0);
+    cr_assert_float_eq(sol_angle3(a, z), 0.0, 0.0);
+}
+
+Test(core, unorm_quantisation_follows_the_d3d_rules)
+{
+    cr_assert_eq(sol_unorm_encode(0.5, 8), 128u);
+    cr_assert_eq(sol_unorm_encode(-1.0, 8), 0u);
+    cr_assert_eq(sol_unorm_encode(2.0, 16), 65535u);
+    cr_assert_eq(sol_unorm_encode(NAN, 8), 0u);
+    cr_assert_eq(sol_unorm_encode(INFINITY, 8), 255u);
+    cr_assert_eq(sol_unorm_encode(5e-324, 8), 0u);
+    for (uint32_t code = 0; code < 256; ++code)
+        cr_assert_eq(sol_unorm_encode(sol_unorm_decode(code, 8), 8), code);
+}

@@ -10,6 +10,7 @@
 #ifndef SOL_CORE_H
 #define SOL_CORE_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -70,6 +71,39 @@ sol_status sol_png_write(const char *path, const sol_image *image, int bits);
  * SOL_ERR_NONFINITE. */
 sol_status sol_exr_read(const char *path, sol_image *out);
 sol_status sol_exr_write(const char *path, const sol_image *image, int half_precision);
+
+/* ---- small shared numeric helpers (header-only so hot loops inline them) ---- */
+
+static inline double sol_dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Angle between two non-zero vectors in radians, accurate near 0 and pi: atan2(|a x b|, a.b)
+ * (acos of a clamped dot loses half the digits for nearly parallel vectors). Unnormalised input
+ * is fine; a zero vector gives 0. */
+static inline double sol_angle3(const double a[3], const double b[3])
+{
+    double c0 = a[1] * b[2] - a[2] * b[1], c1 = a[2] * b[0] - a[0] * b[2], c2 = a[0] * b[1] - a[1] * b[0];
+    return atan2(sqrt(c0 * c0 + c1 * c1 + c2 * c2), sol_dot3(a, b));
+}
+
+/* UNORM quantisation as D3D/GL define it: code = round(clamp(x,0,1) * (2^bits - 1)), and back.
+ * NaN encodes as 0 (D3D's float-to-UNORM rule). bits 1..16. */
+static inline uint32_t sol_unorm_encode(double x, int bits)
+{
+    double maxcode = (double)((1u << bits) - 1u);
+    if (!(x > 0.0))
+        return 0;
+    if (x >= 1.0)
+        return (uint32_t)maxcode;
+    return (uint32_t)floor(x * maxcode + 0.5);
+}
+
+static inline double sol_unorm_decode(uint32_t code, int bits)
+{
+    return (double)code / (double)((1u << bits) - 1u);
+}
 
 /* Low-discrepancy points: the n-th point of the 2D Hammersley-free R2 sequence
  * (Roberts 2018, additive recurrence with the plastic constant), in [0,1)^2.
