@@ -48,7 +48,7 @@ EXP_COMMON_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard experiments/common/*.c)
 TEST_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(TEST_SRC))
 TEST_BIN := $(BUILD)/tests/sol_tests
 
-.PHONY: all lib experiments test run-tests reproduce run-experiments claims-table paper bench \
+.PHONY: all lib experiments test run-tests reproduce run-experiments claims-table paper paper-section bench \
         sanitize deps-test deps-reproduce clean $(EXPERIMENTS:%=run-%)
 
 all: lib experiments
@@ -150,6 +150,14 @@ paper:
 	    || { echo "paper: LaTeX failed, see paper/sol.log"; exit 1; }; \
 	  cp sol.pdf ../results/sol.pdf; \
 	fi
+
+# One section alone (for checking it): build/paper-check/<SECTION>.pdf
+paper-section:
+	@mkdir -p $(BUILD)/paper-check
+	cd paper && pdflatex -interaction=nonstopmode -halt-on-error -output-directory=../$(BUILD)/paper-check \
+	  -jobname=$(SECTION) "\def\solsection{$(SECTION)}\input{sol.tex}" >/dev/null \
+	  || { echo "paper-section: LaTeX failed, see $(BUILD)/paper-check/$(SECTION).log"; exit 1; }
+	@echo "built $(BUILD)/paper-check/$(SECTION).pdf"
 
 bench: deps-reproduce
 	@$(MAKE) --no-print-directory experiments
