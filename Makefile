@@ -103,7 +103,7 @@ $(TEST_BIN): $(TEST_OBJ) $(LIB)
 
 # Installs what is missing when run as root; otherwise prints the exact apt line and stops.
 define ensure_packages
-@missing=$$(for p in $(1); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'ok installed' || echo $$p; done | tr '\n' ' '); \
+@missing=$$(for p in $(1); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'ok installed' || echo $$p; done | tr '\n' ' ' | sed 's/ $$//'); \
 if [ -n "$$missing" ]; then \
   if [ "$$(id -u)" = 0 ]; then \
     echo "installing missing Debian packages: $$missing"; \
@@ -163,8 +163,9 @@ bench: deps-reproduce
 	@$(MAKE) --no-print-directory experiments
 	@for e in $(EXPERIMENTS); do echo "## $$e"; $(BUILD)/experiments/$$e/$$e --bench || exit 1; done
 
+# allocator_may_return_null: tests check that impossible allocations return SOL_ERR_NO_MEMORY.
 sanitize: deps-test
-	@$(MAKE) --no-print-directory BUILD=$(BUILD)/sanitize \
+	@ASAN_OPTIONS=allocator_may_return_null=1 $(MAKE) --no-print-directory BUILD=$(BUILD)/sanitize \
 	  CFLAGS="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
 	  CXXFLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer" \
 	  LDFLAGS="-fsanitize=address,undefined" run-tests

@@ -24,7 +24,8 @@ Test(core, image_alloc_rejects_bad_sizes_and_leaves_output_untouched)
     cr_assert_eq(sol_image_alloc(&image, 0, 4, 3), SOL_ERR_INVALID_ARG);
     cr_assert_eq(sol_image_alloc(&image, 4, -1, 3), SOL_ERR_INVALID_ARG);
     cr_assert_eq(sol_image_alloc(&image, 4, 4, 5), SOL_ERR_INVALID_ARG);
-    cr_assert_eq(sol_image_alloc(&image, 1 << 30, 1 << 30, 4), SOL_ERR_NO_MEMORY);
+    cr_assert_eq(sol_image_alloc(&image, 1 << 30, 1 << 30, 4), SOL_ERR_INVALID_ARG); /* 2^64 bytes */
+    cr_assert_eq(sol_image_alloc(&image, 1 << 30, 1 << 28, 4), SOL_ERR_NO_MEMORY);  /* 2^62 bytes */
     cr_assert_eq(sol_image_alloc(NULL, 4, 4, 3), SOL_ERR_NULL_ARG);
     cr_assert_eq(image.width, 77);
     cr_assert_eq(sol_image_alloc(&image, 3, 2, 4), SOL_OK);

@@ -1,6 +1,7 @@
 /* image.c - allocation of sol_image. */
 #include "sol_core.h"
 
+#include <stdint.h>
 #include <stdlib.h>
 
 sol_status sol_image_alloc(sol_image *out, int width, int height, int channels)
@@ -10,7 +11,7 @@ sol_status sol_image_alloc(sol_image *out, int width, int height, int channels)
     if (width <= 0 || height <= 0 || channels < 1 || channels > 4)
         return SOL_ERR_INVALID_ARG;
     size_t count = (size_t)width * (size_t)height * (size_t)channels;
-    if (count / (size_t)channels / (size_t)width != (size_t)height)
+    if (count > SIZE_MAX / sizeof(float)) /* width, height < 2^31, so count itself cannot wrap */
         return SOL_ERR_INVALID_ARG;
     float *data = calloc(count, sizeof *data);
     if (!data)
