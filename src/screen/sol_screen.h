@@ -1,0 +1,154 @@
+/* sol_screen.h - screen-space techniques of the talk: the coverage buffer for occlusion culling
+ * (claim M1), volumetric obscurance SSAO with temporal accumulation (M3), the deviation-driven
+ * post-process anti-aliasing filter (D17) and temporal anti-aliasing by reprojection (D18), plus
+ * the small analytic scene (a pinhole camera and axis-aligned boxes) the experiments render.
+ *
+ * Conventions (see sol_core.h for the library-wide ones):
+ *  - View space: the camera sits at the origin looking along +z; x grows to the right of the
+ *    image, y grows down the image. "Depth" is the view-space z (linear, larger = farther).
+ *  - Pixel (px, py) covers [px, px+1) x [py, py+1) in screen coordinates; its sample is its
+ *    centre (px + 0.5, py + 0.5). Depth buffers are row-major float arrays, width * height.
+ *  - Every function returns SOL_OK or an error code and leaves its outputs untouched on error.
+ */
+#ifndef SOL_SCREEN_H
+#define SOL_SCREEN_H
+
+#include "sol_core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ======================= analytic scene: pinhole camera and boxes ======================= */
+
+/* A pinhole camera. Screen x = width/2 + focal * X / Z, screen y = height/2 + focal * Y / Z. */
+typedef struct sol_camera {
+    int width, height; /* image size in pixels, >= 1 */
+    double focal;      /* focal length in pixels, > 0 */
+    double znear;      /* > 0: nothing nearer is rendered or projected */
+    double zfar;       /* > znear: depth of the background (pixels that hit nothing) */
+} sol_camera;
+
+/* An axis-aligned box in view space, min[i] <= max[i]. Zero extents (flat boxes) are allowed. */
+typedef struct sol_box {
+    double min[3], max[3];
+} sol_box;
+
+/* Checks a camera: SOL_ERR_NULL_ARG, SOL_ERR_NONFINITE (NaN/Inf focal or planes),
+ * SOL_ERR_INVALID_ARG (size < 1, focal <= 0, znear <= 0, zfar <= znear). */
+sol_status sol_camera_check(const sol_camera *camera);
+
+/* Checks a box against a camera: SOL_ERR_NONFINITE for NaN/Inf corners, SOL_ERR_INVALID_ARG for
+ * min > max on an axis or a box reaching nearer than camera->znear (it could not be projected). */
+sol_status sol_box_check(const sol_camera *camera, const sol_box *box);
+
+/* Renders the depth buffer of `count` boxes by casting the ray through every pixel centre:
+ * depth[py * width + px] = z of the first box surface hit, or camera->zfar if none (or if the hit
+ * lies beyond zfar). count may be 0 (then boxes may be NULL). Errors: the camera's and boxes'
+ * checks, SOL_ERR_NULL_ARG. Parallel over rows; the result does not depend on the thread count. */
+sol_status sol_boxes_render_depth(const sol_camera *camera, const sol_box *boxes, size_t count, float *depth);
+
+/* Screen-space bounds of a box: the rectangle [x0,x1] x [y0,y1] (screen coordinates, not
+ * clipped to the image) that holds the projection of all 8 corners, hence of the whole box, and
+ * the box's nearest depth znear = box->min[2]. Errors: as sol_box_check. */
+typedef struct sol_screen_bounds {
+    double x0, y0, x1, y1;
+    double znear;
+} sol_screen_bounds;
+sol_status sol_box_screen_bounds(const sol_camera *camera, const sol_box *box, sol_screen_bounds *out);
+
+/* Exact visibility of a box against a depth buffer at the buffer's own samples (the "rasterized
+ * reference" of M1): *visible = 1 if at some pixel centre the ray hits the box strictly in front
+ * of depth[] there, else 0. The depth buffer has the camera's size and finite values
+ * (SOL_ERR_NONFINITE otherwise, checked only on the pixels the box covers). */
+sol_status sol_box_visible(const sol_camera *camera, const float *depth, const sol_box *box, int *visible);
+
+/* ======================= M1: coverage buffer (hierarchical occlusion culling) ============== */
+
+/* How the full-resolution depth is reduced to the coverage buffer's resolution. Only MAX is
+ * conservative (a texel is never nearer than any depth it stands for); MIN and MEAN are the
+ * non-conservative alternatives the experiment measures against it. */
+typedef enum sol_downscale {
+    SOL_DOWNSCALE_MAX = 0, /* the farthest depth of the block (talk, slide "Occlusion culling") */
+    SOL_DOWNSCALE_MIN,     /* the nearest depth of the block */
+    SOL_DOWNSCALE_MEAN     /* the average depth of the block */
+} sol_downscale;
+
+#define SOL_CBUFFER_MAX_LEVELS 24
+
+typedef struct sol_cbuffer_options {
+    int block;               /* full-resolution pixels per coverage texel side; 0 = 4 */
+    sol_downscale downscale; /* 0 = SOL_DOWNSCALE_MAX */
+} sol_cbuffer_options;
+
+/* A min/max depth hierarchy. Level 0 is the downscaled depth (zmin = zmax = the downscaled
+ * value); level l+1 holds the min of its 2x2 children's zmin and the max of their zmax (an odd
+ * size rounds up; the last texel then has fewer children). The top level is 1x1. */
+typedef struct sol_cbuffer {
+    int levels;
+    int block;
+    int full_width, full_height;
+    int width[SOL_CBUFFER_MAX_LEVELS], height[SOL_CBUFFER_MAX_LEVELS];
+    float *zmin[SOL_CBUFFER_MAX_LEVELS], *zmax[SOL_CBUFFER_MAX_LEVELS];
+} sol_cbuffer;
+
+/* Builds the hierarchy from a full-resolution depth buffer (width x height finite values).
+ * Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (size < 1, block < 0, unknown downscale),
+ * SOL_ERR_NONFINITE (a NaN/Inf depth), SOL_ERR_NO_MEMORY. Free with sol_cbuffer_free. */
+sol_status sol_cbuffer_build(const float *depth, int width, int height, const sol_cbuffer_options *options,
+                             sol_cbuffer *out);
+/* Frees the levels and zeroes the struct; safe on a zeroed or NULL buffer. */
+void sol_cbuffer_free(sol_cbuffer *buffer);
+
+/* Occlusion test of screen bounds (in full-resolution screen coordinates) against the hierarchy,
+ * as the talk's notes describe it: pick the level where the bounds cover at most 2x2 texels; a
+ * texel whose zmax is nearer than bounds->znear occludes its part; a texel whose zmin is farther
+ * than znear means "visible" at once; a texel in between is refined at the next finer level,
+ * at most `max_refine` levels below the starting one (negative: down to level 0). Where
+ * refinement stops undecided the answer is "visible". *occluded = 1 only when every texel under
+ * the bounds occludes. Bounds entirely outside the image give *occluded = 0 (frustum culling is
+ * another test). texels_visited (may be NULL) receives the number of texels read: the test cost.
+ * Errors: SOL_ERR_NULL_ARG, SOL_ERR_NONFINITE (NaN bounds or znear), SOL_ERR_INVALID_ARG
+ * (x1 < x0 or y1 < y0). */
+sol_status sol_cbuffer_test(const sol_cbuffer *buffer, const sol_screen_bounds *bounds, int max_refine,
+                            int *occluded, int *texels_visited);
+
+/* ======================= D17: deviation-driven post-process anti-aliasing ================== */
+
+/* Which fetches gather the 8-neighbourhood of a pixel. */
+typedef enum sol_postaa_taps {
+    /* 4 bilinear taps at (+1,+1/2), (-1/2,+1), (-1,-1/2), (+1/2,-1) pixels from the centre: each
+     * tap averages two neighbours, together they weight all 8 neighbours by exactly 1/8. */
+    SOL_POSTAA_PINWHEEL4 = 0,
+    /* 4 bilinear taps at (+-1/2, +-1/2): each averages a 2x2 quad that includes the centre; the
+     * mean of the taps is the 3x3 tent [1 2 1; 2 4 2; 1 2 1] / 16. */
+    SOL_POSTAA_DIAGONAL4,
+    /* 8 point fetches: the definition d = sum |s_i - s_0| the talk states. */
+    SOL_POSTAA_DIRECT8
+} sol_postaa_taps;
+
+typedef struct sol_postaa_options {
+    sol_postaa_taps taps; /* 0 = SOL_POSTAA_PINWHEEL4 */
+    /* Deviation (mean over the fetches of the channel-summed |fetch - centre|) at which the blur
+     * reaches full strength; below it the blur weight is deviation / threshold. 0 = 0.25. */
+    double threshold;
+} sol_postaa_options;
+
+/* The neighbourhood statistics of pixel (x, y), edges clamped: `mean` (channels values) is the
+ * mean of the fetches, `deviation` the mean over the fetches of sum_c |fetch_c - centre_c| (so
+ * DIRECT8 gives the talk's d / 8). Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (bad image,
+ * pixel outside it, unknown taps). */
+sol_status sol_postaa_neighbourhood(const sol_image *image, int x, int y, sol_postaa_taps taps, float *mean,
+                                    float *deviation);
+
+/* Filters `in` into `out` (allocated here with in's size; free with sol_image_free):
+ * out = s0 + w (B - s0), w = min(1, deviation / threshold), where B is the 3x3 blur the taps give:
+ * the box (s0 + 8 mean) / 9 for PINWHEEL4 and DIRECT8, the tent `mean` itself for DIAGONAL4.
+ * Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (bad image or options, threshold < 0),
+ * SOL_ERR_NONFINITE (NaN/Inf pixel or threshold), SOL_ERR_NO_MEMORY. */
+sol_status sol_postaa_filter(const sol_image *in, const sol_postaa_options *options, sol_image *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

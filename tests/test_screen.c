@@ -1,0 +1,290 @@
+/* test_screen.c - the analytic box scene, the coverage buffer (M1), the post-process AA filter
+ * (D17), volumetric obscurance (M3) and temporal AA (D18). */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "sol_screen.h"
+
+static const sol_camera test_camera = {.width = 64, .height = 32, .focal = 32.0, .znear = 0.1, .zfar = 100.0};
+
+static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
+static double rng_uniform(double lo, double hi)
+{
+    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
+    return lo + (hi - lo) * (double)(rng_state >> 11) * 0x1.0p-53;
+}
+
+static sol_box random_box(double zlo, double zhi, double size)
+{
+    sol_box b;
+    double z = rng_uniform(zlo, zhi);
+    double c[3] = {rng_uniform(-z, z), rng_uniform(-0.5 * z, 0.5 * z), z};
+    for (int i = 0; i < 3; ++i) {
+        double h = rng_uniform(0.05, size);
+        if (i == 2)
+            h = fmin(h, 0.5 * z); /* stay in front of the near plane */
+        b.min[i] = c[i] - h;
+        b.max[i] = c[i] + h;
+    }
+    return b;
+}
+
+/* ---------------- scene ---------------- */
+
+Test(screen, camera_and_box_checks_reject_bad_input)
+{
+    sol_camera cam = test_camera;
+    cr_assert_eq(sol_camera_check(&cam), SOL_OK);
+    cr_assert_eq(sol_camera_check(NULL), SOL_ERR_NULL_ARG);
+    cam.focal = NAN;
+    cr_assert_eq(sol_camera_check(&cam), SOL_ERR_NONFINITE);
+    cam = test_camera;
+    cam.zfar = cam.znear;
+    cr_assert_eq(sol_camera_check(&cam), SOL_ERR_INVALID_ARG);
+    cam = test_camera;
+    cam.width = 0;
+    cr_assert_eq(sol_camera_check(&cam), SOL_ERR_INVALID_ARG);
+    sol_box box = {{-1, -1, 2}, {1, 1, 3}};
+    cr_assert_eq(sol_box_check(&test_camera, &box), SOL_OK);
+    box.max[0] = INFINITY;
+    cr_assert_eq(sol_box_check(&test_camera, &box), SOL_ERR_NONFINITE);
+    box.max[0] = -2; /* min > max */
+    cr_assert_eq(sol_box_check(&test_camera, &box), SOL_ERR_INVALID_ARG);
+    box = (sol_box){{-1, -1, 0.0}, {1, 1, 3}}; /* crosses the near plane */
+    cr_assert_eq(sol_box_check(&test_camera, &box), SOL_ERR_INVALID_ARG);
+}
+
+Test(screen, depth_of_an_empty_scene_is_zfar_and_a_wall_is_exact)
+{
+    float depth[64 * 32];
+    cr_assert_eq(sol_boxes_render_depth(&test_camera, NULL, 0, depth), SOL_OK);
+    for (int i = 0; i < 64 * 32; ++i)
+        cr_assert_eq(depth[i], 100.0f);
+    sol_box wall = {{-100, -100, 7.5}, {100, 100, 8}};
+    cr_assert_eq(sol_boxes_render_depth(&test_camera, &wall, 1, depth), SOL_OK);
+    for (int i = 0; i < 64 * 32; ++i)
+        cr_assert_eq(depth[i], 7.5f);
+    /* A flat box (zero thickness in x) seen edge-on at x = 0 must not produce NaN. */
+    sol_box flat = {{0, -1, 2}, {0, 1, 3}};
+    cr_assert_eq(sol_boxes_render_depth(&test_camera, &flat, 1, depth), SOL_OK);
+    for (int i = 0; i < 64 * 32; ++i)
+        cr_assert(isfinite(depth[i]));
+    sol_box bad = {{0, 0, NAN}, {1, 1, 1}};
+    depth[0] = -1.0f;
+    cr_assert_eq(sol_boxes_render_depth(&test_camera, &bad, 1, depth), SOL_ERR_NONFINITE);
+    cr_assert_eq(depth[0], -1.0f, "output untouched on error");
+}
+
+Test(screen, screen_bounds_contain_every_covered_pixel_centre)
+{
+    float depth[64 * 32];
+    for (int trial = 0; trial < 200; ++trial) {
+        sol_box box = random_box(1.0, 20.0, 3.0);
+        cr_assert_eq(sol_boxes_render_depth(&test_camera, &box, 1, depth), SOL_OK);
+        sol_screen_bounds b;
+        cr_assert_eq(sol_box_screen_bounds(&test_camera, &box, &b), SOL_OK);
+        for (int py = 0; py < 32; ++py)
+            for (int px = 0; px < 64; ++px)
+                if (depth[py * 64 + px] < 100.0f) {
+                    cr_assert(px + 0.5 >= b.x0 && px + 0.5 <= b.x1 && py + 0.5 >= b.y0 && py + 0.5 <= b.y1);
+                    cr_assert_geq(depth[py * 64 + px], (float)b.znear * (1.0f - 1e-6f));
+                }
+    }
+}
+
+/* ---------------- M1: coverage buffer ---------------- */
+
+Test(screen, cbuffer_rejects_bad_input_and_handles_a_1x1_buffer)
+{
+    sol_cbuffer cb = {.levels = 99};
+    float one = 5.0f, bad[4] = {1, 2, NAN, 4};
+    cr_assert_eq(sol_cbuffer_build(NULL, 1, 1, NULL, &cb), SOL_ERR_NULL_ARG);
+    cr_assert_eq(sol_cbuffer_build(&one, 0, 1, NULL, &cb), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_cbuffer_build(bad, 2, 2, NULL, &cb), SOL_ERR_NONFINITE);
+    sol_cbuffer_options bad_opt = {.block = -1};
+    cr_assert_eq(sol_cbuffer_build(&one, 1, 1, &bad_opt, &cb), SOL_ERR_INVALID_ARG);
+    bad_opt = (sol_cbuffer_options){.downscale = (sol_downscale)7};
+    cr_assert_eq(sol_cbuffer_build(&one, 1, 1, &bad_opt, &cb), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(cb.levels, 99, "output untouched on error");
+    cr_assert_eq(sol_cbuffer_build(&one, 1, 1, NULL, &cb), SOL_OK);
+    cr_assert_eq(cb.levels, 1);
+    int occluded = -1, visited = -1;
+    sol_screen_bounds behind = {0.2, 0.2, 0.8, 0.8, 6.0}, in_front = {0.2, 0.2, 0.8, 0.8, 4.0};
+    cr_assert_eq(sol_cbuffer_test(&cb, &behind, -1, &occluded, &visited), SOL_OK);
+    cr_assert_eq(occluded, 1);
+    cr_assert_eq(visited, 1);
+    cr_assert_eq(sol_cbuffer_test(&cb, &in_front, -1, &occluded, NULL), SOL_OK);
+    cr_assert_eq(occluded, 0);
+    sol_screen_bounds nan_bounds = {NAN, 0, 1, 1, 6.0}, flipped = {1, 0, 0, 1, 6.0}, off = {5, 5, 9, 9, 6.0};
+    cr_assert_eq(sol_cbuffer_test(&cb, &nan_bounds, -1, &occluded, NULL), SOL_ERR_NONFINITE);
+    cr_assert_eq(sol_cbuffer_test(&cb, &flipped, -1, &occluded, NULL), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_cbuffer_test(&cb, &off, -1, &occluded, NULL), SOL_OK);
+    cr_assert_eq(occluded, 0, "bounds outside the image are not occlusion-culled");
+    sol_cbuffer_free(&cb);
+    cr_assert_eq(cb.levels, 0);
+    sol_cbuffer_free(&cb);
+    sol_cbuffer_free(NULL);
+}
+
+Test(screen, cbuffer_levels_hold_min_and_max_of_odd_sizes)
+{
+    enum { W = 13, H = 7 };
+    float depth[W * H];
+    for (int i = 0; i < W * H; ++i)
+        depth[i] = (float)((i * 37) % 101);
+    sol_cbuffer_options opt = {.block = 2};
+    sol_cbuffer cb;
+    cr_assert_eq(sol_cbuffer_build(depth, W, H, &opt, &cb), SOL_OK);
+    cr_assert_eq(cb.width[0], 7);
+    cr_assert_eq(cb.height[0], 4);
+    cr_assert_eq(cb.width[cb.levels - 1], 1);
+    cr_assert_eq(cb.height[cb.levels - 1], 1);
+    float lo = INFINITY, hi = -INFINITY;
+    for (int i = 0; i < W * H; ++i) {
+        lo = fminf(lo, depth[i]);
+        hi = fmaxf(hi, depth[i]);
+    }
+    /* The top's zmax is the farthest depth; its zmin the nearest of the block maxima. */
+    cr_assert_eq(cb.zmax[cb.levels - 1][0], hi);
+    cr_assert_geq(cb.zmin[cb.levels - 1][0], lo);
+    sol_cbuffer_free(&cb);
+}
+
+/* M1: with the max() downscale no box that is visible at some pixel is ever culled, whatever the
+ * refinement depth; min() downscale does cull visible boxes on the same scene. */
+Test(screen, m1_max_downscale_never_culls_a_visible_box)
+{
+    enum { N_OCC = 12, N_TEST = 1500 };
+    sol_box occluders[N_OCC];
+    for (int i = 0; i < N_OCC; ++i)
+        occluders[i] = random_box(2.0, 10.0, 4.0);
+    float depth[64 * 32];
+    cr_assert_eq(sol_boxes_render_depth(&test_camera, occluders, N_OCC, depth), SOL_OK);
+    sol_cbuffer cons, near;
+    sol_cbuffer_options max_opt = {0}, min_opt = {.downscale = SOL_DOWNSCALE_MIN};
+    cr_assert_eq(sol_cbuffer_build(depth, 64, 32, &max_opt, &cons), SOL_OK);
+    cr_assert_eq(sol_cbuffer_build(depth, 64, 32, &min_opt, &near), SOL_OK);
+    int culled = 0, false_culls_min = 0;
+    for (int t = 0; t < N_TEST; ++t) {
+        sol_box box = random_box(2.0, 30.0, 1.0);
+        sol_screen_bounds b;
+        int visible, occluded;
+        cr_assert_eq(sol_box_screen_bounds(&test_camera, &box, &b), SOL_OK);
+        cr_assert_eq(sol_box_visible(&test_camera, depth, &box, &visible), SOL_OK);
+        for (int refine = -1; refine <= 2; ++refine) {
+            cr_assert_eq(sol_cbuffer_test(&cons, &b, refine, &occluded, NULL), SOL_OK);
+            cr_assert(!(occluded && visible), "false cull of box %d (refine %d)", t, refine);
+            culled += occluded;
+        }
+        cr_assert_eq(sol_cbuffer_test(&near, &b, -1, &occluded, NULL), SOL_OK);
+        false_culls_min += occluded && visible;
+    }
+    cr_assert_gt(culled, 0, "the test must cull something to mean anything");
+    cr_assert_gt(false_culls_min, 0, "the non-conservative min() downscale should cull visible boxes");
+    sol_cbuffer_free(&cons);
+    sol_cbuffer_free(&near);
+}
+
+/* ---------------- D17: post-process AA ---------------- */
+
+/* D17: the effective 3x3 kernel of each fetch placement, from the impulse response. */
+static void kernel_of(sol_postaa_taps taps, double kernel[9])
+{
+    sol_image img;
+    cr_assert_eq(sol_image_alloc(&img, 5, 5, 1), SOL_OK);
+    for (int k = 0; k < 9; ++k) {
+        for (int i = 0; i < 25; ++i)
+            img.data[i] = 0.0f;
+        img.data[(1 + k / 3) * 5 + 1 + k % 3] = 1.0f;
+        float mean, dev;
+        cr_assert_eq(sol_postaa_neighbourhood(&img, 2, 2, taps, &mean, &dev), SOL_OK);
+        kernel[k] = mean;
+    }
+    sol_image_free(&img);
+}
+
+Test(screen, d17_pinwheel_taps_are_exactly_the_8_neighbour_mean)
+{
+    double k[9];
+    kernel_of(SOL_POSTAA_PINWHEEL4, k);
+    for (int i = 0; i < 9; ++i)
+        cr_assert_eq(k[i], i == 4 ? 0.0 : 0.125, "kernel[%d] = %g", i, k[i]);
+    kernel_of(SOL_POSTAA_DIRECT8, k);
+    for (int i = 0; i < 9; ++i)
+        cr_assert_eq(k[i], i == 4 ? 0.0 : 0.125);
+    kernel_of(SOL_POSTAA_DIAGONAL4, k);
+    static const double tent[9] = {1, 2, 1, 2, 4, 2, 1, 2, 1};
+    for (int i = 0; i < 9; ++i)
+        cr_assert_eq(k[i], tent[i] / 16.0, "kernel[%d] = %g", i, k[i]);
+}
+
+Test(screen, d17_fetched_deviation_never_exceeds_the_talks_d)
+{
+    sol_image img;
+    cr_assert_eq(sol_image_alloc(&img, 9, 7, 3), SOL_OK);
+    for (int i = 0; i < 9 * 7 * 3; ++i)
+        img.data[i] = (float)rng_uniform(0.0, 1.0);
+    for (int y = 0; y < 7; ++y)
+        for (int x = 0; x < 9; ++x) {
+            float m4[3], m8[3], d4, d8;
+            cr_assert_eq(sol_postaa_neighbourhood(&img, x, y, SOL_POSTAA_PINWHEEL4, m4, &d4), SOL_OK);
+            cr_assert_eq(sol_postaa_neighbourhood(&img, x, y, SOL_POSTAA_DIRECT8, m8, &d8), SOL_OK);
+            cr_assert_leq(d4, d8 * (1.0f + 1e-5f) + 1e-6f);
+            for (int c = 0; c < 3; ++c)
+                cr_assert_float_eq(m4[c], m8[c], 1e-5f);
+        }
+    sol_image_free(&img);
+}
+
+Test(screen, d17_filter_edges_1x1_flat_and_bad_input)
+{
+    sol_image one, out = {.width = 42};
+    cr_assert_eq(sol_image_alloc(&one, 1, 1, 3), SOL_OK);
+    one.data[0] = 0.25f;
+    cr_assert_eq(sol_postaa_filter(&one, NULL, &out), SOL_OK); /* every fetch clamps to the pixel */
+    cr_assert_eq(out.data[0], 0.25f);
+    sol_image_free(&out);
+    one.data[1] = NAN;
+    out.width = 42;
+    cr_assert_eq(sol_postaa_filter(&one, NULL, &out), SOL_ERR_NONFINITE);
+    cr_assert_eq(out.width, 42, "output untouched on error");
+    one.data[1] = 0.0f;
+    sol_postaa_options opt = {.threshold = -1.0};
+    cr_assert_eq(sol_postaa_filter(&one, &opt, &out), SOL_ERR_INVALID_ARG);
+    opt = (sol_postaa_options){.threshold = INFINITY};
+    cr_assert_eq(sol_postaa_filter(&one, &opt, &out), SOL_ERR_NONFINITE);
+    opt = (sol_postaa_options){.taps = (sol_postaa_taps)9};
+    cr_assert_eq(sol_postaa_filter(&one, &opt, &out), SOL_ERR_INVALID_ARG);
+    float mean[3], dev;
+    cr_assert_eq(sol_postaa_neighbourhood(&one, 1, 0, SOL_POSTAA_PINWHEEL4, mean, &dev), SOL_ERR_INVALID_ARG);
+    sol_image empty = {0};
+    cr_assert_eq(sol_postaa_filter(&empty, NULL, &out), SOL_ERR_INVALID_ARG);
+    sol_image_free(&one);
+    /* A flat image has zero deviation everywhere and passes unchanged. */
+    sol_image flat;
+    cr_assert_eq(sol_image_alloc(&flat, 6, 4, 1), SOL_OK);
+    for (int i = 0; i < 24; ++i)
+        flat.data[i] = 0.7f;
+    cr_assert_eq(sol_postaa_filter(&flat, NULL, &out), SOL_OK);
+    for (int i = 0; i < 24; ++i)
+        cr_assert_eq(out.data[i], 0.7f);
+    sol_image_free(&out);
+    sol_image_free(&flat);
+}
+
+Test(screen, d17_filter_softens_a_hard_edge)
+{
+    sol_image img, out;
+    cr_assert_eq(sol_image_alloc(&img, 8, 8, 1), SOL_OK);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x)
+            img.data[y * 8 + x] = x < 4 ? 0.0f : 1.0f;
+    cr_assert_eq(sol_postaa_filter(&img, NULL, &out), SOL_OK);
+    cr_assert_gt(out.data[3 * 8 + 3], 0.0f);
+    cr_assert_lt(out.data[3 * 8 + 4], 1.0f);
+    cr_assert_eq(out.data[3 * 8 + 0], 0.0f, "pixels away from the edge keep their value");
+    sol_image_free(&out);
+    sol_image_free(&img);
+}
