@@ -101,7 +101,7 @@ sol_status sol_postaa_filter(const sol_image *in, const sol_postaa_options *opti
         return SOL_ERR_NONFINITE;
     if (opt.threshold < 0.0)
         return SOL_ERR_INVALID_ARG;
-    const double threshold = opt.threshold > 0.0 ? opt.threshold : 0.25;
+    const double threshold = opt.threshold > 0.0 ? opt.threshold : 0.5;
     const size_t values = (size_t)in->width * (size_t)in->height * (size_t)in->channels;
     for (size_t i = 0; i < values; ++i)
         if (!isfinite(in->data[i]))

@@ -130,7 +130,8 @@ typedef enum sol_postaa_taps {
 typedef struct sol_postaa_options {
     sol_postaa_taps taps; /* 0 = SOL_POSTAA_PINWHEEL4 */
     /* Deviation (mean over the fetches of the channel-summed |fetch - centre|) at which the blur
-     * reaches full strength; below it the blur weight is deviation / threshold. 0 = 0.25. */
+     * reaches full strength; below it the blur weight is deviation / threshold. 0 = 0.5
+     * (full blur once half the neighbours differ by a unit step in one channel). */
     double threshold;
 } sol_postaa_options;
 

@@ -1,0 +1,375 @@
+/* d17_postaa - claim D17: the deviation-driven post-process AA filter with 4 bilinear fetches
+ * standing in for the 8 neighbours.
+ *  1. The 3x3 kernel each fetch placement actually applies (impulse responses through the
+ *     library's own bilinear fetches) against the intended 8-neighbour mean.
+ *  2. The fetched deviation against the talk's d = sum |s_i - s_0| on random and rendered images.
+ *  3. Edge error of 1-sample-per-pixel renders of flat-shaded triangles before and after the
+ *     filter, against a 16x16-supersampled reference; threshold sweep; error against time. */
+#include "sol_exp.h"
+#include "sol_screen.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+static uint64_t rng_state = 0xD17D17ull;
+static double rng_uniform(double lo, double hi)
+{
+    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return lo + (hi - lo) * (double)(z >> 11) * 0x1.0p-53;
+}
+
+/* ---- the test scene: flat-ish shaded triangles, painter's order, over a grey background ---- */
+typedef struct triangle {
+    double v[3][2];
+    double color[3], gradient[3][2]; /* colour = color + gradient . (p - v0), slow shading */
+} triangle;
+
+typedef struct scene {
+    triangle *tris;
+    int count;
+} scene;
+
+static scene make_scene(int count, int size)
+{
+    scene s = {malloc(sizeof(triangle) * (size_t)count), count};
+    if (!s.tris)
+        sol_exp_die("out of memory");
+    for (int t = 0; t < count; ++t) {
+        triangle *tr = &s.tris[t];
+        double cx = rng_uniform(0, size), cy = rng_uniform(0, size), r = rng_uniform(0.08, 0.3) * size;
+        for (int k = 0; k < 3; ++k) {
+            double a = rng_uniform(0, 2 * M_PI);
+            tr->v[k][0] = cx + r * cos(a);
+            tr->v[k][1] = cy + r * sin(a);
+        }
+        for (int c = 0; c < 3; ++c) {
+            tr->color[c] = rng_uniform(0.05, 0.95);
+            tr->gradient[c][0] = rng_uniform(-0.002, 0.002);
+            tr->gradient[c][1] = rng_uniform(-0.002, 0.002);
+        }
+    }
+    return s;
+}
+
+static double edge_fn(const double a[2], const double b[2], double x, double y)
+{
+    return (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]);
+}
+
+/* Colour of the scene at the screen point (x, y): the last triangle containing it wins. */
+static void shade(const scene *s, double x, double y, double out[3])
+{
+    out[0] = out[1] = out[2] = 0.5;
+    for (int t = s->count - 1; t >= 0; --t) {
+        const triangle *tr = &s->tris[t];
+        double e0 = edge_fn(tr->v[0], tr->v[1], x, y), e1 = edge_fn(tr->v[1], tr->v[2], x, y),
+               e2 = edge_fn(tr->v[2], tr->v[0], x, y);
+        if ((e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0)) {
+            for (int c = 0; c < 3; ++c)
+                out[c] = tr->color[c] + tr->gradient[c][0] * (x - tr->v[0][0]) + tr->gradient[c][1] * (y - tr->v[0][1]);
+            return;
+        }
+    }
+}
+
+/* n x n stratified samples per pixel, box filtered (n = 1: the pixel centre, i.e. aliased). */
+static void render(const scene *s, int n, sol_image *img)
+{
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int y = 0; y < img->height; ++y)
+        for (int x = 0; x < img->width; ++x) {
+            double sum[3] = {0, 0, 0};
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) {
+                    double c[3];
+                    shade(s, x + (i + 0.5) / n, y + (j + 0.5) / n, c);
+                    for (int k = 0; k < 3; ++k)
+                        sum[k] += c[k];
+                }
+            float *p = sol_image_pixel(img, x, y);
+            for (int k = 0; k < 3; ++k)
+                p[k] = (float)(sum[k] / (n * n));
+        }
+}
+
+/* RMS error over all pixels and over edge pixels (where the aliased render misses the reference). */
+static void errors(const sol_image *img, const sol_image *ref, const sol_image *aliased, double *rms_all,
+                   double *rms_edge)
+{
+    double all = 0.0, edge = 0.0;
+    long n_edge = 0, n = (long)img->width * img->height;
+    for (long i = 0; i < n; ++i) {
+        double e2 = 0.0, miss = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            double d = (double)img->data[3 * i + c] - ref->data[3 * i + c];
+            e2 += d * d;
+            miss += fabs((double)aliased->data[3 * i + c] - ref->data[3 * i + c]);
+        }
+        all += e2 / 3;
+        if (miss > 1e-3) {
+            edge += e2 / 3;
+            ++n_edge;
+        }
+    }
+    *rms_all = sqrt(all / n);
+    *rms_edge = sqrt(edge / (n_edge ? n_edge : 1));
+}
+
+static const char *taps_name(sol_postaa_taps t)
+{
+    return t == SOL_POSTAA_PINWHEEL4 ? "pinwheel 4 bilinear" : t == SOL_POSTAA_DIAGONAL4 ? "diagonal 4 bilinear" : "direct 8 point";
+}
+
+/* Part 1: impulse responses. Returns the largest |kernel - intended| of the pinwheel placement. */
+static double kernel_table(const sol_exp *exp)
+{
+    sol_table *t = sol_table_new("Effective 3x3 kernel of the neighbour mean (row-major, x right, y down)",
+                                 "fetches,k00,k10,k20,k01,k11,k21,k02,k12,k22,max |k - 8-neighbour mean|");
+    sol_image img;
+    sol_exp_check(sol_image_alloc(&img, 5, 5, 1), "allocating");
+    double pinwheel_err = 0.0;
+    for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
+        double k[9], worst = 0.0;
+        for (int i = 0; i < 9; ++i) {
+            memset(img.data, 0, 25 * sizeof(float));
+            img.data[(1 + i / 3) * 5 + 1 + i % 3] = 1.0f;
+            float mean, dev;
+            sol_exp_check(sol_postaa_neighbourhood(&img, 2, 2, (sol_postaa_taps)taps, &mean, &dev), "kernel");
+            k[i] = mean;
+            worst = fmax(worst, fabs(k[i] - (i == 4 ? 0.0 : 0.125)));
+        }
+        if (taps == SOL_POSTAA_PINWHEEL4)
+            pinwheel_err = worst;
+        sol_table_row(t, "%s|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f", taps_name((sol_postaa_taps)taps), k[0],
+                      k[1], k[2], k[3], k[4], k[5], k[6], k[7], k[8], worst);
+    }
+    sol_image_free(&img);
+    sol_table_write(t, exp, "kernels");
+    return pinwheel_err;
+}
+
+typedef struct deviation_stats {
+    double mean_ratio, min_ratio, max_mean_err;
+    long pixels;
+} deviation_stats;
+
+/* Fetched deviation / the talk's d/8, and |fetched mean - 8-neighbour mean|, over pixels with d > 0. */
+static deviation_stats deviation_compare(const sol_image *img, sol_postaa_taps taps)
+{
+    deviation_stats st = {0.0, INFINITY, 0.0, 0};
+    double sum = 0.0;
+    for (int y = 0; y < img->height; ++y)
+        for (int x = 0; x < img->width; ++x) {
+            float m4[4], m8[4], d4, d8;
+            sol_exp_check(sol_postaa_neighbourhood(img, x, y, taps, m4, &d4), "neighbourhood");
+            sol_exp_check(sol_postaa_neighbourhood(img, x, y, SOL_POSTAA_DIRECT8, m8, &d8), "neighbourhood");
+            for (int c = 0; c < img->channels; ++c)
+                st.max_mean_err = fmax(st.max_mean_err, fabs((double)m4[c] - m8[c]));
+            if (d8 <= 1e-6f)
+                continue;
+            double r = (double)d4 / d8;
+            sum += r;
+            st.min_ratio = fmin(st.min_ratio, r);
+            ++st.pixels;
+        }
+    st.mean_ratio = st.pixels ? sum / st.pixels : 0.0;
+    return st;
+}
+
+typedef struct filter_job {
+    const sol_image *in;
+    sol_postaa_options opt;
+} filter_job;
+
+static void run_filter(void *ctx)
+{
+    filter_job *job = ctx;
+    sol_image out;
+    sol_exp_check(sol_postaa_filter(job->in, &job->opt, &out), "filtering");
+    sol_image_free(&out);
+}
+
+typedef struct render_job {
+    const scene *s;
+    int n;
+    sol_image *img;
+} render_job;
+
+static void run_render(void *ctx)
+{
+    render_job *job = ctx;
+    render(job->s, job->n, job->img);
+}
+
+/* Side-by-side crop (aliased | filtered | reference), enlarged 3x with nearest neighbour. */
+static void save_crops(const sol_exp *exp, const sol_image *a, const sol_image *f, const sol_image *r)
+{
+    const int crop = 64, zoom = 3, x0 = a->width / 2 - crop / 2, y0 = a->height / 2 - crop / 2;
+    sol_image out;
+    sol_exp_check(sol_image_alloc(&out, 3 * crop * zoom, crop * zoom, 3), "allocating");
+    const sol_image *src[3] = {a, f, r};
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            int panel = x / (crop * zoom), sx = x0 + (x % (crop * zoom)) / zoom, sy = y0 + y / zoom;
+            memcpy(sol_image_pixel(&out, x, y), sol_image_pixel(src[panel], sx, sy), 3 * sizeof(float));
+        }
+    for (size_t i = 0; i < (size_t)out.width * out.height * 3; ++i)
+        out.data[i] = fminf(1.0f, fmaxf(0.0f, out.data[i]));
+    sol_exp_check(sol_png_write(sol_exp_path(exp, "crops.png"), &out, 8), "writing crops.png");
+    sol_image_free(&out);
+}
+
+int main(int argc, char **argv)
+{
+    sol_exp exp;
+    sol_exp_init(&exp, "d17_postaa", argc, argv);
+    const int size = exp.quick ? 128 : 256, ref_n = exp.quick ? 8 : 16, repeats = exp.quick ? 3 : 7;
+
+    double pinwheel_kernel_err = exp.bench ? 0.0 : kernel_table(&exp);
+
+    /* Part 2: random images (uniform noise, the worst case for cancellation) and a render. */
+    scene s = make_scene(exp.quick ? 12 : 24, size);
+    sol_image noise, aliased, reference;
+    sol_exp_check(sol_image_alloc(&noise, size, size, 3), "allocating");
+    sol_exp_check(sol_image_alloc(&aliased, size, size, 3), "allocating");
+    sol_exp_check(sol_image_alloc(&reference, size, size, 3), "allocating");
+    for (size_t i = 0; i < (size_t)size * size * 3; ++i)
+        noise.data[i] = (float)rng_uniform(0, 1);
+    render(&s, 1, &aliased);
+    render(&s, ref_n, &reference);
+    deviation_stats edge_pin = {0};
+    if (!exp.bench) {
+        sol_table *t = sol_table_new("Fetched neighbourhood against the 8 point fetches",
+                                     "image,fetches,max |mean - 8-neighbour mean|,mean deviation ratio,min ratio,pixels");
+        const sol_image *imgs[2] = {&noise, &aliased};
+        const char *names[2] = {"uniform noise", "aliased triangles (d>0 pixels)"};
+        for (int i = 0; i < 2; ++i)
+            for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIAGONAL4; ++taps) {
+                deviation_stats st = deviation_compare(imgs[i], (sol_postaa_taps)taps);
+                if (i == 1 && taps == SOL_POSTAA_PINWHEEL4)
+                    edge_pin = st;
+                sol_table_row(t, "%s|%s|%.2e|%.4f|%.4f|%ld", names[i], taps_name((sol_postaa_taps)taps), st.max_mean_err,
+                              st.mean_ratio, st.min_ratio, st.pixels);
+            }
+        sol_table_write(t, &exp, "deviation");
+    }
+
+    /* Part 3a: threshold sweep (the filter's only knob) for each placement. */
+    double rms_alias_all, rms_alias_edge;
+    errors(&aliased, &reference, &aliased, &rms_alias_all, &rms_alias_edge);
+    double best_edge[3] = {INFINITY, INFINITY, INFINITY}, best_thr[3] = {0}, default_edge[3] = {0}, default_all[3] = {0};
+    double best_all = INFINITY, best_all_thr = 0.0; /* pinwheel, over all pixels */
+    if (!exp.bench) {
+        FILE *csv = sol_exp_open(&exp, "threshold_curves.csv");
+        fputs("taps,threshold,rms_all,rms_edge\n", csv);
+        for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
+            for (int i = 0; i <= 16; ++i) {
+                double thr = 0.02 * pow(2.0, i * 0.5); /* 0.02 .. 5.12 */
+                sol_postaa_options opt = {(sol_postaa_taps)taps, thr};
+                sol_image out;
+                sol_exp_check(sol_postaa_filter(&aliased, &opt, &out), "filtering");
+                double a, e;
+                errors(&out, &reference, &aliased, &a, &e);
+                fprintf(csv, "%d,%.5f,%.6f,%.6f\n", taps, thr, a, e);
+                if (e < best_edge[taps]) {
+                    best_edge[taps] = e;
+                    best_thr[taps] = thr;
+                }
+                if (taps == SOL_POSTAA_PINWHEEL4 && a < best_all) {
+                    best_all = a;
+                    best_all_thr = thr;
+                }
+                sol_image_free(&out);
+            }
+            fputs("\n\n", csv);
+        }
+        fclose(csv);
+    }
+
+    /* Part 3b: error and time per pixel of each method at the default threshold, and of
+     * supersampling for scale (time of supersampling = its render; of the filters = the filter). */
+    sol_table *cost = sol_table_new("Edge anti-aliasing: error against a 16x16 supersampled reference, and cost",
+                                    "method,RMS error (all),RMS error (edge pixels),edge error vs aliased %,ns per pixel");
+    FILE *csv = sol_exp_open(&exp, "error_vs_time.csv");
+    fputs("method,ns,rms_edge\n", csv);
+    sol_table_row(cost, "aliased (1 sample)|%.5f|%.5f|100.0|-", rms_alias_all, rms_alias_edge);
+    for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
+        filter_job job = {&aliased, {(sol_postaa_taps)taps, 0.0}};
+        double ns = sol_time_per_item_ns(run_filter, &job, (size_t)size * size, repeats);
+        sol_image out;
+        sol_exp_check(sol_postaa_filter(&aliased, &job.opt, &out), "filtering");
+        errors(&out, &reference, &aliased, &default_all[taps], &default_edge[taps]);
+        if (taps == SOL_POSTAA_PINWHEEL4 && !exp.bench)
+            save_crops(&exp, &aliased, &out, &reference);
+        sol_image_free(&out);
+        sol_table_row(cost, "filter, %s|%.5f|%.5f|%.1f|%.2f", taps_name((sol_postaa_taps)taps), default_all[taps],
+                      default_edge[taps], 100.0 * default_edge[taps] / rms_alias_edge, ns);
+        fprintf(csv, "\"%s\",%.4f,%.6f\n", taps_name((sol_postaa_taps)taps), ns, default_edge[taps]);
+    }
+    for (int n = 2; n <= 4; n += 2) {
+        sol_image ss;
+        sol_exp_check(sol_image_alloc(&ss, size, size, 3), "allocating");
+        render_job job = {&s, n, &ss};
+        double ns = sol_time_per_item_ns(run_render, &job, (size_t)size * size, repeats);
+        render_job one = {&s, 1, &ss};
+        double ns1 = sol_time_per_item_ns(run_render, &one, (size_t)size * size, repeats);
+        render(&s, n, &ss);
+        double a, e;
+        errors(&ss, &reference, &aliased, &a, &e);
+        sol_table_row(cost, "supersampling %dx%d (extra render cost)|%.5f|%.5f|%.1f|%.2f", n, n, a, e,
+                      100.0 * e / rms_alias_edge, ns - ns1);
+        fprintf(csv, "\"supersampling %dx%d\",%.4f,%.6f\n", n, n, ns - ns1, e);
+        sol_image_free(&ss);
+    }
+    fclose(csv);
+    sol_table_write(cost, &exp, "edge_error");
+
+    if (!exp.bench) {
+        sol_plot(&exp, "threshold_sweep",
+                 "set datafile separator comma\nset logscale x\nset xlabel 'threshold (deviation of full blur)'\n"
+                 "set ylabel 'RMS error'\nset grid\nset key right center\n"
+                 "plot 'threshold_curves.csv' index 0 using 2:4 with linespoints lw 2 title 'pinwheel 4 bilinear', "
+                 "'' index 1 using 2:4 with linespoints title 'diagonal 4 bilinear', "
+                 "'' index 2 using 2:4 with linespoints dt 2 title 'direct 8 point', "
+                 "%.6f with lines lc rgb 'black' title 'aliased (no filter)', "
+                 "'' index 0 using 2:3 with linespoints dt 3 title 'pinwheel, all pixels', "
+                 "%.6f with lines dt 3 lc rgb 'black' title 'aliased, all pixels'",
+                 rms_alias_edge, rms_alias_all);
+        sol_plot(&exp, "error_vs_time",
+                 "set datafile separator comma\nset xlabel 'ns per pixel (median)'\nset ylabel 'RMS error on edge pixels'\n"
+                 "set grid\nset key off\nset logscale x\nset offsets graph 0.1, graph 0.3, graph 0.1, graph 0.1\n"
+                 "plot 'error_vs_time.csv' using 2:3 with points pt 7 ps 1.5, '' using 2:3:1 with labels left rotate by 20 offset 1,0.5");
+        char fig[256];
+        snprintf(fig, sizeof fig, "pinwheel taps (+1,+1/2) and rotations: kernel = 8-neighbour mean, max weight error %.1e",
+                 pinwheel_kernel_err);
+        sol_claim(&exp, "D17", "4 bilinear taps cover all 8 neighbours", fig, "weights equal to 1/8 to 1e-6",
+                  pinwheel_kernel_err < 1e-6 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+                  "the talk gives no tap positions; the diagonal placement (+-1/2,+-1/2) also reaches all 8 but applies the "
+                  "tent [1 2 1;2 4 2;1 2 1]/16 including the centre (kernels table)");
+        snprintf(fig, sizeof fig, "fetched deviation / d: mean %.3f, min %.3f on edge pixels", edge_pin.mean_ratio,
+                 edge_pin.min_ratio);
+        sol_claim(&exp, "D17", "d = sum |s_i - s_0| over the 8 neighbours, from the 4 taps", fig, "ratio 1",
+                  SOL_DIFFERS_EXPLAINED,
+                  "a bilinear tap returns the average of two neighbours, so it sees |(s_a+s_b)/2 - s_0|: opposite differences "
+                  "cancel and the fetched deviation is a lower bound of d (equal when each pair differs with one sign)");
+        snprintf(fig, sizeof fig,
+                 "edge-pixel RMS %.4f -> %.4f (%.0f%%) at threshold 0.5 (default), best %.4f at %.2f; all-pixel RMS %.4f -> %.4f, best "
+                 "%.4f at %.2f",
+                 rms_alias_edge, default_edge[0], 100.0 * default_edge[0] / rms_alias_edge, best_edge[0], best_thr[0],
+                 rms_alias_all, default_all[0], best_all, best_all_thr);
+        sol_claim(&exp, "D17", "blur by deviation smooths edges (qualitative)", fig, "edge error reduced",
+                  default_edge[0] < rms_alias_edge ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+                  "1-sample renders of shaded triangles vs 16x16 supersampling; the blur also spreads error onto the correct "
+                  "pixels beside an edge, so the all-pixel gain is smaller; 2x2 supersampling does better (edge_error table)");
+    }
+    sol_image_free(&noise);
+    sol_image_free(&aliased);
+    sol_image_free(&reference);
+    free(s.tris);
+    return 0;
+}
