@@ -72,14 +72,15 @@ static int cell_of(double v, int size, double *frac)
 
 static void lookup_trilinear(const sol_lut3d *lut, const int i[3], const double t[3], double out[3])
 {
-    for (int c = 0; c < 3; ++c) {
-        double acc = 0.0;
-        for (int corner = 0; corner < 8; ++corner) {
-            int dr = corner & 1, dg = (corner >> 1) & 1, db = corner >> 2;
-            double w = (dr ? t[0] : 1 - t[0]) * (dg ? t[1] : 1 - t[1]) * (db ? t[2] : 1 - t[2]);
-            acc += w * lut_entry(lut, i[0] + dr, i[1] + dg, i[2] + db)[c];
-        }
-        out[c] = acc;
+    const float *base = lut_entry(lut, i[0], i[1], i[2]);
+    const size_t step[3] = {3, 3 * (size_t)lut->size, 3 * (size_t)lut->size * (size_t)lut->size};
+    out[0] = out[1] = out[2] = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        int dr = corner & 1, dg = (corner >> 1) & 1, db = corner >> 2;
+        double w = (dr ? t[0] : 1 - t[0]) * (dg ? t[1] : 1 - t[1]) * (db ? t[2] : 1 - t[2]);
+        const float *e = base + dr * step[0] + dg * step[1] + db * step[2];
+        for (int c = 0; c < 3; ++c)
+            out[c] += w * e[c];
     }
 }
 
