@@ -288,3 +288,204 @@ Test(screen, d17_filter_softens_a_hard_edge)
     sol_image_free(&out);
     sol_image_free(&img);
 }
+
+/* ---------------- M3: volumetric obscurance ---------------- */
+
+static void fill(float *v, size_t n, float value)
+{
+    for (size_t i = 0; i < n; ++i)
+        v[i] = value;
+}
+
+Test(screen, m3_vo_of_a_facing_wall_is_one_half_and_background_is_zero)
+{
+    float depth[64 * 32], vo[64 * 32];
+    fill(depth, 64 * 32, 5.0f);
+    for (int samples = 1; samples <= 64; samples *= 4) {
+        sol_vo_options opt = {.radius = 0.5, .samples = samples, .frame = 3};
+        cr_assert_eq(sol_vo_compute(&test_camera, depth, &opt, vo), SOL_OK);
+        for (int i = 0; i < 64 * 32; ++i)
+            cr_assert_float_eq(vo[i], 0.5f, 1e-6f);
+    }
+    fill(depth, 64 * 32, 100.0f); /* zfar: background */
+    cr_assert_eq(sol_vo_compute(&test_camera, depth, NULL, vo), SOL_OK);
+    for (int i = 0; i < 64 * 32; ++i)
+        cr_assert_eq(vo[i], 0.0f);
+}
+
+Test(screen, m3_vo_sees_creases_above_and_ridges_below_one_half)
+{
+    sol_box scene[2] = {{{-100, -100, 10}, {100, 100, 11}}, {{-1, -1, 6}, {1, 1, 7}}};
+    float depth[64 * 32], vo[64 * 32];
+    cr_assert_eq(sol_boxes_render_depth(&test_camera, scene, 2, depth), SOL_OK);
+    sol_vo_options opt = {.radius = 1.5, .samples = 256, .same_rotation_everywhere = 1};
+    cr_assert_eq(sol_vo_compute(&test_camera, depth, &opt, vo), SOL_OK);
+    /* The box spans x in [32 - 32/6*1, 32 + 32/6] ~ [26.7, 37.3] pixels at depth 6. */
+    cr_assert_gt(vo[16 * 64 + 24], 0.5f, "wall pixel beside the box is occluded by it");
+    cr_assert_lt(vo[16 * 64 + 27], 0.5f, "box pixel at its silhouette sees open space");
+    cr_assert_float_eq(vo[16 * 64 + 2], 0.5f, 1e-6f); /* wall far from the box */
+}
+
+Test(screen, m3_vo_rejects_bad_input_and_handles_1x1)
+{
+    const sol_camera one = {.width = 1, .height = 1, .focal = 1.0, .znear = 0.1, .zfar = 10.0};
+    float depth = 2.0f, vo = -7.0f;
+    cr_assert_eq(sol_vo_compute(&one, &depth, NULL, &vo), SOL_OK);
+    cr_assert_float_eq(vo, 0.5f, 1e-6f); /* every sample clamps to the pixel itself */
+    vo = -7.0f;
+    sol_vo_options bad = {.radius = -1.0};
+    cr_assert_eq(sol_vo_compute(&one, &depth, &bad, &vo), SOL_ERR_INVALID_ARG);
+    bad = (sol_vo_options){.radius = NAN};
+    cr_assert_eq(sol_vo_compute(&one, &depth, &bad, &vo), SOL_ERR_NONFINITE);
+    bad = (sol_vo_options){.samples = 5000};
+    cr_assert_eq(sol_vo_compute(&one, &depth, &bad, &vo), SOL_ERR_INVALID_ARG);
+    depth = INFINITY;
+    cr_assert_eq(sol_vo_compute(&one, &depth, NULL, &vo), SOL_ERR_NONFINITE);
+    cr_assert_eq(vo, -7.0f, "output untouched on error");
+    cr_assert_eq(sol_vo_compute(&one, NULL, NULL, &vo), SOL_ERR_NULL_ARG);
+}
+
+Test(screen, m3_half_depth_and_bilateral_upsampling)
+{
+    float depth[5 * 3], half[3 * 2], values[3 * 2], out[5 * 3];
+    for (int i = 0; i < 15; ++i)
+        depth[i] = (float)(1 + i);
+    cr_assert_eq(sol_depth_half(depth, 5, 3, half), SOL_OK);
+    cr_assert_eq(half[0], 1.0f);
+    cr_assert_eq(half[2], 5.0f);
+    cr_assert_eq(half[3], 11.0f);
+    fill(values, 6, 0.3f);
+    cr_assert_eq(sol_bilateral_upsample(values, half, depth, 5, 3, out), SOL_OK);
+    for (int i = 0; i < 15; ++i)
+        cr_assert_float_eq(out[i], 0.3f, 1e-6f, "a constant signal stays constant");
+    /* Depth-aware: a pixel takes the value of the half texel at its own depth. */
+    float d2[4] = {1, 1, 9, 9}, h2[1], v2[1] = {0.8f}, o2[4];
+    cr_assert_eq(sol_depth_half(d2, 2, 2, h2), SOL_OK);
+    cr_assert_eq(sol_bilateral_upsample(v2, h2, d2, 2, 2, o2), SOL_OK);
+    cr_assert_float_eq(o2[3], 0.8f, 1e-6f);
+    cr_assert_eq(sol_depth_half(depth, 0, 3, half), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_bilateral_upsample(NULL, half, depth, 5, 3, out), SOL_ERR_NULL_ARG);
+}
+
+/* ---------------- D18 / M3: temporal accumulation ---------------- */
+
+static const sol_camera small_camera = {.width = 8, .height = 6, .focal = 8.0, .znear = 0.1, .zfar = 100.0};
+
+Test(screen, temporal_still_camera_averages_frames_and_caps_history)
+{
+    sol_history h[2];
+    cr_assert_eq(sol_history_alloc(&h[0], 8, 6, 1), SOL_OK);
+    cr_assert_eq(sol_history_alloc(&h[1], 8, 6, 1), SOL_OK);
+    float depth[48], cur[48];
+    fill(depth, 48, 4.0f);
+    const double still[3] = {0, 0, 0};
+    sol_temporal_options opt = {.max_frames = 100};
+    for (int f = 0; f < 4; ++f) {
+        fill(cur, 48, (float)(f % 2)); /* 0, 1, 0, 1: the running mean is 0.5 */
+        cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, still, &opt, &h[f % 2], &h[(f + 1) % 2]), SOL_OK);
+    }
+    for (int i = 0; i < 48; ++i) {
+        cr_assert_float_eq(h[0].values[i], 0.5f, 1e-6f);
+        cr_assert_eq(h[0].frames[i], 4.0f);
+    }
+    /* A history cap of 2 keeps the weight of the new frame at >= 1/2. */
+    opt.max_frames = 2;
+    fill(cur, 48, 1.0f);
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, still, &opt, &h[0], &h[1]), SOL_OK);
+    cr_assert_float_eq(h[1].values[0], 0.75f, 1e-6f);
+    sol_history_free(&h[0]);
+    sol_history_free(&h[1]);
+}
+
+/* D18: a depth change is a cache miss (history dropped); without the depth test it ghosts. */
+Test(screen, d18_depth_change_is_a_cache_miss_and_no_test_ghosts)
+{
+    sol_history prev, next;
+    cr_assert_eq(sol_history_alloc(&prev, 8, 6, 1), SOL_OK);
+    cr_assert_eq(sol_history_alloc(&next, 8, 6, 1), SOL_OK);
+    fill(prev.values, 48, 1.0f);
+    fill(prev.depth, 48, 4.0f);
+    fill(prev.frames, 48, 8.0f);
+    float depth[48], cur[48];
+    fill(depth, 48, 2.0f); /* something moved in front */
+    fill(cur, 48, 0.0f);
+    const double still[3] = {0, 0, 0};
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, still, NULL, &prev, &next), SOL_OK);
+    cr_assert_eq(next.values[20], 0.0f);
+    cr_assert_eq(next.frames[20], 1.0f);
+    sol_temporal_options off = {.no_depth_test = 1};
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, still, &off, &prev, &next), SOL_OK);
+    cr_assert_float_eq(next.values[20], 8.0f / 9.0f, 1e-6f, "the old value ghosts");
+    /* Motion that carries every point out of the previous image is a miss everywhere. */
+    const double far_away[3] = {1000, 0, 0};
+    fill(depth, 48, 4.0f);
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, far_away, &off, &prev, &next), SOL_OK);
+    for (int i = 0; i < 48; ++i)
+        cr_assert_eq(next.frames[i], 1.0f);
+    sol_history_free(&prev);
+    sol_history_free(&next);
+}
+
+Test(screen, temporal_reprojection_follows_a_sideways_camera_move)
+{
+    /* A wall at depth 4 and a camera moved by 4/8 units right: one pixel of parallax. */
+    sol_history prev, next;
+    cr_assert_eq(sol_history_alloc(&prev, 8, 6, 1), SOL_OK);
+    cr_assert_eq(sol_history_alloc(&next, 8, 6, 1), SOL_OK);
+    for (int i = 0; i < 48; ++i) {
+        prev.values[i] = (float)(i % 8);
+        prev.depth[i] = 4.0f;
+        prev.frames[i] = 1.0f;
+    }
+    float depth[48], cur[48];
+    fill(depth, 48, 4.0f);
+    fill(cur, 48, 0.0f);
+    const double motion[3] = {0.5, 0, 0};
+    sol_temporal_options opt = {.max_frames = 1e9};
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, motion, &opt, &prev, &next), SOL_OK);
+    /* Pixel x sees what pixel x+1 saw: history value x+1, blended 1:1 with the current 0. */
+    cr_assert_float_eq(next.values[2 * 8 + 3], 0.5f * 4.0f, 1e-5f);
+    cr_assert_eq(next.frames[2 * 8 + 7], 1.0f, "the right column came into view: a miss");
+    sol_history_free(&prev);
+    sol_history_free(&next);
+}
+
+Test(screen, temporal_rejects_bad_input)
+{
+    sol_history a, b, wrong;
+    cr_assert_eq(sol_history_alloc(&a, 8, 6, 1), SOL_OK);
+    cr_assert_eq(sol_history_alloc(&b, 8, 6, 1), SOL_OK);
+    cr_assert_eq(sol_history_alloc(&wrong, 4, 6, 1), SOL_OK);
+    cr_assert_eq(sol_history_alloc(&wrong, 0, 6, 1), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_history_alloc(&wrong, 8, 6, 5), SOL_ERR_INVALID_ARG);
+    float depth[48], cur[48];
+    fill(depth, 48, 4.0f);
+    fill(cur, 48, 0.5f);
+    const double still[3] = {0, 0, 0}, bad_motion[3] = {NAN, 0, 0};
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, still, NULL, &a, &wrong), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, still, NULL, &a, &a), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, bad_motion, NULL, &a, &b), SOL_ERR_NONFINITE);
+    sol_temporal_options neg = {.max_frames = -1};
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, still, &neg, &a, &b), SOL_ERR_INVALID_ARG);
+    depth[5] = NAN;
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, still, NULL, &a, &b), SOL_ERR_NONFINITE);
+    cr_assert_eq(b.frames[0], 0.0f, "output untouched on error");
+    sol_history_free(&a);
+    sol_history_free(&b);
+    sol_history_free(&wrong);
+    sol_history_free(NULL);
+}
+
+Test(screen, d18_jitter_offsets_stay_inside_the_pixel)
+{
+    double sx = 0, sy = 0;
+    for (unsigned f = 0; f < 1000; ++f) {
+        double dx, dy;
+        sol_jitter_offset(f, &dx, &dy);
+        cr_assert(dx >= -0.5 && dx < 0.5 && dy >= -0.5 && dy < 0.5);
+        sx += dx;
+        sy += dy;
+    }
+    cr_assert_lt(fabs(sx / 1000), 0.01, "jitter is centred");
+    cr_assert_lt(fabs(sy / 1000), 0.01);
+}

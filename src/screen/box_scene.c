@@ -61,6 +61,34 @@ static double ray_box_depth(const double dir[3], const sol_box *box)
     return enter <= leave ? enter : INFINITY;
 }
 
+sol_status sol_boxes_trace(const sol_camera *camera, const sol_box *boxes, size_t count, double sx, double sy,
+                           double *depth, long *index)
+{
+    sol_status status = sol_camera_check(camera);
+    if (status != SOL_OK)
+        return status;
+    if (!depth || !index || (count && !boxes))
+        return SOL_ERR_NULL_ARG;
+    if (!isfinite(sx) || !isfinite(sy))
+        return SOL_ERR_NONFINITE;
+    for (size_t i = 0; i < count; ++i)
+        if ((status = sol_box_check(camera, &boxes[i])) != SOL_OK)
+            return status;
+    double dir[3], nearest = camera->zfar;
+    long hit = -1;
+    pixel_ray(camera, sx, sy, dir);
+    for (size_t i = 0; i < count; ++i) {
+        double t = ray_box_depth(dir, &boxes[i]);
+        if (t < nearest) {
+            nearest = t;
+            hit = (long)i;
+        }
+    }
+    *depth = nearest;
+    *index = hit;
+    return SOL_OK;
+}
+
 sol_status sol_boxes_render_depth(const sol_camera *camera, const sol_box *boxes, size_t count, float *depth)
 {
     sol_status status = sol_camera_check(camera);

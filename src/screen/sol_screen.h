@@ -48,6 +48,12 @@ sol_status sol_box_check(const sol_camera *camera, const sol_box *box);
  * checks, SOL_ERR_NULL_ARG. Parallel over rows; the result does not depend on the thread count. */
 sol_status sol_boxes_render_depth(const sol_camera *camera, const sol_box *boxes, size_t count, float *depth);
 
+/* Traces one ray through the screen point (sx, sy) (any sub-pixel position): *depth = z of the
+ * first box hit (or camera->zfar), *index = that box's index (or -1). Errors: as above, plus
+ * SOL_ERR_NONFINITE for a NaN/Inf screen point. */
+sol_status sol_boxes_trace(const sol_camera *camera, const sol_box *boxes, size_t count, double sx, double sy,
+                           double *depth, long *index);
+
 /* Screen-space bounds of a box: the rectangle [x0,x1] x [y0,y1] (screen coordinates, not
  * clipped to the image) that holds the projection of all 8 corners, hence of the whole box, and
  * the box's nearest depth znear = box->min[2]. Errors: as sol_box_check. */
@@ -148,6 +154,80 @@ sol_status sol_postaa_neighbourhood(const sol_image *image, int x, int y, sol_po
  * Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (bad image or options, threshold < 0),
  * SOL_ERR_NONFINITE (NaN/Inf pixel or threshold), SOL_ERR_NO_MEMORY. */
 sol_status sol_postaa_filter(const sol_image *in, const sol_postaa_options *options, sol_image *out);
+
+/* ======================= M3: volumetric obscurance (SSAO) =============================== */
+
+typedef struct sol_vo_options {
+    double radius;  /* radius of the obscurance sphere in view-space units; 0 = 1 */
+    int samples;    /* line samples per pixel, 1..4096; 0 = 4 (the talk's count) */
+    unsigned frame; /* which samples: frame f uses points f*samples .. (f+1)*samples-1 of the R2
+                     * sequence, so successive frames add new samples for temporal accumulation */
+    int same_rotation_everywhere; /* nonzero: no per-pixel rotation of the pattern (reference) */
+} sol_vo_options;
+
+/* Volumetric obscurance (Loos & Sloan, I3D 2010) with line samples: for each pixel with depth z_p,
+ * the sphere of the given radius around the pixel's surface point is cut by lines along the view
+ * axis through points (u, v) of its central disk; the depth buffer is taken as a height field
+ * (everything behind a stored depth is solid). Each line of half length h = R sqrt(1 - |uv|^2)
+ * contributes its solid part clamp(z_p + h - z_s, 0, 2h), where z_s is the stored depth at the
+ * line's pixel (nearest pixel, edges clamped); vo = sum(solid) / sum(2h). A flat surface facing
+ * the camera gives 0.5; creases more, ridges less. The disk points are R2 points (radius sqrt(u)
+ * for area uniformity), rotated per pixel by interleaved gradient noise (Jimenez 2014) unless
+ * same_rotation_everywhere. Pixels at the background depth (>= camera->zfar) get 0.
+ * Errors: the camera's check, SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (radius < 0, samples out of
+ * range), SOL_ERR_NONFINITE (NaN/Inf radius or depth). Parallel over rows, thread-count-stable. */
+sol_status sol_vo_compute(const sol_camera *camera, const float *depth, const sol_vo_options *options, float *vo);
+
+/* Half resolution: out (ceil(w/2) x ceil(h/2)) takes the depth of the top-left pixel of each 2x2
+ * block (a real surface depth, never a blend across an edge). Errors: NULL, size < 1. */
+sol_status sol_depth_half(const float *depth, int width, int height, float *out);
+
+/* Depth-aware (bilateral) upsampling of a half-resolution signal: each full-resolution pixel
+ * blends the 4 nearest half-resolution texels with bilinear weights times 1 / (eps + |dz| / z),
+ * eps = 1e-3, dz the depth difference. Sizes: half is ceil(w/2) x ceil(h/2). Errors: NULL,
+ * size < 1. */
+sol_status sol_bilateral_upsample(const float *half_values, const float *half_depth, const float *full_depth,
+                                  int width, int height, float *out);
+
+/* ======================= D18 / M3: temporal accumulation by reprojection ================== */
+
+/* Per-pixel history of an accumulated signal, for one camera frame. */
+typedef struct sol_history {
+    int width, height, channels;
+    float *values; /* width * height * channels accumulated values */
+    float *depth;  /* the depth buffer of the frame the history belongs to */
+    float *frames; /* frames accumulated per pixel (0: empty) */
+} sol_history;
+
+/* Allocates an empty history (frames 0). Errors: NULL, size < 1, channels outside 1..4,
+ * SOL_ERR_NO_MEMORY. Free with sol_history_free (safe on a zeroed or NULL history). */
+sol_status sol_history_alloc(sol_history *out, int width, int height, int channels);
+void sol_history_free(sol_history *history);
+
+typedef struct sol_temporal_options {
+    double max_frames;      /* the current frame gets weight max(1/(n+1), 1/max_frames); 0 = 16 */
+    double depth_tolerance; /* relative depth change |z_hist - z_expected| / z_expected above which
+                             * the history is a cache miss (talk, D18); 0 = 0.01 */
+    int no_depth_test;      /* nonzero: reproject without the depth test (for ghosting studies) */
+} sol_temporal_options;
+
+/* One accumulation step (reverse reprojection caching, Nehab et al. 2007, as the talk uses it):
+ * for each pixel, its surface point P = depth * ray is moved into the previous camera by
+ * `motion` (the camera translation from the previous frame to this one, view-space units; the
+ * cameras differ by translation only), projected, and the previous history is fetched there
+ * (bilinear, edges of the image are misses). The history counts as a hit when the point lands in
+ * the image and (unless no_depth_test) the previous depth at the nearest pixel is within the
+ * tolerance of P's previous depth; then next = lerp(history, current, w), otherwise next = current
+ * and the count restarts at 1. `current` holds camera-size * channels values (channels = the
+ * histories' channels); prev may be an empty history. next must not alias prev.
+ * Errors: NULL, SOL_ERR_INVALID_ARG (history sizes differ from the camera's, negative options),
+ * SOL_ERR_NONFINITE (NaN/Inf motion, depth or current values). */
+sol_status sol_temporal_accumulate(const sol_camera *camera, const float *depth, const float *current,
+                                   const double motion[3], const sol_temporal_options *options,
+                                   const sol_history *prev, sol_history *next);
+
+/* The sub-pixel jitter of frame n: the n-th R2 point minus 1/2, in pixels, in [-1/2, 1/2)^2. */
+void sol_jitter_offset(unsigned frame, double *dx, double *dy);
 
 #ifdef __cplusplus
 }
