@@ -1,0 +1,467 @@
+/* sg_fit.c - fits sums of isotropic Spherical Gaussians (and one anisotropic SG) to the anisotropic
+ * Ward NDF with Ceres through sol_lsq_solve (claim D15: "~7 lobes in the vast majority of cases"). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sol_brdf.h"
+
+/* Points over the hemisphere of half vectors in Ward's scaled slope coordinates: h is parallel to
+ * (ax u, ay v, 1), so the NDF is exp(-(u^2 + v^2)) / (pi ax ay cos^4 th) and its peak region is a
+ * unit disk whatever the roughness. Polar (r, psi) with r = R t / (1 - t), t Gauss-Legendre on
+ * (0, 1): the whole hemisphere (r -> inf is the horizon) with half the nodes inside r < R.
+ * dw = ax ay cos^3 th r dr dpsi. The target is the NDF scaled by pi ax ay (peak ~1). */
+typedef struct ward_nodes {
+    int n;
+    double *dir;    /* 3 per node */
+    double *weight; /* solid angle of each node */
+    double *target; /* pi ax ay D(h) */
+} ward_nodes;
+
+enum { RADIAL_SCALE_NUM = 5, RADIAL_SCALE_DEN = 2 }; /* R = 2.5: exp(-R^2) = 2e-3 */
+
+static void gauss_legendre01(int n, double *x, double *w)
+{
+    for (int i = 0; i < n; ++i) {
+        double z = cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
+        for (int it = 0; it < 100; ++it) {
+            double p0 = 1.0, p1 = z;
+            for (int k = 2; k <= n; ++k) {
+                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n * (z * p1 - p0) / (z * z - 1.0);
+            double dz = p1 / dp;
+            z -= dz;
+            if (fabs(dz) < 1e-16)
+                break;
+        }
+        x[i] = 0.5 * (1.0 - z);
+        w[i] = 1.0 / ((1.0 - z * z) * dp * dp);
+    }
+}
+
+static void ward_nodes_free(ward_nodes *w)
+{
+    free(w->dir);
+    free(w->weight);
+    free(w->target);
+    memset(w, 0, sizeof *w);
+}
+
+static sol_status ward_nodes_build(double ax, double ay, int n_radial, int n_angular, ward_nodes *out)
+{
+    int n = n_radial * n_angular;
+    ward_nodes w = {n, malloc(3 * (size_t)n * sizeof(double)), malloc((size_t)n * sizeof(double)),
+                    malloc((size_t)n * sizeof(double))};
+    double *t = malloc(2 * (size_t)n_radial * sizeof(double));
+    if (!w.dir || !w.weight || !w.target || !t) {
+        free(t);
+        ward_nodes_free(&w);
+        return SOL_ERR_NO_MEMORY;
+    }
+    gauss_legendre01(n_radial, t, t + n_radial);
+    const double R = (double)RADIAL_SCALE_NUM / RADIAL_SCALE_DEN;
+    for (int i = 0; i < n_radial; ++i) {
+        double ti = t[i], r = R * ti / (1.0 - ti), dr = R / ((1.0 - ti) * (1.0 - ti)) * t[n_radial + i];
+        for (int j = 0; j < n_angular; ++j) {
+            double psi = 2.0 * M_PI * (j + 0.5) / n_angular;
+            double u = r * cos(psi), v = r * sin(psi);
+            double px = ax * u, py = ay * v, len = sqrt(1.0 + px * px + py * py);
+            double c = 1.0 / len;
+            int k = i * n_angular + j;
+            w.dir[3 * k] = px * c;
+            w.dir[3 * k + 1] = py * c;
+            w.dir[3 * k + 2] = c;
+            w.weight[k] = ax * ay * c * c * c * r * dr * (2.0 * M_PI / n_angular);
+            w.target[k] = exp(-r * r) * (len * len) * (len * len);
+        }
+    }
+    free(t);
+    *out = w;
+    return SOL_OK;
+}
+
+/* Fit parameters per lobe: polar angle, azimuth, log sharpness, amplitude (target units). */
+enum { LOBE_PARAMS = 4 };
+
+static void lobe_from_params(const double *p, sol_sg *g)
+{
+    double st = sin(p[0]), ct = cos(p[0]);
+    g->axis[0] = st * cos(p[1]);
+    g->axis[1] = st * sin(p[1]);
+    g->axis[2] = ct;
+    g->sharpness = exp(p[2]);
+    g->amplitude = p[3];
+}
+
+typedef struct sg_fit_ctx {
+    const ward_nodes *nodes;
+    const double *sqrt_w; /* sqrt(weight) / ||target|| */
+    int k;
+} sg_fit_ctx;
+
+static int sg_residuals(void *vctx, const double *params, double *res, double *jac)
+{
+    const sg_fit_ctx *c = vctx;
+    const ward_nodes *w = c->nodes;
+    int np = LOBE_PARAMS * c->k;
+    for (int i = 0; i < w->n; ++i)
+        res[i] = -w->target[i] * c->sqrt_w[i];
+    for (int k = 0; k < c->k; ++k) {
+        const double *p = params + LOBE_PARAMS * k;
+        sol_sg g;
+        lobe_from_params(p, &g);
+        double st = sin(p[0]), ct = cos(p[0]), sp = sin(p[1]), cp = cos(p[1]);
+        double d_theta[3] = {ct * cp, ct * sp, -st}, d_phi[3] = {-st * sp, st * cp, 0.0};
+        for (int i = 0; i < w->n; ++i) {
+            const double *h = w->dir + 3 * i;
+            double e = exp(g.sharpness * (sol_dot3(g.axis, h) - 1.0));
+            double s = c->sqrt_w[i];
+            res[i] += s * g.amplitude * e;
+            if (jac) {
+                double ale = s * g.amplitude * e * g.sharpness;
+                double *row = jac + (size_t)i * np + LOBE_PARAMS * k;
+                row[0] = ale * sol_dot3(d_theta, h);
+                row[1] = ale * sol_dot3(d_phi, h);
+                row[2] = ale * (sol_dot3(g.axis, h) - 1.0);
+                row[3] = s * e;
+            }
+        }
+    }
+    return 0;
+}
+
+static double sg_sum(const sol_sg *lobes, int k, const double h[3])
+{
+    double s = 0.0;
+    for (int j = 0; j < k; ++j)
+        s += sol_sg_eval(&lobes[j], h);
+    return s;
+}
+
+/* Errors of an SG sum given in target units (pi ax ay D) on the evaluation nodes. */
+static void nodes_error(const ward_nodes *w, const sol_sg *lobes, int k, sol_sg_fit_error *e)
+{
+    double num = 0.0, den = 0.0, max_diff = 0.0, max_t = 0.0, es = 0.0, ed = 0.0;
+    for (int i = 0; i < w->n; ++i) {
+        const double *h = w->dir + 3 * i;
+        double s = sg_sum(lobes, k, h), t = w->target[i], d = s - t;
+        num += w->weight[i] * d * d;
+        den += w->weight[i] * t * t;
+        es += w->weight[i] * s * h[2];
+        ed += w->weight[i] * t * h[2];
+        max_diff = fabs(d) > max_diff ? fabs(d) : max_diff;
+        max_t = t > max_t ? t : max_t;
+    }
+    e->rel_l2 = sqrt(num / den);
+    e->max_rel = max_diff / max_t;
+    e->energy = es / ed - 1.0;
+}
+
+static sol_status check_alpha(double ax, double ay)
+{
+    if (isnan(ax) || isnan(ay))
+        return SOL_ERR_NONFINITE;
+    if (!(ax >= 1e-3 && ax <= 10.0 && ay >= 1e-3 && ay <= 10.0))
+        return SOL_ERR_INVALID_ARG;
+    return SOL_OK;
+}
+
+typedef struct fit_setup {
+    sol_sg_fit_options o;
+    ward_nodes fit, eval;
+    double *sqrt_w;
+} fit_setup;
+
+static void fit_setup_free(fit_setup *s)
+{
+    ward_nodes_free(&s->fit);
+    ward_nodes_free(&s->eval);
+    free(s->sqrt_w);
+}
+
+static sol_status fit_setup_init(double ax, double ay, const sol_sg_fit_options *opts, fit_setup *s)
+{
+    memset(s, 0, sizeof *s);
+    s->o = opts ? *opts : (sol_sg_fit_options){0};
+    sol_sg_fit_options *o = &s->o;
+    o->radial_samples = o->radial_samples > 0 ? o->radial_samples : 20;
+    o->angular_samples = o->angular_samples > 0 ? o->angular_samples : 24;
+    o->eval_radial = o->eval_radial > 0 ? o->eval_radial : 64;
+    o->eval_angular = o->eval_angular > 0 ? o->eval_angular : 96;
+    o->max_iterations = o->max_iterations > 0 ? o->max_iterations : 200;
+    if (o->radial_samples > 4096 || o->angular_samples > 4096 || o->eval_radial > 4096 || o->eval_angular > 4096)
+        return SOL_ERR_INVALID_ARG;
+    /* Isotropic lobes along the long axis of an anisotropic NDF are narrow in the scaled slope
+     * coordinates; more azimuthal fit nodes keep them from hiding between nodes. */
+    double ratio = ax > ay ? ax / ay : ay / ax;
+    int angular = o->angular_samples * (int)ceil(sqrt(ratio));
+    sol_status st = ward_nodes_build(ax, ay, o->radial_samples, angular, &s->fit);
+    if (st == SOL_OK)
+        st = ward_nodes_build(ax, ay, o->eval_radial, o->eval_angular, &s->eval);
+    if (st == SOL_OK && !(s->sqrt_w = malloc((size_t)s->fit.n * sizeof(double))))
+        st = SOL_ERR_NO_MEMORY;
+    if (st != SOL_OK) {
+        fit_setup_free(s);
+        return st;
+    }
+    double norm = 0.0;
+    for (int i = 0; i < s->fit.n; ++i)
+        norm += s->fit.weight[i] * s->fit.target[i] * s->fit.target[i];
+    for (int i = 0; i < s->fit.n; ++i)
+        s->sqrt_w[i] = sqrt(s->fit.weight[i] / norm);
+    return SOL_OK;
+}
+
+/* Seeds the new lobe k (0-based) at the fit node with the largest positive residual. */
+static void seed_lobe(const fit_setup *s, const double *params, int k, double lambda0, double *p_new)
+{
+    sol_sg lobes[16];
+    for (int j = 0; j < k; ++j)
+        lobe_from_params(params + LOBE_PARAMS * j, &lobes[j]);
+    int best = 0;
+    double best_r = -INFINITY;
+    for (int i = 0; i < s->fit.n; ++i) {
+        double r = (s->fit.target[i] - sg_sum(lobes, k, s->fit.dir + 3 * i)) * s->sqrt_w[i];
+        if (r > best_r) {
+            best_r = r;
+            best = i;
+        }
+    }
+    const double *h = s->fit.dir + 3 * best;
+    double resid = s->fit.target[best] - sg_sum(lobes, k, h);
+    p_new[0] = acos(h[2] < 1.0 ? h[2] : 1.0);
+    p_new[1] = atan2(h[1], h[0]);
+    p_new[2] = log(lambda0);
+    p_new[3] = resid > 0.0 ? resid : 0.0;
+}
+
+static const double LOG_SHARPNESS_MIN = -4.605170185988091; /* ln 0.01 */
+static const double LOG_SHARPNESS_MAX = 13.815510557964274; /* ln 1e6 */
+static const double AMPLITUDE_MAX = 1e3;
+
+sol_status sol_ward_sg_fit(double alpha_x, double alpha_y, int k_max, const sol_sg_fit_options *opts, sol_sg *lobes,
+                           sol_sg_fit_error *errors, sol_lsq_summary *summaries)
+{
+    if (!lobes || !errors)
+        return SOL_ERR_NULL_ARG;
+    sol_status st = check_alpha(alpha_x, alpha_y);
+    if (st != SOL_OK)
+        return st;
+    if (k_max < 1 || k_max > 16)
+        return SOL_ERR_INVALID_ARG;
+    fit_setup s;
+    if ((st = fit_setup_init(alpha_x, alpha_y, opts, &s)) != SOL_OK)
+        return st;
+    int np_max = LOBE_PARAMS * k_max;
+    double *params = calloc((size_t)np_max * 5, sizeof(double));
+    sol_sg *out = malloc((size_t)(k_max * (k_max + 1) / 2) * sizeof(sol_sg));
+    sol_sg_fit_error *errs = malloc((size_t)k_max * sizeof *errs);
+    sol_lsq_summary *sums = calloc((size_t)k_max, sizeof *sums);
+    if (!params || !out || !errs || !sums) {
+        st = SOL_ERR_NO_MEMORY;
+        goto done;
+    }
+    double *lower = params + np_max, *upper = lower + np_max, *trial = upper + np_max;
+    for (int j = 0; j < k_max; ++j) {
+        double *lo = lower + LOBE_PARAMS * j, *hi = upper + LOBE_PARAMS * j;
+        lo[0] = 0.0, hi[0] = 0.5 * M_PI;
+        lo[1] = -1e3, hi[1] = 1e3;
+        lo[2] = LOG_SHARPNESS_MIN, hi[2] = LOG_SHARPNESS_MAX;
+        lo[3] = 0.0, hi[3] = AMPLITUDE_MAX;
+    }
+    /* Curvature of the NDF at its peak, averaged over azimuth: exp(-lambda th^2 / 2) matches
+     * exp(-th^2 (1/ax^2 + 1/ay^2) / 2). */
+    double lambda0 = 1.0 / (alpha_x * alpha_x) + 1.0 / (alpha_y * alpha_y);
+    if (lambda0 > 1e6)
+        lambda0 = 1e6;
+    /* Lobes sharper than 4x the target's sharpest curvature would fall between fit nodes. */
+    double amin = alpha_x < alpha_y ? alpha_x : alpha_y;
+    double log_lambda_cap = log(8.0 / (amin * amin));
+    for (int j = 0; j < k_max; ++j)
+        if (upper[LOBE_PARAMS * j + 2] > log_lambda_cap)
+            upper[LOBE_PARAMS * j + 2] = log_lambda_cap;
+    if (log(lambda0) > log_lambda_cap)
+        lambda0 = exp(log_lambda_cap);
+    double prev_l2 = INFINITY;
+    sol_sg *scratch = malloc((size_t)k_max * sizeof *scratch);
+    if (!scratch) {
+        st = SOL_ERR_NO_MEMORY;
+        goto done;
+    }
+    for (int k = 1; k <= k_max; ++k) {
+        int np = LOBE_PARAMS * k;
+        /* Greedy start: fit k-1 plus a lobe at the largest residual, tried at three widths; the
+         * best by the (finer) evaluation quadrature wins, and fit k-1 padded with a zero lobe is
+         * kept when no candidate beats it, so the error never rises with k. */
+        static const double width_factor[3] = {0.25, 1.0, 4.0};
+        int n_cand = k == 1 ? 1 : 3;
+        double best_l2 = prev_l2;
+        sol_lsq_summary best_sum = {0};
+        double *best = trial + np_max;
+        int have_best = 0;
+        for (int c = 0; c < n_cand; ++c) {
+            memcpy(trial, params, (size_t)(np - LOBE_PARAMS) * sizeof(double));
+            double lam = k == 1 ? lambda0 : lambda0 * width_factor[c];
+            if (log(lam) > log_lambda_cap)
+                lam = exp(log_lambda_cap);
+            if (k == 1) {
+                trial[0] = 0.0, trial[1] = 0.0, trial[2] = log(lam), trial[3] = 1.0;
+            } else {
+                seed_lobe(&s, params, k - 1, lam, trial + np - LOBE_PARAMS);
+            }
+            sg_fit_ctx ctx = {&s.fit, s.sqrt_w, k};
+            sol_lsq_problem prob = {np, s.fit.n, sg_residuals, &ctx, lower, upper, s.o.max_iterations};
+            sol_lsq_summary sum;
+            if ((st = sol_lsq_solve(&prob, trial, &sum)) != SOL_OK) {
+                free(scratch);
+                goto done;
+            }
+            for (int j = 0; j < k; ++j)
+                lobe_from_params(trial + LOBE_PARAMS * j, &scratch[j]);
+            sol_sg_fit_error e;
+            nodes_error(&s.eval, scratch, k, &e);
+            if (e.rel_l2 < best_l2) {
+                best_l2 = e.rel_l2;
+                best_sum = sum;
+                memcpy(best, trial, (size_t)np * sizeof(double));
+                have_best = 1;
+            }
+            sums[k - 1].solve_seconds += sum.solve_seconds;
+            sums[k - 1].iterations += sum.iterations;
+        }
+        double total_seconds = sums[k - 1].solve_seconds;
+        int total_iterations = sums[k - 1].iterations;
+        if (have_best) {
+            memcpy(params, best, (size_t)np * sizeof(double));
+            prev_l2 = best_l2;
+            sums[k - 1] = best_sum;
+        } else { /* keep fit k-1 and give the new lobe zero amplitude */
+            params[np - 4] = 0.0;
+            params[np - 3] = 0.0;
+            params[np - 2] = log(lambda0);
+            params[np - 1] = 0.0;
+            sums[k - 1] = k > 1 ? sums[k - 2] : best_sum;
+        }
+        sums[k - 1].solve_seconds = total_seconds;
+        sums[k - 1].iterations = total_iterations;
+        sol_sg *fit = out + k * (k - 1) / 2;
+        for (int j = 0; j < k; ++j)
+            lobe_from_params(params + LOBE_PARAMS * j, &fit[j]);
+        nodes_error(&s.eval, fit, k, &errs[k - 1]);
+        for (int j = 0; j < k; ++j) /* target units -> NDF units */
+            fit[j].amplitude /= M_PI * alpha_x * alpha_y;
+    }
+    free(scratch);
+    memcpy(lobes, out, (size_t)(k_max * (k_max + 1) / 2) * sizeof(sol_sg));
+    memcpy(errors, errs, (size_t)k_max * sizeof *errs);
+    if (summaries)
+        memcpy(summaries, sums, (size_t)k_max * sizeof *sums);
+done:
+    free(params);
+    free(out);
+    free(errs);
+    free(sums);
+    fit_setup_free(&s);
+    return st;
+}
+
+sol_status sol_ward_sg_error(double alpha_x, double alpha_y, const sol_sg *lobes, int k,
+                             const sol_sg_fit_options *opts, sol_sg_fit_error *error)
+{
+    if (!lobes || !error)
+        return SOL_ERR_NULL_ARG;
+    sol_status st = check_alpha(alpha_x, alpha_y);
+    if (st != SOL_OK)
+        return st;
+    if (k < 1 || k > 4096)
+        return SOL_ERR_INVALID_ARG;
+    fit_setup s;
+    if ((st = fit_setup_init(alpha_x, alpha_y, opts, &s)) != SOL_OK)
+        return st;
+    sol_sg *scaled = malloc((size_t)k * sizeof *scaled);
+    if (!scaled) {
+        fit_setup_free(&s);
+        return SOL_ERR_NO_MEMORY;
+    }
+    for (int j = 0; j < k; ++j) {
+        scaled[j] = lobes[j];
+        scaled[j].amplitude *= M_PI * alpha_x * alpha_y;
+    }
+    nodes_error(&s.eval, scaled, k, error);
+    free(scaled);
+    fit_setup_free(&s);
+    return SOL_OK;
+}
+
+/* ---- one anisotropic SG (Xu et al. 2013) in the shading frame: params ln lx, ln ly, c ---- */
+
+typedef struct asg_fit_ctx {
+    const ward_nodes *nodes;
+    const double *sqrt_w;
+} asg_fit_ctx;
+
+static int asg_residuals(void *vctx, const double *p, double *res, double *jac)
+{
+    const asg_fit_ctx *c = vctx;
+    double lx = exp(p[0]), ly = exp(p[1]);
+    for (int i = 0; i < c->nodes->n; ++i) {
+        const double *h = c->nodes->dir + 3 * i;
+        double q = h[2] * exp(-lx * h[0] * h[0] - ly * h[1] * h[1]), s = c->sqrt_w[i];
+        res[i] = s * (p[2] * q - c->nodes->target[i]);
+        if (jac) {
+            jac[3 * i] = -s * p[2] * q * lx * h[0] * h[0];
+            jac[3 * i + 1] = -s * p[2] * q * ly * h[1] * h[1];
+            jac[3 * i + 2] = s * q;
+        }
+    }
+    return 0;
+}
+
+sol_status sol_ward_asg_fit(double alpha_x, double alpha_y, const sol_sg_fit_options *opts, sol_asg *lobe,
+                            sol_sg_fit_error *error, sol_lsq_summary *summary)
+{
+    if (!lobe || !error)
+        return SOL_ERR_NULL_ARG;
+    sol_status st = check_alpha(alpha_x, alpha_y);
+    if (st != SOL_OK)
+        return st;
+    fit_setup s;
+    if ((st = fit_setup_init(alpha_x, alpha_y, opts, &s)) != SOL_OK)
+        return st;
+    /* Near the peak exp(-lx x^2) matches exp(-x^2 / ax^2). */
+    double p[3] = {-2.0 * log(alpha_x), -2.0 * log(alpha_y), 1.0};
+    double lower[3] = {LOG_SHARPNESS_MIN, LOG_SHARPNESS_MIN, 0.0};
+    double upper[3] = {LOG_SHARPNESS_MAX, LOG_SHARPNESS_MAX, AMPLITUDE_MAX};
+    for (int i = 0; i < 2; ++i)
+        p[i] = p[i] > upper[i] ? upper[i] : p[i];
+    asg_fit_ctx ctx = {&s.fit, s.sqrt_w};
+    sol_lsq_problem prob = {3, s.fit.n, asg_residuals, &ctx, lower, upper, s.o.max_iterations};
+    sol_lsq_summary sum;
+    if ((st = sol_lsq_solve(&prob, p, &sum)) == SOL_OK) {
+        sol_asg g = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, exp(p[0]), exp(p[1]), p[2]};
+        /* Error on the evaluation nodes, in target units. */
+        double num = 0.0, den = 0.0, maxd = 0.0, maxt = 0.0, es = 0.0, ed = 0.0;
+        for (int i = 0; i < s.eval.n; ++i) {
+            const double *h = s.eval.dir + 3 * i;
+            double a = sol_asg_eval(&g, h), t = s.eval.target[i], d = a - t;
+            num += s.eval.weight[i] * d * d;
+            den += s.eval.weight[i] * t * t;
+            es += s.eval.weight[i] * a * h[2];
+            ed += s.eval.weight[i] * t * h[2];
+            maxd = fabs(d) > maxd ? fabs(d) : maxd;
+            maxt = t > maxt ? t : maxt;
+        }
+        error->rel_l2 = sqrt(num / den);
+        error->max_rel = maxd / maxt;
+        error->energy = es / ed - 1.0;
+        g.amplitude /= M_PI * alpha_x * alpha_y;
+        *lobe = g;
+        if (summary)
+            *summary = sum;
+    }
+    fit_setup_free(&s);
+    return st;
+}
