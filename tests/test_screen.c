@@ -489,3 +489,29 @@ Test(screen, d18_jitter_offsets_stay_inside_the_pixel)
     cr_assert_lt(fabs(sx / 1000), 0.01, "jitter is centred");
     cr_assert_lt(fabs(sy / 1000), 0.01);
 }
+
+/* D18: at a silhouette, the 3x3 depth-range test keeps the history that the 1-pixel test drops. */
+Test(screen, d18_edge_tolerant_test_accepts_a_neighbouring_depth)
+{
+    sol_history prev, next;
+    cr_assert_eq(sol_history_alloc(&prev, 8, 6, 1), SOL_OK);
+    cr_assert_eq(sol_history_alloc(&next, 8, 6, 1), SOL_OK);
+    for (int i = 0; i < 48; ++i) {
+        prev.values[i] = 1.0f;
+        prev.depth[i] = (i % 8) < 4 ? 2.0f : 9.0f; /* a silhouette between columns 3 and 4 */
+        prev.frames[i] = 4.0f;
+    }
+    float depth[48], cur[48];
+    for (int i = 0; i < 48; ++i)
+        depth[i] = (i % 8) < 3 ? 2.0f : 9.0f; /* this frame's jittered sample saw the far side in column 3 */
+    fill(cur, 48, 0.0f);
+    const double still[3] = {0, 0, 0};
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, still, NULL, &prev, &next), SOL_OK);
+    cr_assert_eq(next.frames[2 * 8 + 3], 1.0f, "1-pixel test: a miss at the silhouette");
+    sol_temporal_options edge = {.edge_tolerant = 1};
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, still, &edge, &prev, &next), SOL_OK);
+    cr_assert_eq(next.frames[2 * 8 + 3], 5.0f, "3x3 test: the history is kept");
+    cr_assert_eq(next.frames[2 * 8 + 1], 5.0f);
+    sol_history_free(&prev);
+    sol_history_free(&next);
+}

@@ -230,8 +230,8 @@ int main(int argc, char **argv)
         sol_table_write(tt, &exp, "temporal");
 
         sol_plot(&exp, "error_vs_samples",
-                 "set datafile separator comma\nset logscale xy\nset xlabel 'samples per pixel'\n"
-                 "set ylabel 'RMS error of VO'\nset grid\nset key top right\nset xtics (4,8,16,32,64)\n"
+                 "set datafile separator comma\nset logscale xy\nset xlabel 'samples per pixel (accumulated curves: 4 x frame number)'\n"
+                 "set ylabel 'RMS error of VO'\nset grid\nset key bottom left\nset xtics (4,8,16,32,64,128)\n"
                  "plot 'samples_curves.csv' using 1:2 with linespoints lw 2 title 'full resolution', "
                  "'' using 1:4 with linespoints title 'half resolution + bilateral upsampling', "
                  "'temporal_curves.csv' using ($1*4):2 with lines dt 2 title '4 samples x frames, still camera', "

@@ -209,6 +209,12 @@ typedef struct sol_temporal_options {
     double depth_tolerance; /* relative depth change |z_hist - z_expected| / z_expected above which
                              * the history is a cache miss (talk, D18); 0 = 0.01 */
     int no_depth_test;      /* nonzero: reproject without the depth test (for ghosting studies) */
+    /* nonzero: the depth test passes when the expected depth lies within the tolerance of the
+     * [min, max] of the previous depths in the 3x3 pixels around the reprojected point, instead of
+     * the nearest pixel alone. With jittered frames a silhouette pixel sees either surface from
+     * frame to frame; this keeps accumulating there (the talk's "take into account edge
+     * discontinuities") at the price of up to one pixel of ghosting around moving objects. */
+    int edge_tolerant;
 } sol_temporal_options;
 
 /* One accumulation step (reverse reprojection caching, Nehab et al. 2007, as the talk uses it):
@@ -216,8 +222,8 @@ typedef struct sol_temporal_options {
  * `motion` (the camera translation from the previous frame to this one, view-space units; the
  * cameras differ by translation only), projected, and the previous history is fetched there
  * (bilinear, edges of the image are misses). The history counts as a hit when the point lands in
- * the image and (unless no_depth_test) the previous depth at the nearest pixel is within the
- * tolerance of P's previous depth; then next = lerp(history, current, w), otherwise next = current
+ * the image and (unless no_depth_test) the previous depth at the nearest pixel (or, with
+ * edge_tolerant, the 3x3 depth range there) is within the tolerance of P's previous depth; then next = lerp(history, current, w), otherwise next = current
  * and the count restarts at 1. `current` holds camera-size * channels values (channels = the
  * histories' channels); prev may be an empty history. next must not alias prev.
  * Errors: NULL, SOL_ERR_INVALID_ARG (history sizes differ from the camera's, negative options),

@@ -70,6 +70,23 @@ static int fetch_history(const sol_history *h, double x, double y, float *values
     return 1;
 }
 
+/* The cache-miss test of D18: does the previous depth around pixel (x, y) agree with the depth z
+ * the point should have had? Nearest pixel, or the 3x3 depth range when edge_tolerant. */
+static int depth_matches(const sol_history *prev, long x, long y, double z, double tolerance, int edge_tolerant)
+{
+    const int r = edge_tolerant ? 1 : 0;
+    double lo = INFINITY, hi = -INFINITY;
+    for (long j = y - r; j <= y + r; ++j)
+        for (long i = x - r; i <= x + r; ++i) {
+            if (i < 0 || j < 0 || i >= prev->width || j >= prev->height)
+                continue;
+            double d = prev->depth[(size_t)j * (size_t)prev->width + (size_t)i];
+            lo = d < lo ? d : lo;
+            hi = d > hi ? d : hi;
+        }
+    return z >= lo - tolerance * z && z <= hi + tolerance * z;
+}
+
 sol_status sol_temporal_accumulate(const sol_camera *camera, const float *depth, const float *current,
                                    const double motion[3], const sol_temporal_options *options,
                                    const sol_history *prev, sol_history *next)
@@ -112,11 +129,8 @@ sol_status sol_temporal_accumulate(const sol_camera *camera, const float *depth,
                 sy = 0.5 * height + camera->focal * p[1] / p[2] - 0.5;
                 hit = fetch_history(prev, sx, sy, hist, &frames);
             }
-            if (hit && !opt.no_depth_test) {
-                long nx = lround(sx), ny = lround(sy);
-                double zh = prev->depth[(size_t)ny * (size_t)width + (size_t)nx];
-                hit = fabs(zh - p[2]) <= tolerance * p[2];
-            }
+            if (hit && !opt.no_depth_test)
+                hit = depth_matches(prev, lround(sx), lround(sy), p[2], tolerance, opt.edge_tolerant);
             const float *cur = &current[i * (size_t)channels];
             float *out = &next->values[i * (size_t)channels];
             if (hit) {
