@@ -216,7 +216,7 @@ int main(int argc, char **argv)
         snprintf(titles[p], sizeof titles[p], "ax %.2f, ay %.2f", cells[picks[p]].ax, cells[picks[p]].ay);
     sol_plot(&exp, "error_vs_k",
              "set logscale y; set xlabel 'SG lobes K'; set ylabel 'relative L2 error of the NDF';"
-             "set key top right; set grid;"
+             "set key bottom left; set grid;"
              "plot 'curves.dat' u 1:2 w lp t '%s', '' u 1:3 w lp t '%s', '' u 1:4 w lp t '%s', '' u 1:5 w lp t '%s',"
              " 0.02 w l dt 2 lc rgb 'black' t '2%% level'",
              titles[0], titles[1], titles[2], titles[3]);
