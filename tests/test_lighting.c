@@ -368,3 +368,34 @@ Test(lighting, d13_door_lets_light_through_and_bad_input)
     cr_assert_eq(sol_room_irradiance(&scene, NULL, SOL_LIGHT_UNSHADOWED, -1.0, 0.0, &e), SOL_OK);
     cr_expect(isfinite(e) && e > 0);
 }
+
+Test(lighting, s4_refit_recovers_constants_of_the_form)
+{
+    sol_dfg_polynomial truth = sol_dfg_polynomial_narkowicz, fitted;
+    truth.delta[0] += 0.03;
+    truth.delta[6] -= 0.2;
+    truth.bias[2] -= 0.02;
+    truth.bias[1] += 0.1;
+    enum { N = 30 };
+    static double g[N * N], v[N * N], s[N * N], b[N * N];
+    for (int k = 0; k < N * N; ++k) {
+        g[k] = (k % N + 0.5) / N;
+        v[k] = (k / N + 0.5) / N;
+        cr_assert_eq(sol_dfg_eval_polynomial(&truth, g[k], v[k], &s[k], &b[k]), SOL_OK);
+    }
+    cr_assert_eq(sol_dfg_refit_polynomial(g, v, s, b, N * N, &fitted), SOL_OK);
+    for (int i = 0; i < 7; ++i)
+        cr_expect_float_eq(fitted.delta[i], truth.delta[i], 1e-6, "delta %d", i);
+    for (int i = 0; i < 6; ++i)
+        cr_expect_float_eq(fitted.bias[i], truth.bias[i], 1e-6, "bias %d", i);
+    sol_dfg_polynomial keep = fitted;
+    g[5] = NAN;
+    cr_expect_eq(sol_dfg_refit_polynomial(g, v, s, b, N * N, &fitted), SOL_ERR_NONFINITE);
+    g[5] = 1.5;
+    cr_expect_eq(sol_dfg_refit_polynomial(g, v, s, b, N * N, &fitted), SOL_ERR_INVALID_ARG);
+    cr_expect_eq(sol_dfg_refit_polynomial(g, v, s, b, 3, &fitted), SOL_ERR_INVALID_ARG);
+    cr_expect_eq(sol_dfg_refit_polynomial(NULL, v, s, b, N * N, &fitted), SOL_ERR_NULL_ARG);
+    cr_expect_eq(fitted.delta[0], keep.delta[0]);
+    double sc, bi;
+    cr_expect_eq(sol_dfg_eval_polynomial(NULL, 0.5, 0.5, &sc, &bi), SOL_ERR_NULL_ARG);
+}

@@ -125,21 +125,187 @@ sol_status sol_dfg_integrate(double alpha, double n_dot_v, int samples, double *
     return SOL_OK;
 }
 
-sol_status sol_dfg_fit_polynomial(double gloss, double n_dot_v, double *scale, double *bias)
+/* Narkowicz 2014, EnvDFGPolynomial, his published constants. */
+const sol_dfg_polynomial sol_dfg_polynomial_narkowicz = {
+    {-0.1688, 1.895, 0.9903, -4.853, 8.404, -5.069},
+    {0.6045, 1.699, -0.5228, -3.603, 1.404, 0.1939, 2.661}};
+
+/* The two bias branches and the delta polynomial, unsaturated, at x = gloss, y = n.v. */
+static double bias_in_gloss(const double b[6], double x)
 {
-    if (!scale || !bias)
+    return b[0] * x + b[1] * x * x;
+}
+
+static double bias_in_nv(const double b[6], double y)
+{
+    return b[2] + b[3] * y + b[4] * y * y + b[5] * y * y * y;
+}
+
+static void delta_terms(double x, double y, double t[7])
+{
+    t[0] = 1.0;
+    t[1] = x;
+    t[2] = y;
+    t[3] = x * x;
+    t[4] = x * y;
+    t[5] = y * y;
+    t[6] = x * x * x;
+}
+
+sol_status sol_dfg_eval_polynomial(const sol_dfg_polynomial *p, double gloss, double n_dot_v, double *scale, double *bias)
+{
+    if (!p || !scale || !bias)
         return SOL_ERR_NULL_ARG;
     sol_status st = check_unit_pair(gloss, n_dot_v);
     if (st != SOL_OK)
         return st;
-    const double x = gloss, y = n_dot_v;
-    /* Narkowicz 2014, EnvDFGPolynomial: bias = min of an x-polynomial and a y-polynomial. */
-    double b = saturate(fmin(-0.1688 * x + 1.895 * x * x, 0.9903 - 4.853 * y + 8.404 * y * y - 5.069 * y * y * y));
-    double delta = saturate(0.6045 + 1.699 * x - 0.5228 * y - 3.603 * x * x + 1.404 * x * y + 0.1939 * y * y +
-                            2.661 * x * x * x);
-    *scale = delta - b;
+    double t[7], delta = 0.0;
+    delta_terms(gloss, n_dot_v, t);
+    for (int i = 0; i < 7; ++i)
+        delta += p->delta[i] * t[i];
+    double b = saturate(fmin(bias_in_gloss(p->bias, gloss), bias_in_nv(p->bias, n_dot_v)));
+    *scale = saturate(delta) - b;
     *bias = b;
     return SOL_OK;
+}
+
+sol_status sol_dfg_fit_polynomial(double gloss, double n_dot_v, double *scale, double *bias)
+{
+    return sol_dfg_eval_polynomial(&sol_dfg_polynomial_narkowicz, gloss, n_dot_v, scale, bias);
+}
+
+/* Least squares sum over rows of (a . x - y)^2 by normal equations and Gaussian elimination with
+ * partial pivoting; n unknowns (n <= 7). Returns 0 if the system is singular. */
+static int least_squares(int n, const double *rows, const double *targets, size_t count, double *x)
+{
+    double m[7][8] = {{0}};
+    for (size_t k = 0; k < count; ++k)
+        for (int i = 0; i < n; ++i) {
+            for (int j = 0; j < n; ++j)
+                m[i][j] += rows[k * n + i] * rows[k * n + j];
+            m[i][n] += rows[k * n + i] * targets[k];
+        }
+    for (int c = 0; c < n; ++c) {
+        int pivot = c;
+        for (int r = c + 1; r < n; ++r)
+            if (fabs(m[r][c]) > fabs(m[pivot][c]))
+                pivot = r;
+        if (!(fabs(m[pivot][c]) > 1e-300))
+            return 0;
+        for (int j = 0; j <= n; ++j) {
+            double tmp = m[c][j];
+            m[c][j] = m[pivot][j];
+            m[pivot][j] = tmp;
+        }
+        for (int r = c + 1; r < n; ++r) {
+            double f = m[r][c] / m[c][c];
+            for (int j = c; j <= n; ++j)
+                m[r][j] -= f * m[c][j];
+        }
+    }
+    for (int c = n - 1; c >= 0; --c) {
+        double v = m[c][n];
+        for (int j = c + 1; j < n; ++j)
+            v -= m[c][j] * x[j];
+        x[c] = v / m[c][c];
+    }
+    return 1;
+}
+
+sol_status sol_dfg_refit_polynomial(const double *gloss, const double *n_dot_v, const double *scale, const double *bias,
+                                    size_t count, sol_dfg_polynomial *out)
+{
+    if (!gloss || !n_dot_v || !scale || !bias || !out)
+        return SOL_ERR_NULL_ARG;
+    if (count < 16)
+        return SOL_ERR_INVALID_ARG;
+    for (size_t k = 0; k < count; ++k) {
+        if (!isfinite(gloss[k]) || !isfinite(n_dot_v[k]) || !isfinite(scale[k]) || !isfinite(bias[k]))
+            return SOL_ERR_NONFINITE;
+        if (!in_unit_interval(gloss[k]) || !in_unit_interval(n_dot_v[k]))
+            return SOL_ERR_INVALID_ARG;
+    }
+    double *rows = malloc(sizeof *rows * 7 * count), *targets = malloc(sizeof *targets * count);
+    if (!rows || !targets) {
+        free(rows);
+        free(targets);
+        return SOL_ERR_NO_MEMORY;
+    }
+    sol_dfg_polynomial p = sol_dfg_polynomial_narkowicz;
+    sol_status st = SOL_OK;
+    /* Gauss-Newton for the saturated model: a point whose prediction is saturated has a zero
+     * gradient, so each step is the least-squares fit over the unsaturated points (delta is linear
+     * in its 7 constants); iterate until that set stops changing. */
+    for (int iteration = 0; st == SOL_OK && iteration < 50; ++iteration) {
+        size_t active = 0;
+        for (size_t k = 0; k < count; ++k) {
+            double t[7], pred = 0.0;
+            delta_terms(gloss[k], n_dot_v[k], t);
+            for (int i = 0; i < 7; ++i)
+                pred += p.delta[i] * t[i];
+            if (pred <= 0.0 || pred >= 1.0)
+                continue;
+            for (int i = 0; i < 7; ++i)
+                rows[7 * active + i] = t[i];
+            targets[active++] = scale[k] + bias[k];
+        }
+        double d[7];
+        if (active < 7 || !least_squares(7, rows, targets, active, d)) {
+            st = iteration ? SOL_OK : SOL_ERR_NO_CONVERGENCE;
+            break;
+        }
+        double change = 0.0;
+        for (int i = 0; i < 7; ++i) {
+            change += fabs(d[i] - p.delta[i]);
+            p.delta[i] = d[i];
+        }
+        if (change < 1e-12)
+            break;
+    }
+    /* bias = saturate(min(branch in gloss, branch in n.v)): the same steps, with each unsaturated
+     * point assigned to the branch that is the smaller one (k-planes style alternation). */
+    for (int iteration = 0; st == SOL_OK && iteration < 50; ++iteration) {
+        double gx[2], gy[4];
+        size_t nx = 0, ny = 0;
+        for (int branch = 0; branch < 2; ++branch)
+            for (size_t k = 0; k < count; ++k) {
+                double bx = bias_in_gloss(p.bias, gloss[k]), by = bias_in_nv(p.bias, n_dot_v[k]);
+                double pred = fmin(bx, by), y = n_dot_v[k];
+                if (pred <= 0.0 || pred >= 1.0 || (branch == 0) != (bx <= by))
+                    continue;
+                if (branch == 0) {
+                    rows[2 * nx] = gloss[k];
+                    rows[2 * nx + 1] = gloss[k] * gloss[k];
+                    targets[nx++] = bias[k];
+                } else {
+                    double *row = rows + 2 * nx + 4 * ny; /* after all of branch 0's rows */
+                    row[0] = 1.0;
+                    row[1] = y;
+                    row[2] = y * y;
+                    row[3] = y * y * y;
+                    targets[nx + ny++] = bias[k];
+                }
+            }
+        /* rows/targets of branch 1 start after branch 0's: fit each from its own offset. */
+        int ok_x = nx >= 2 && least_squares(2, rows, targets, nx, gx);
+        int ok_y = ny >= 4 && least_squares(4, rows + 2 * nx, targets + nx, ny, gy);
+        if (!ok_x || !ok_y)
+            break; /* keep the last good branches */
+        double change = fabs(gx[0] - p.bias[0]) + fabs(gx[1] - p.bias[1]);
+        for (int i = 0; i < 4; ++i)
+            change += fabs(gy[i] - p.bias[2 + i]);
+        p.bias[0] = gx[0];
+        p.bias[1] = gx[1];
+        for (int i = 0; i < 4; ++i)
+            p.bias[2 + i] = gy[i];
+        if (change < 1e-12)
+            break;
+    }
+    free(rows);
+    free(targets);
+    if (st == SOL_OK)
+        *out = p;
+    return st;
 }
 
 sol_status sol_dfg_fit_lazarov(double gloss, double n_dot_v, double *scale, double *bias)

@@ -32,10 +32,31 @@ double sol_dfg_alpha_from_gloss(double gloss);
  * Errors: SOL_ERR_NULL_ARG, SOL_ERR_NONFINITE (NaN/Inf input), SOL_ERR_INVALID_ARG (out of range). */
 sol_status sol_dfg_integrate(double alpha, double n_dot_v, int samples, double *scale, double *bias);
 
-/* Narkowicz's "EnvDFGPolynomial": his published polynomial fit of (bias, delta = scale + bias)
- * in (gloss, n.v), evaluated with his published constants. Inputs in [0,1].
- * Errors as sol_dfg_integrate. */
+/* The form of Narkowicz's "EnvDFGPolynomial" with x = gloss, y = n.v:
+ *   bias  = saturate(min(b0 x + b1 x^2, b2 + b3 y + b4 y^2 + b5 y^3)),
+ *   delta = saturate(d0 + d1 x + d2 y + d3 x^2 + d4 x y + d5 y^2 + d6 x^3),  scale = delta - bias. */
+typedef struct sol_dfg_polynomial {
+    double bias[6];
+    double delta[7];
+} sol_dfg_polynomial;
+
+/* His published constants. */
+extern const sol_dfg_polynomial sol_dfg_polynomial_narkowicz;
+
+/* Evaluates the form with the given constants. Inputs in [0,1]. Errors as sol_dfg_integrate. */
+sol_status sol_dfg_eval_polynomial(const sol_dfg_polynomial *p, double gloss, double n_dot_v, double *scale,
+                                   double *bias);
+/* Narkowicz's polynomial fit with his published constants. Errors as sol_dfg_integrate. */
 sol_status sol_dfg_fit_polynomial(double gloss, double n_dot_v, double *scale, double *bias);
+
+/* Refits the constants of the same form to `count` samples (gloss, n.v, scale, bias) by least
+ * squares, without the saturates: delta is linear in its constants; the bias's min of two branches
+ * is fitted by alternating branch assignment and per-branch least squares, starting from the
+ * published constants. Deterministic. Errors: SOL_ERR_NULL_ARG, SOL_ERR_NONFINITE,
+ * SOL_ERR_INVALID_ARG (count < 16, inputs outside [0,1]), SOL_ERR_NO_MEMORY,
+ * SOL_ERR_NO_CONVERGENCE (singular system). */
+sol_status sol_dfg_refit_polynomial(const double *gloss, const double *n_dot_v, const double *scale, const double *bias,
+                                    size_t count, sol_dfg_polynomial *out);
 /* Narkowicz's "EnvDFGLazarov": Lazarov 2013's analytical form refitted by Narkowicz for GGX and
  * his gloss remap, with his published constants. Inputs in [0,1]. Errors as sol_dfg_integrate. */
 sol_status sol_dfg_fit_lazarov(double gloss, double n_dot_v, double *scale, double *bias);
