@@ -1,7 +1,8 @@
 /* dfg.c - S4: the split-sum DFG term (Karis 2013) by deterministic quadrature, a bilinear lookup
  * table of it, and Narkowicz's two published analytical fits ("Analytical DFG Term for IBL", 2014,
  * seed 001): the polynomial fit and his GGX refit of Lazarov 2013's form. The fits are evaluated
- * with the constants as published: those constants are the claim under test. */
+ * with the constants as published: those constants are the claim under test. A least-squares refit
+ * of the polynomial form to the reference separates what the form can do from what its constants do. */
 #include "sol_lighting.h"
 
 #include <stdlib.h>
