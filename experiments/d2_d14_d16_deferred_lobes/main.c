@@ -43,10 +43,44 @@ typedef struct environment {
     sol_sg lobe[MAX_LIGHTS];
 } environment;
 
+/* The sky the 32-lobe environment is fitted to: ground and sky levels and a glow around the sun. */
+static double sky_radiance(const double d[3], const double sun[3])
+{
+    double s = sol_dot3(d, sun) > 0 ? pow(sol_dot3(d, sun), 8) : 0.0;
+    return 0.1 + (d[2] > 0 ? 0.4 * d[2] : 0.0) + 2.0 * s;
+}
+
+enum { FIT_POINTS = 2048 };
+
+typedef struct env_fit_ctx {
+    environment *env;
+    const double *dirs;   /* FIT_POINTS directions */
+    const double *target; /* sky radiance at them */
+} env_fit_ctx;
+
+/* Residuals sum_j a_j G_j(d_i) - L(d_i); linear in the amplitudes, so the Jacobian is G_j(d_i). */
+static int env_residuals(void *vctx, const double *amp, double *res, double *jac)
+{
+    const env_fit_ctx *c = vctx;
+    int n = c->env->n;
+    for (int i = 0; i < FIT_POINTS; ++i) {
+        res[i] = -c->target[i];
+        for (int j = 0; j < n; ++j) {
+            sol_sg g = c->env->lobe[j];
+            g.amplitude = 1.0;
+            double e = sol_sg_eval(&g, c->dirs + 3 * i);
+            res[i] += amp[j] * e;
+            if (jac)
+                jac[(size_t)i * n + j] = e;
+        }
+    }
+    return 0;
+}
+
 /* Three SG lighting environments: a sun plus sky and ground, six local lights, and a 32-lobe
- * environment (lobes on a spherical Fibonacci set with amplitudes from a smooth sky with a bright
- * region around the sun), the kind of per-object SG lighting the talk fits on the CPU. */
-static void make_environments(environment env[3])
+ * environment whose amplitudes are fitted (Ceres, amplitudes >= 0) to a smooth sky with a bright
+ * region around the sun, the kind of per-object SG lighting the talk fits on the CPU. */
+static void make_environments(environment env[3], double *fit_rel_rms)
 {
     double sun[3], up[3] = {0, 0, 1}, down[3] = {0, 0, -1};
     spherical(35 * DEG, 20 * DEG, sun);
@@ -65,13 +99,31 @@ static void make_environments(environment env[3])
 
     env[2] = (environment){.name = "32-lobe SG environment", .n = 32};
     const double golden = M_PI * (3.0 - sqrt(5.0));
+    double amp[32], lower[32], dirs[3 * FIT_POINTS], target[FIT_POINTS];
     for (int i = 0; i < 32; ++i) {
         double z = 1.0 - (2.0 * i + 1.0) / 32.0, d[3];
         spherical(acos(z), golden * i, d);
-        double s = sol_dot3(d, sun) > 0 ? pow(sol_dot3(d, sun), 8) : 0.0;
-        double a = 0.1 + (d[2] > 0 ? 0.4 * d[2] : 0.0) + 2.0 * s;
-        env[2].lobe[i] = (sol_sg){{d[0], d[1], d[2]}, 6.0, a};
+        env[2].lobe[i] = (sol_sg){{d[0], d[1], d[2]}, 6.0, 1.0};
+        amp[i] = sky_radiance(d, sun) * 6.0 / (2.0 * M_PI); /* start: radiance x lobe spacing */
+        lower[i] = 0.0;
     }
+    for (int i = 0; i < FIT_POINTS; ++i) {
+        double u, v;
+        sol_r2_point((uint64_t)i, &u, &v);
+        sol_sphere_uniform(u, v, dirs + 3 * i);
+        target[i] = sky_radiance(dirs + 3 * i, sun);
+    }
+    env_fit_ctx ctx = {&env[2], dirs, target};
+    sol_lsq_problem prob = {32, FIT_POINTS, env_residuals, &ctx, lower, NULL, 50};
+    sol_lsq_summary sum;
+    sol_exp_check(sol_lsq_solve(&prob, amp, &sum), "fitting the SG environment");
+    for (int i = 0; i < 32; ++i)
+        env[2].lobe[i].amplitude = amp[i];
+    double norm = 0.0;
+    for (int i = 0; i < FIT_POINTS; ++i)
+        norm += target[i] * target[i];
+    if (fit_rel_rms)
+        *fit_rel_rms = sqrt(2.0 * sum.final_cost / norm);
 }
 
 /* A pixel: a shading frame (tangent, bitangent, normal as the rows of `to_local`) and a view. */
@@ -339,7 +391,8 @@ static void d16(const sol_exp *exp)
     sol_sg_fit_error fit_err[K_MAX];
     sol_exp_check(sol_ward_sg_fit(ax, ay, K_MAX, NULL, ndf, fit_err, NULL), "fitting the Ward NDF");
     environment env[3];
-    make_environments(env);
+    double env_fit;
+    make_environments(env, &env_fit);
 
     double r2, per_pair;
     d16_timing(exp, ndf, &env[2], &r2, &per_pair);
@@ -419,6 +472,12 @@ static void d16(const sol_exp *exp)
              "set xlabel 'BRDF SG lobes n'; set ylabel 'image relative L2 error'; set grid; set key top right;"
              "plot 'error_vs_n.dat' u 1:2 w lp t 'sun + sky', '' u 1:3 w lp t '6 lights', '' u 1:4 w lp t '32-lobe SG env'");
 
+    sol_table *en = sol_table_new("Lighting environments of D14/D16", "environment,SG lobes,fit rel RMS error");
+    sol_table_row(en, "%s|%d|-", env[0].name, env[0].n);
+    sol_table_row(en, "%s|%d|-", env[1].name, env[1].n);
+    sol_table_row(en, "%s|%d|%.4f", env[2].name, env[2].n, env_fit);
+    sol_table_write(en, exp, "d16_environments");
+
     sol_table *c = sol_table_new("Hemisphere cut of the 32-lobe SG environment to m lobes for the extraction (n = 7; the "
                                  "deferred pass still sees every lobe)",
                                  "m kept,image rel L2,max pixel rel error,mean shift deg,mean normal change vs all lobes deg");
@@ -489,7 +548,7 @@ static void d14(const sol_exp *exp)
     static const double views[] = {0, 30, 60, 75, 85};
     const double f0 = 0.04;
     environment env[3];
-    make_environments(env);
+    make_environments(env, NULL);
     sol_table *t = sol_table_new("Deferring Fresnel and geometry (GGX, Smith, Schlick f0 = 0.04): relative error of "
                                  "[lighting with D only] x F(n.v) G1(n.v) G1(n.r) vs the full BRDF, uniform sky / sun + sky",
                                  "alpha,view 0,view 30,view 60,view 75,view 85,sun+sky 0,sun+sky 30,sun+sky 60,sun+sky 75,"
