@@ -170,7 +170,7 @@ sol_status sol_lsq_solve(const sol_lsq_problem *problem, double *params, sol_lsq
 
 typedef struct sol_sg_fit_options {
     int radial_samples;  /* fit samples along the radius of the Ward slope disk; 0 = 20 */
-    int angular_samples; /* fit samples in azimuth; 0 = 24 */
+    int angular_samples; /* fit samples in azimuth; 0 = 24, times ceil(sqrt(max/min alpha)) */
     int eval_radial;     /* error evaluation quadrature (finer than the fit); 0 = 64 */
     int eval_angular;    /* 0 = 96 */
     int max_iterations;  /* Ceres iterations per fit; 0 = 200 */
