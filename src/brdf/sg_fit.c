@@ -238,6 +238,25 @@ static void seed_lobe(const fit_setup *s, const double *params, int k, double la
     p_new[3] = resid > 0.0 ? resid : 0.0;
 }
 
+/* Splits the lobe of largest energy (amplitude / sharpness) of the first k into two concentric
+ * halves, one twice as sharp and one half as sharp (the new one goes to slot k): the start that
+ * lets concentric lobes shape a radial profile, which a lobe at the largest residual does not. */
+static void split_lobe(double *params, int k, double log_sharpness_cap)
+{
+    int widest = 0;
+    for (int j = 1; j < k; ++j) {
+        const double *a = params + LOBE_PARAMS * j, *b = params + LOBE_PARAMS * widest;
+        if (a[3] * exp(-a[2]) > b[3] * exp(-b[2]))
+            widest = j;
+    }
+    double *old = params + LOBE_PARAMS * widest, *fresh = params + LOBE_PARAMS * k;
+    memcpy(fresh, old, LOBE_PARAMS * sizeof(double));
+    old[3] *= 0.5;
+    fresh[3] *= 0.5;
+    old[2] = fmin(old[2] + M_LN2, log_sharpness_cap);
+    fresh[2] = fmax(fresh[2] - M_LN2, -4.605170185988091);
+}
+
 static const double LOG_SHARPNESS_MIN = -4.605170185988091; /* ln 0.01 */
 static const double LOG_SHARPNESS_MAX = 13.815510557964274; /* ln 1e6 */
 static const double AMPLITUDE_MAX = 1e3;
@@ -293,22 +312,25 @@ sol_status sol_ward_sg_fit(double alpha_x, double alpha_y, int k_max, const sol_
     }
     for (int k = 1; k <= k_max; ++k) {
         int np = LOBE_PARAMS * k;
-        /* Greedy start: fit k-1 plus a lobe at the largest residual, tried at three widths; the
-         * best by the (finer) evaluation quadrature wins, and fit k-1 padded with a zero lobe is
-         * kept when no candidate beats it, so the error never rises with k. */
+        /* Greedy starts: fit k-1 plus a lobe at the largest residual, tried at three widths, and
+         * fit k-1 with its widest lobe split; the best by the (finer) evaluation quadrature wins,
+         * and fit k-1 padded with a zero lobe is kept when no start beats it, so the error never
+         * rises with k. */
         static const double width_factor[3] = {0.25, 1.0, 4.0};
-        int n_cand = k == 1 ? 1 : 3;
+        int n_cand = k == 1 ? 1 : 4;
         double best_l2 = prev_l2;
         sol_lsq_summary best_sum = {0};
         double *best = trial + np_max;
         int have_best = 0;
         for (int c = 0; c < n_cand; ++c) {
             memcpy(trial, params, (size_t)(np - LOBE_PARAMS) * sizeof(double));
-            double lam = k == 1 ? lambda0 : lambda0 * width_factor[c];
+            double lam = k == 1 || c == 3 ? lambda0 : lambda0 * width_factor[c];
             if (log(lam) > log_lambda_cap)
                 lam = exp(log_lambda_cap);
             if (k == 1) {
                 trial[0] = 0.0, trial[1] = 0.0, trial[2] = log(lam), trial[3] = 1.0;
+            } else if (c == 3) {
+                split_lobe(trial, k - 1, log_lambda_cap);
             } else {
                 seed_lobe(&s, params, k - 1, lam, trial + np - LOBE_PARAMS);
             }

@@ -185,13 +185,14 @@ typedef struct sol_sg_fit_error {
 /* Fits K = 1..k_max isotropic SG lobes to the Ward NDF (alpha_x, alpha_y) in the shading frame by
  * minimising the relative L2 error on the fit nodes (analytic Jacobian, Ceres through
  * sol_lsq_solve). Greedy: fit K starts from fit K-1 plus one lobe at the largest residual, tried
- * at three widths; the start whose Ceres result has the smallest error on the (finer) evaluation
- * nodes wins, and fit K-1 padded with a zero lobe is kept when none beats it, so the error never
- * rises with K. Bounds: sharpness in [0.01, min(1e6, 8 / min(alpha)^2)] (sharper lobes would fall
- * between fit nodes), amplitude in [0, 1e3] x the NDF's peak scale, axis in the upper hemisphere.
+ * at three widths, and from fit K-1 with its widest lobe split in two; the start whose Ceres
+ * result has the smallest error on the (finer) evaluation nodes wins, and fit K-1 padded with a
+ * zero lobe is kept when none beats it, so the error never rises with K. Bounds: sharpness in
+ * [0.01, min(1e6, 8 / min(alpha)^2)] (sharper lobes would fall between fit nodes), amplitude in
+ * [0, 1e3] x the NDF's peak scale, axis in the upper hemisphere.
  * lobes: k_max * (k_max + 1) / 2 entries, fit K at offset K (K - 1) / 2; errors, summaries: k_max
  * entries each (summaries may be NULL; costs are those of the chosen start, iterations and
- * solve_seconds are summed over all starts tried). Amplitudes are in the NDF's units.
+ * solve_seconds are summed over the four starts). Amplitudes are in the NDF's units.
  * Deterministic. Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (alpha outside [1e-3, 10], k_max
  * outside 1..16, node counts above 4096), SOL_ERR_NONFINITE (NaN alpha), SOL_ERR_NO_MEMORY,
  * SOL_ERR_SOLVER (outputs untouched). */
