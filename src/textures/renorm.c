@@ -1,0 +1,89 @@
+/* renorm.c - per-channel range ("histogram") renormalisation of color textures (claims T1, T2).
+ *
+ * Talk, slide "Histogram renormalization": the texture's color range is stretched to [0,1] before
+ * block compression and the original min/max are kept as two shader constants that restore it
+ * after the texture fetch (value = lo + stored * (hi - lo)). */
+#include <math.h>
+
+#include "sol_textures.h"
+
+static size_t value_count(const sol_image *image)
+{
+    return (size_t)image->width * (size_t)image->height * (size_t)image->channels;
+}
+
+static sol_status check_image(const sol_image *image)
+{
+    if (!image || !image->data)
+        return SOL_ERR_NULL_ARG;
+    if (image->width <= 0 || image->height <= 0 || image->channels < 1 || image->channels > 4)
+        return SOL_ERR_INVALID_ARG;
+    size_t n = value_count(image);
+    for (size_t i = 0; i < n; ++i)
+        if (!isfinite(image->data[i]))
+            return SOL_ERR_NONFINITE;
+    return SOL_OK;
+}
+
+sol_status sol_renorm_fit(const sol_image *image, sol_renorm *out)
+{
+    sol_status st = check_image(image);
+    if (st)
+        return st;
+    if (!out)
+        return SOL_ERR_NULL_ARG;
+    sol_renorm r = {.channels = image->channels};
+    for (int c = 0; c < image->channels; ++c)
+        r.lo[c] = r.hi[c] = image->data[c];
+    size_t n = value_count(image);
+    for (size_t i = 0; i < n; ++i) {
+        int c = (int)(i % (size_t)image->channels);
+        r.lo[c] = fminf(r.lo[c], image->data[i]);
+        r.hi[c] = fmaxf(r.hi[c], image->data[i]);
+    }
+    *out = r;
+    return SOL_OK;
+}
+
+static sol_status check_pair(const sol_renorm *range, const sol_image *image)
+{
+    if (!range)
+        return SOL_ERR_NULL_ARG;
+    sol_status st = check_image(image);
+    if (st)
+        return st;
+    if (range->channels != image->channels)
+        return SOL_ERR_INVALID_ARG;
+    for (int c = 0; c < range->channels; ++c)
+        if (!isfinite(range->lo[c]) || !isfinite(range->hi[c]))
+            return SOL_ERR_NONFINITE;
+    return SOL_OK;
+}
+
+sol_status sol_renorm_apply(const sol_renorm *range, sol_image *image)
+{
+    sol_status st = check_pair(range, image);
+    if (st)
+        return st;
+    size_t n = value_count(image);
+    for (size_t i = 0; i < n; ++i) {
+        int c = (int)(i % (size_t)image->channels);
+        float span = range->hi[c] - range->lo[c];
+        float v = span > 0.0f ? (image->data[i] - range->lo[c]) / span : 0.0f;
+        image->data[i] = fminf(1.0f, fmaxf(0.0f, v));
+    }
+    return SOL_OK;
+}
+
+sol_status sol_renorm_undo(const sol_renorm *range, sol_image *image)
+{
+    sol_status st = check_pair(range, image);
+    if (st)
+        return st;
+    size_t n = value_count(image);
+    for (size_t i = 0; i < n; ++i) {
+        int c = (int)(i % (size_t)image->channels);
+        image->data[i] = range->lo[c] + image->data[i] * (range->hi[c] - range->lo[c]);
+    }
+    return SOL_OK;
+}
