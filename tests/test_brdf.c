@@ -176,6 +176,27 @@ Test(brdf, sphere_quadrature_areas_and_errors)
     cr_assert_eq(sol_sphere_integrate_mc(nan_at_pole, NULL, 64, 0, &v, &e), SOL_ERR_NONFINITE);
 }
 
+Test(brdf, gauss_legendre_is_exact_for_degree_2n_minus_1)
+{
+    double x[256], w[256];
+    static const int orders[] = {1, 2, 7, 24, 256};
+    for (int o = 0; o < 5; ++o) {
+        int n = orders[o];
+        cr_assert_eq(sol_gauss_legendre(n, x, w), SOL_OK);
+        double deg = n > 8 ? 14 : 2 * n - 2; /* even power (odd ones vanish by symmetry) */
+        double s = 0.0, s1 = 0.0;
+        for (int i = 0; i < n; ++i) {
+            s += w[i] * pow(x[i], deg);
+            s1 += w[i];
+        }
+        cr_assert_float_eq(s, 2.0 / (deg + 1.0), 1e-13, "n = %d", n);
+        cr_assert_float_eq(s1, 2.0, 1e-13);
+    }
+    cr_assert_eq(sol_gauss_legendre(0, x, w), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_gauss_legendre(257, x, w), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_gauss_legendre(4, NULL, w), SOL_ERR_NULL_ARG);
+}
+
 Test(brdf, stratified_mc_agrees_with_adaptive_quadrature)
 {
     lobe_ctx c = {{0.6, 0, 0.8}, 20, 0, 0};

@@ -20,28 +20,6 @@ typedef struct ward_nodes {
 
 enum { RADIAL_SCALE_NUM = 5, RADIAL_SCALE_DEN = 2 }; /* R = 2.5: exp(-R^2) = 2e-3 */
 
-static void gauss_legendre01(int n, double *x, double *w)
-{
-    for (int i = 0; i < n; ++i) {
-        double z = cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = z;
-            for (int k = 2; k <= n; ++k) {
-                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (z * p1 - p0) / (z * z - 1.0);
-            double dz = p1 / dp;
-            z -= dz;
-            if (fabs(dz) < 1e-16)
-                break;
-        }
-        x[i] = 0.5 * (1.0 - z);
-        w[i] = 1.0 / ((1.0 - z * z) * dp * dp);
-    }
-}
-
 static void ward_nodes_free(ward_nodes *w)
 {
     free(w->dir);
@@ -61,7 +39,11 @@ static sol_status ward_nodes_build(double ax, double ay, int n_radial, int n_ang
         ward_nodes_free(&w);
         return SOL_ERR_NO_MEMORY;
     }
-    gauss_legendre01(n_radial, t, t + n_radial);
+    sol_gauss_legendre(n_radial, t, t + n_radial); /* n_radial <= 256 checked by the caller */
+    for (int i = 0; i < n_radial; ++i) { /* [-1, 1] -> [0, 1] */
+        t[i] = 0.5 * (1.0 - t[i]);
+        t[n_radial + i] *= 0.5;
+    }
     const double R = (double)RADIAL_SCALE_NUM / RADIAL_SCALE_DEN;
     for (int i = 0; i < n_radial; ++i) {
         double ti = t[i], r = R * ti / (1.0 - ti), dr = R / ((1.0 - ti) * (1.0 - ti)) * t[n_radial + i];
@@ -192,7 +174,7 @@ static sol_status fit_setup_init(double ax, double ay, const sol_sg_fit_options 
     o->eval_radial = o->eval_radial > 0 ? o->eval_radial : 64;
     o->eval_angular = o->eval_angular > 0 ? o->eval_angular : 96;
     o->max_iterations = o->max_iterations > 0 ? o->max_iterations : 200;
-    if (o->radial_samples > 4096 || o->angular_samples > 4096 || o->eval_radial > 4096 || o->eval_angular > 4096)
+    if (o->radial_samples > 256 || o->angular_samples > 4096 || o->eval_radial > 256 || o->eval_angular > 4096)
         return SOL_ERR_INVALID_ARG;
     /* Isotropic lobes along the long axis of an anisotropic NDF are narrow in the scaled slope
      * coordinates; more azimuthal fit nodes keep them from hiding between nodes. */

@@ -90,6 +90,11 @@ typedef struct sol_quad_options {
 sol_status sol_sphere_integrate(sol_sphere_fn f, void *ctx, const double pole[3], const sol_quad_options *opts,
                                 double *result, double *error);
 
+/* Gauss-Legendre rule of order n (1..256) on [-1, 1]: nodes x (descending) and weights w, by Newton's
+ * iteration on P_n. Exact for polynomials of degree 2n - 1. Errors: SOL_ERR_NULL_ARG,
+ * SOL_ERR_INVALID_ARG (n outside 1..256). */
+sol_status sol_gauss_legendre(int n, double *x, double *w);
+
 /* Stratified Monte Carlo over the whole sphere: `strata` x `strata` cells of the equal-area
  * cylinder map, one jittered sample each (deterministic for a given seed). error: the standard
  * error estimated from the spread between cells (may be NULL). Errors: SOL_ERR_NULL_ARG,
@@ -194,8 +199,8 @@ typedef struct sol_sg_fit_error {
  * entries each (summaries may be NULL; costs are those of the chosen start, iterations and
  * solve_seconds are summed over the four starts). Amplitudes are in the NDF's units.
  * Deterministic. Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (alpha outside [1e-3, 10], k_max
- * outside 1..16, node counts above 4096), SOL_ERR_NONFINITE (NaN alpha), SOL_ERR_NO_MEMORY,
- * SOL_ERR_SOLVER (outputs untouched). */
+ * outside 1..16, radial node counts above 256, azimuthal above 4096), SOL_ERR_NONFINITE (NaN
+ * alpha), SOL_ERR_NO_MEMORY, SOL_ERR_SOLVER (outputs untouched). */
 sol_status sol_ward_sg_fit(double alpha_x, double alpha_y, int k_max, const sol_sg_fit_options *opts, sol_sg *lobes,
                            sol_sg_fit_error *errors, sol_lsq_summary *summaries);
 /* The same error measures for any SG sum (e.g. a hand-made one). */

@@ -178,6 +178,34 @@ sol_status sol_sphere_integrate(sol_sphere_fn f, void *ctx, const double pole[3]
     return (st != 0 || s.failed != 0) ? SOL_ERR_NO_CONVERGENCE : SOL_OK;
 }
 
+sol_status sol_gauss_legendre(int n, double *x, double *w)
+{
+    if (!x || !w)
+        return SOL_ERR_NULL_ARG;
+    if (n < 1 || n > 256)
+        return SOL_ERR_INVALID_ARG;
+    for (int i = 0; i < n; ++i) {
+        /* Tricomi's initial guess, then Newton on the three-term recurrence. */
+        double z = cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
+        for (int it = 0; it < 100; ++it) {
+            double p0 = 1.0, p1 = z;
+            for (int k = 2; k <= n; ++k) {
+                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n * (z * p1 - p0) / (z * z - 1.0);
+            double dz = p1 / dp;
+            z -= dz;
+            if (fabs(dz) < 1e-16)
+                break;
+        }
+        x[i] = z;
+        w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
+    }
+    return SOL_OK;
+}
+
 /* splitmix64 (Steele et al. 2014): a stateless-per-index generator, so strata are independent of
  * evaluation order. */
 static uint64_t splitmix64(uint64_t x)

@@ -74,29 +74,6 @@ sol_sg sol_sg_convolve(const sol_sg *a, const sol_sg *b)
     return c;
 }
 
-/* Gauss-Legendre nodes/weights on [-1, 1] by Newton's iteration on P_n (n <= 32). */
-static void gauss_legendre(int n, double *x, double *w)
-{
-    for (int i = 0; i < n; ++i) {
-        double z = cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = z;
-            for (int k = 2; k <= n; ++k) {
-                double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (z * p1 - p0) / (z * z - 1.0);
-            double dz = p1 / dp;
-            z -= dz;
-            if (fabs(dz) < 1e-16)
-                break;
-        }
-        x[i] = z;
-        w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
-    }
-}
-
 /* Azimuthal integral of max(A + B cos phi, 0) over [0, 2 pi], B >= 0 (closed form). */
 static double clamped_azimuthal(double A, double B)
 {
@@ -140,7 +117,7 @@ double sol_sg_cosine_convolve(const sol_sg *g, const double n[3])
             breaks[nb++] = b;
     }
     double x[ORDER], w[ORDER];
-    gauss_legendre(ORDER, x, w);
+    sol_gauss_legendre(ORDER, x, w); /* ORDER is in range: cannot fail */
     double sum = 0.0;
     for (int i = 0; i + 1 < nb; ++i) {
         double mid = 0.5 * (breaks[i] + breaks[i + 1]), half = 0.5 * (breaks[i + 1] - breaks[i]);
