@@ -36,16 +36,22 @@ Test(core, image_alloc_rejects_bad_sizes_and_leaves_output_untouched)
     sol_image_free(NULL);
 }
 
+/* Each test runs in its own process: one scratch folder per test, removed by remove_temp(). */
+static char temp_dir[] = "/tmp/sol_test_XXXXXX";
+
 static char *temp_path(const char *name)
 {
-    static char dir[] = "/tmp/sol_test_XXXXXX";
-    static int made;
-    if (!made)
-        cr_assert_not_null(mkdtemp(dir));
-    made = 1;
+    if (temp_dir[sizeof temp_dir - 2] == 'X')
+        cr_assert_not_null(mkdtemp(temp_dir));
     char *path = malloc(4096);
-    snprintf(path, 4096, "%s/%s", dir, name);
+    snprintf(path, 4096, "%s/%s", temp_dir, name);
     return path;
+}
+
+static void remove_temp(void)
+{
+    if (temp_dir[sizeof temp_dir - 2] != 'X')
+        rmdir(temp_dir);
 }
 
 static void png_round_trip(int channels, int bits)
@@ -77,6 +83,7 @@ Test(core, png_round_trips_are_exact_for_8_and_16_bits)
         png_round_trip(channels, 8);
         png_round_trip(channels, 16);
     }
+    remove_temp();
 }
 
 Test(core, png_write_refuses_bad_values_and_writes_nothing)
@@ -93,6 +100,7 @@ Test(core, png_write_refuses_bad_values_and_writes_nothing)
     cr_assert_neq(access(path, F_OK), 0);
     cr_assert_eq(sol_png_write(NULL, &image, 8), SOL_ERR_NULL_ARG);
     free(path);
+    remove_temp();
     sol_image_free(&image);
 }
 
@@ -113,6 +121,7 @@ Test(core, png_read_reports_missing_and_malformed_files)
     cr_assert_eq(image.width, 9);
     unlink(path);
     free(path);
+    remove_temp();
 }
 
 Test(core, r2_points_lie_in_the_unit_square_and_fill_it_evenly)
