@@ -168,3 +168,18 @@ Test(core, unorm_quantisation_follows_the_d3d_rules)
     for (uint32_t code = 0; code < 256; ++code)
         cr_assert_eq(sol_unorm_encode(sol_unorm_decode(code, 8), 8), code);
 }
+
+Test(core, rng_streams_are_reproducible_and_uniform)
+{
+    uint64_t a = 42, b = 42;
+    double sum = 0.0;
+    for (int i = 0; i < 100000; ++i) {
+        double x = sol_rng_uniform(&a, 0.0, 1.0);
+        cr_assert(x >= 0.0 && x < 1.0);
+        cr_assert_eq(sol_rng_next(&b) >> 11, (uint64_t)(x * 0x1.0p53)); /* same stream, exact */
+        sum += x;
+    }
+    cr_assert_float_eq(sum / 100000.0, 0.5, 0.005);
+    double y = sol_rng_uniform(&a, -1.0, 3.0);
+    cr_assert(y >= -1.0 && y < 3.0);
+}

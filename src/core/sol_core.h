@@ -105,6 +105,23 @@ static inline double sol_unorm_decode(uint32_t code, int bits)
     return (double)code / (double)((1u << bits) - 1u);
 }
 
+/* Deterministic pseudo-random numbers: SplitMix64 (Steele, Lea, Flood, "Fast splittable
+ * pseudorandom number generators", OOPSLA 2014). The whole state is one uint64_t, so a parallel
+ * loop can give every item its own stream (seed = item index) and stay thread-count independent. */
+static inline uint64_t sol_rng_next(uint64_t *state)
+{
+    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+/* Uniform double in [lo, hi) with 53 random bits. */
+static inline double sol_rng_uniform(uint64_t *state, double lo, double hi)
+{
+    return lo + (hi - lo) * (double)(sol_rng_next(state) >> 11) * 0x1.0p-53;
+}
+
 /* Low-discrepancy points: the n-th point of the 2D Hammersley-free R2 sequence
  * (Roberts 2018, additive recurrence with the plastic constant), in [0,1)^2.
  * Deterministic, usable from parallel loops (no state). */
