@@ -16,11 +16,7 @@
 static uint64_t rng_state = 0xD17D17ull;
 static double rng_uniform(double lo, double hi)
 {
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return lo + (hi - lo) * (double)(z >> 11) * 0x1.0p-53;
+    return sol_rng_uniform(&rng_state, lo, hi);
 }
 
 /* ---- the test scene: flat-ish shaded triangles, painter's order, over a grey background ---- */

@@ -606,15 +606,6 @@ static void d14(const sol_exp *exp)
 
 /* ======================= D2 ======================= */
 
-/* splitmix64-based uniform numbers for the random light configurations (deterministic). */
-static double rand01(uint64_t *state)
-{
-    uint64_t x = (*state += 0x9E3779B97F4A7C15ull);
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    return (double)((x ^ (x >> 31)) >> 11) * 0x1.0p-53;
-}
-
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -641,7 +632,7 @@ static void d2(const sol_exp *exp)
             for (int tr = 0; tr < trials; ++tr) {
                 double exact = 0, acc_a = 0, acc_dot = 0, acc_i = 0;
                 for (int k = 0; k < lights[li]; ++k) {
-                    double ang = 25 * DEG * sqrt(rand01(&state)), inten = 0.2 + rand01(&state);
+                    double ang = 25 * DEG * sqrt(sol_rng_uniform(&state, 0.0, 1.0)), inten = 0.2 + sol_rng_uniform(&state, 0.0, 1.0);
                     double c = cos(ang);
                     exact += inten * sol_phong_normalized(c, g);
                     acc_a += inten * sol_phong_raw(c, g0);

@@ -206,16 +206,6 @@ sol_status sol_gauss_legendre(int n, double *x, double *w)
     return SOL_OK;
 }
 
-/* splitmix64 (Steele et al. 2014): a stateless-per-index generator, so strata are independent of
- * evaluation order. */
-static uint64_t splitmix64(uint64_t x)
-{
-    x += 0x9E3779B97F4A7C15ull;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    return x ^ (x >> 31);
-}
-
 static double unit_double(uint64_t x)
 {
     return (double)(x >> 11) * 0x1.0p-53;
@@ -231,9 +221,9 @@ sol_status sol_sphere_integrate_mc(sol_sphere_fn f, void *ctx, int strata, uint6
     size_t n = (size_t)strata * (size_t)strata;
     double sum = 0.0, sum2 = 0.0;
     for (size_t i = 0; i < n; ++i) {
-        uint64_t h = splitmix64(seed ^ splitmix64(i));
+        uint64_t h = sol_mix64(seed ^ sol_mix64(i)); /* per-stratum: independent of order */
         double u = ((double)(i % (size_t)strata) + unit_double(h)) / strata;
-        double w = ((double)(i / (size_t)strata) + unit_double(splitmix64(h))) / strata;
+        double w = ((double)(i / (size_t)strata) + unit_double(sol_mix64(h))) / strata;
         double d[3];
         sol_sphere_uniform(u, w, d);
         double y = f(d, ctx);

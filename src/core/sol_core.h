@@ -108,12 +108,19 @@ static inline double sol_unorm_decode(uint32_t code, int bits)
 /* Deterministic pseudo-random numbers: SplitMix64 (Steele, Lea, Flood, "Fast splittable
  * pseudorandom number generators", OOPSLA 2014). The whole state is one uint64_t, so a parallel
  * loop can give every item its own stream (seed = item index) and stay thread-count independent. */
-static inline uint64_t sol_rng_next(uint64_t *state)
+static inline uint64_t sol_mix64(uint64_t counter) /* the SplitMix64 output for one counter value */
 {
-    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
+    uint64_t z = counter + 0x9E3779B97F4A7C15ull;
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);
+}
+
+static inline uint64_t sol_rng_next(uint64_t *state)
+{
+    uint64_t counter = *state;
+    *state += 0x9E3779B97F4A7C15ull;
+    return sol_mix64(counter);
 }
 
 /* Uniform double in [lo, hi) with 53 random bits. */
