@@ -10,6 +10,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <errno.h>
+#include <sys/stat.h>
 
 #include "sol_exp.h"
 #include "sol_hdr.h"
@@ -88,6 +90,27 @@ static void make_scene(scene_id id, sol_image *img)
             for (int i = 0; i < 3; ++i)
                 p[i] = (float)c[i];
         }
+}
+
+/* ---------------- scene files (OpenEXR through sol_exr_*) ---------------- */
+/* The scenes are written as float EXR into results/<exp>/scenes/ and read back, so the
+ * experiment's input is a file other tools can open. (Real HDR maps were considered: Debian's
+ * blender-data ships CC0 environment maps, but they are DWAB-compressed, which OpenEXR 3.1's C core
+ * API cannot decode.) */
+static void load_scenes(const sol_exp *exp, sol_image *out)
+{
+    char path[4096], file[128];
+    if (mkdir(sol_exp_path(exp, "scenes"), 0777) != 0 && errno != EEXIST)
+        sol_exp_die("cannot create %s", sol_exp_path(exp, "scenes"));
+    for (int id = 0; id < SCENE_COUNT; ++id) {
+        sol_image made;
+        make_scene((scene_id)id, &made);
+        snprintf(file, sizeof file, "scenes/%s.exr", scene_name[id]);
+        snprintf(path, sizeof path, "%s", sol_exp_path(exp, file));
+        sol_exp_check(sol_exr_write(path, &made, 0), "writing %s", path);
+        sol_image_free(&made);
+        sol_exp_check(sol_exr_read(path, &out[id]), "reading %s", path);
+    }
 }
 
 static double luminance(const float *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
@@ -232,32 +255,33 @@ static void write_display(const sol_exp *exp, const char *name, const sol_image 
 }
 
 /* The talk's "range scaling disabled / enabled" pair, for R11G11B10F, with amplified errors. */
-static void comparison_images(const sol_exp *exp, const sol_image *scene, scene_id id, double l)
+static void comparison_images(const sol_exp *exp, const sol_image *scene, const char *scene_label, double l)
 {
     sol_image ref, off, on, diff;
-    sol_exp_check(sol_image_alloc(&ref, SCENE_W, SCENE_H, 3), "image");
-    sol_exp_check(sol_image_alloc(&off, SCENE_W, SCENE_H, 3), "image");
-    sol_exp_check(sol_image_alloc(&on, SCENE_W, SCENE_H, 3), "image");
-    sol_exp_check(sol_image_alloc(&diff, SCENE_W * 2, SCENE_H, 3), "image");
-    for (int k = 0; k < SCENE_W * SCENE_H * 3; ++k)
+    const int w = scene->width, h = scene->height;
+    sol_exp_check(sol_image_alloc(&ref, w, h, 3), "image");
+    sol_exp_check(sol_image_alloc(&off, w, h, 3), "image");
+    sol_exp_check(sol_image_alloc(&on, w, h, 3), "image");
+    sol_exp_check(sol_image_alloc(&diff, w * 2, h, 3), "image");
+    for (int k = 0; k < w * h * 3; ++k)
         ref.data[k] = (float)(display_code(scene->data[k], l) / 255.0);
     measure_store(scene, R11G11B10F, RANGE_NONE, l, &off);
     measure_store(scene, R11G11B10F, RANGE_AVERAGE, l, &on);
-    for (int y = 0; y < SCENE_H; ++y) /* |difference| x 64: disabled left, enabled right */
-        for (int x = 0; x < SCENE_W; ++x)
+    for (int y = 0; y < h; ++y) /* |difference| x 64: disabled left, enabled right */
+        for (int x = 0; x < w; ++x)
             for (int i = 0; i < 3; ++i) {
-                size_t k = 3 * ((size_t)y * SCENE_W + x) + i;
+                size_t k = 3 * ((size_t)y * w + x) + i;
                 sol_image_pixel(&diff, x, y)[i] = fminf(1.0f, 64.0f * fabsf(off.data[k] - ref.data[k]));
-                sol_image_pixel(&diff, x + SCENE_W, y)[i] = fminf(1.0f, 64.0f * fabsf(on.data[k] - ref.data[k]));
+                sol_image_pixel(&diff, x + w, y)[i] = fminf(1.0f, 64.0f * fabsf(on.data[k] - ref.data[k]));
             }
     char name[128];
-    snprintf(name, sizeof name, "%s_reference.png", scene_name[id]);
+    snprintf(name, sizeof name, "%s_reference.png", scene_label);
     write_display(exp, name, &ref);
-    snprintf(name, sizeof name, "%s_r11g11b10f_scaling_disabled.png", scene_name[id]);
+    snprintf(name, sizeof name, "%s_r11g11b10f_scaling_disabled.png", scene_label);
     write_display(exp, name, &off);
-    snprintf(name, sizeof name, "%s_r11g11b10f_scaling_enabled.png", scene_name[id]);
+    snprintf(name, sizeof name, "%s_r11g11b10f_scaling_enabled.png", scene_label);
     write_display(exp, name, &on);
-    snprintf(name, sizeof name, "%s_r11g11b10f_error_x64_disabled_enabled.png", scene_name[id]);
+    snprintf(name, sizeof name, "%s_r11g11b10f_error_x64_disabled_enabled.png", scene_label);
     write_display(exp, name, &diff);
     sol_image_free(&ref);
     sol_image_free(&off);
@@ -357,28 +381,24 @@ int main(int argc, char **argv)
                                  "% px >= 2 codes,max rel. error in c_min..c_max");
     /* per format and policy: worst scene's max code error and mean of the mean code errors */
     double worst_max[FORMAT_COUNT][POLICY_COUNT] = {{0}}, mean_mean[FORMAT_COUNT][POLICY_COUNT] = {{0}};
-    sol_image interior = {0};
+    sol_image scenes[SCENE_COUNT];
+    load_scenes(&exp, scenes);
     for (int id = 0; id < SCENE_COUNT; ++id) {
-        sol_image scene;
-        make_scene((scene_id)id, &scene);
-        double l = log_average_luminance(&scene);
+        const sol_image *img = &scenes[id];
+        double l = log_average_luminance(img);
         for (int f = 0; f < FORMAT_COUNT; ++f)
             for (int p = 0; p < POLICY_COUNT; ++p) {
                 if ((f == FP16 || f == R11G11B10F) && p == RANGE_WINDOW)
                     continue; /* float formats: the average alone places the window */
-                store_error e = measure_store(&scene, (format)f, (policy)p, l, NULL);
+                store_error e = measure_store(img, (format)f, (policy)p, l, NULL);
                 sol_table_row(t, "%s|%.3g|%s|%d|%s|%.0f|%.3f|%.2f|%.2f|%.4f", scene_name[id], l, format_name[f],
                               format_bits[f], policy_name[p], e.max_code, e.mean_code, e.pct_changed, e.pct_2codes,
                               e.max_rel_window);
                 worst_max[f][p] = fmax(worst_max[f][p], e.max_code);
                 mean_mean[f][p] += e.mean_code / SCENE_COUNT;
             }
-        if (id == NIGHT_STREET || id == DARK_CAVE || id == INTERIOR_WINDOW)
-            comparison_images(&exp, &scene, (scene_id)id, l);
-        if (id == INTERIOR_WINDOW)
-            interior = scene;
-        else
-            sol_image_free(&scene);
+        if (id != SKY_SUN) /* the sky is all bright: nothing to see in the pair */
+            comparison_images(&exp, img, scene_name[id], l);
     }
     sol_table_write(t, &exp, "format_errors");
 
@@ -402,7 +422,8 @@ int main(int argc, char **argv)
         for (size_t c = 0; c < sizeof light_counts / sizeof light_counts[0]; ++c) {
             if (exp.quick && light_counts[c] > 16)
                 continue;
-            double max_code, mean = accumulate_lights(&interior, (format)f, p, log_average_luminance(&interior),
+            const sol_image *interior = &scenes[INTERIOR_WINDOW];
+            double max_code, mean = accumulate_lights(interior, (format)f, p, log_average_luminance(interior),
                                                       light_counts[c], &max_code);
             sol_table_row(acc, "%s|%s|%d|%.0f|%.3f", format_name[f], policy_name[p], light_counts[c], max_code, mean);
             if (light_counts[c] == 16 && f == R11G11B10F)
@@ -414,8 +435,7 @@ int main(int argc, char **argv)
     sol_table_write(acc, &exp, "light_accumulation");
     precision_plot(&exp);
     double r11_none = 0.0, r11_avg = 0.0;
-    level_sweep(&exp, &interior, &r11_none, &r11_avg);
-    sol_image_free(&interior);
+    level_sweep(&exp, &scenes[INTERIOR_WINDOW], &r11_none, &r11_avg);
 
     char fig[256];
     snprintf(fig, sizeof fig,
@@ -431,7 +451,8 @@ int main(int argc, char **argv)
     strncat(fig, acc_note, sizeof fig - strlen(fig) - 1);
     sol_claim(&exp, "D9", "RGBK at LDR bandwidth; R11G11B10F same bandwidth, not enough precision for linear HDR",
               fig, "qualitative", r11_worse ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
-              "four synthetic scenes (interior, night street, sky with sun, dark cave) through each 32-bit format, HBD "
+              "four synthetic scenes (interior, night street, sky with sun, dark cave; float EXR files) through "
+              "each 32-bit format, HBD "
               "filmic at the scene's log-average, errors in 8-bit sRGB display codes: R11G11B10F's relative step "
               "(2^-6, blue 2^-5) costs about a code once scaled by 1/l, more where an unscaled dark scene falls into "
               "its denormals (dark_cave error images) and when lights are blended into it (table light_accumulation, "
@@ -454,5 +475,7 @@ int main(int argc, char **argv)
               rgb10_better ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
               "half the step of RGB8 with twice the headroom; R11G11B10F (the preferred format) keeps a constant "
               "relative step of 2^-6 (2^-5 in blue) instead (plot relative_step)");
+    for (int id = 0; id < SCENE_COUNT; ++id)
+        sol_image_free(&scenes[id]);
     return 0;
 }
