@@ -1,0 +1,44 @@
+/* normalmaps_internal.h - what the files of src/normalmaps share (not part of the public API). */
+#ifndef SOL_NORMALMAPS_INTERNAL_H
+#define SOL_NORMALMAPS_INTERNAL_H
+
+#include "sol_normalmaps.h"
+
+/* Palette of every ordered anchor pair in DECODED units (2 v - 1, in [-1, 1]): table[e0 << 8 | e1].
+ * Built once per precision (thread-safe); precision must be valid. */
+const double (*sol_nm_palettes(sol_bc4_precision precision))[8];
+
+/* One anchor pair and its per-channel bound score. */
+typedef struct sol_nm_pair {
+    double score;
+    uint16_t pair; /* e0 << 8 | e1 */
+} sol_nm_pair;
+
+/* Per-channel scoring of anchor pairs against 16 target components t (decoded units).
+ * term_p = min_k (pal_k - t_p)^2 (tight) or, for the pixels whose bit is set in `loose`, the squared distance of t_p to the
+ * nearest interval [pal_k / sqrt 2, pal_k] (x of a decoded normal whose z was clamped to 0 lies
+ * there). score = sum_p term_p, or max_p term_p when `use_max`. */
+typedef struct sol_nm_channel {
+    double t[16];
+    int order[16]; /* pixels visited extremes first, so early exits come early */
+    const double (*palettes)[8];
+    sol_bc4_precision precision;
+    int use_max;
+    uint16_t loose; /* bit p: pixel p takes the loose term */
+    uint8_t e0_lo, e0_hi, e1_lo, e1_hi;
+} sol_nm_channel;
+
+void sol_nm_channel_init(sol_nm_channel *ch, const double t[16], sol_bc4_precision precision, int use_max,
+                         unsigned loose, uint8_t e0_lo, uint8_t e0_hi, uint8_t e1_lo, uint8_t e1_hi);
+/* Score of one pair, exact (no early exit). */
+double sol_nm_channel_score(const sol_nm_channel *ch, int pair);
+/* The pair of least score in the ranges (first in e0-major order on ties); *score receives it. */
+int sol_nm_channel_argmin(const sol_nm_channel *ch, double *score);
+/* Every pair in the ranges with score <= budget, in e0-major order; returns the count.
+ * out holds at least (e0_hi - e0_lo + 1) (e1_hi - e1_lo + 1) entries. */
+size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pair *out);
+
+/* Validates and normalises 16 source normals. */
+sol_status sol_nm_unit_normals(const double in[16][3], double out[16][3]);
+
+#endif

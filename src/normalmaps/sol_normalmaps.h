@@ -1,0 +1,172 @@
+/* sol_normalmaps.h - BC4 / BC5 (3Dc) block codecs and normal-map encoders (claims T8-T14).
+ *
+ * Kaplanyan 2010, "3Dc encoder improvements" (talk seed 000, slides "3Dc encoder improvements" and
+ * "cont'd"): a BC5 block stores x and y of a normal as two BC4 ("alpha") blocks; z is rebuilt as
+ * sqrt(max(0, 1 - x^2 - y^2)). Usual encoders code the two channels independently (T10); the talk
+ * proposes choosing the anchor pairs of x and y jointly to minimise the angular error
+ * dN = acos(Nc.N / (|Nc||N|)) (T10), by brute force (~3 h per 1024^2 texture on a GPU, T11), and an
+ * adaptive encoder that searches a +-4/255 window around the common anchors (T13).
+ *
+ * BC4 block (D3D10 "BC4_UNORM", the DXT5 alpha block): two 8-bit anchors e0, e1 and sixteen 3-bit
+ * indices. The ORDER of the anchors selects the mode:
+ *   e0 >  e1: 8-value mode. Palette index 0 = e0, 1 = e1, 2..7 = ((8-i) e0 + (i-1) e1) / 7.
+ *   e0 <= e1: 6-value mode. Palette index 0 = e0, 1 = e1, 2..5 = ((6-i) e0 + (i-1) e1) / 5,
+ *             index 6 = 0, index 7 = 255.
+ * So every ordered pair (e0, e1) of the 65536 is a distinct palette, and a search over all ordered
+ * pairs covers both modes. Palette values are in [0,1] (code / 255); a BC5 normal component is
+ * 2 v - 1. Pixels are numbered row-major inside the 4x4 block (pixel = 4 row + column).
+ *
+ * Decoder precision (T9: "interpolants are produced at 16-bit precision on the majority of GPUs"):
+ * the interpolated palette entries are rounded to 8 bits (round(num / 7) / 255), to 16 bits
+ * (round(num * 257 / 7) / 65535) or kept exact (float). Anchors are exact in all three.
+ *
+ * Error of a block: each pixel's angle dN (radians) between its source normal and the decoded
+ * normal; the block error is sum(dN^2) (SOL_BC5_SUM_SQUARED, default) or max(dN) (SOL_BC5_MAX).
+ * For given anchors, every encoder here picks each pixel's (x, y) index pair jointly to minimise
+ * that pixel's angle, except the common encoder, which picks the x and y indices independently
+ * (nearest component value), as a pair of BC4 encoders does.
+ *
+ * Source normals are given as (x, y, z), any finite non-zero length (normalised internally); z < 0
+ * is accepted but cannot be reproduced (decoded z >= 0). NaN/Inf gives SOL_ERR_NONFINITE, a zero
+ * vector SOL_ERR_ZERO_LENGTH. On error no output is written.
+ */
+#ifndef SOL_NORMALMAPS_H
+#define SOL_NORMALMAPS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "sol_core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- BC4 ---- */
+
+typedef enum sol_bc4_precision {
+    SOL_BC4_INTERP_16BIT = 0, /* default: interpolants rounded to 16 bits (Xbox 360, most GPUs) */
+    SOL_BC4_INTERP_8BIT,      /* interpolants rounded to 8 bits */
+    SOL_BC4_INTERP_FLOAT,     /* interpolants exact (double) */
+    SOL_BC4_PRECISION_COUNT
+} sol_bc4_precision;
+
+typedef struct sol_bc4_block {
+    uint8_t e0, e1;     /* anchors; their order selects the mode (see above) */
+    uint8_t index[16];  /* 0..7, pixel = 4 row + column */
+} sol_bc4_block;
+
+/* The 8 palette values in [0,1] of anchors (e0, e1) under a decoder precision.
+ * SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (unknown precision). */
+sol_status sol_bc4_palette(uint8_t e0, uint8_t e1, sol_bc4_precision precision, double out[8]);
+
+/* 8-byte D3D layout: byte 0 = e0, byte 1 = e1, then 48 index bits, little-endian, pixel 0 first.
+ * pack: SOL_ERR_INVALID_ARG if an index is > 7. */
+sol_status sol_bc4_pack(const sol_bc4_block *block, uint8_t out[8]);
+sol_status sol_bc4_unpack(const uint8_t in[8], sol_bc4_block *out);
+
+/* Least-squares BC4 encoder: the anchors (over all 65536 ordered pairs, both modes) and indices
+ * minimising sum (v - decoded)^2 for this decoder precision. Exact (branch and bound over the
+ * pairs, early exit per pair). values in [0,1], else SOL_ERR_OUT_OF_RANGE; NaN: SOL_ERR_NONFINITE.
+ * squared_error (may be NULL) receives the minimum. Ties go to the first pair in the search
+ * order (8-value pairs by increasing low anchor, then 6-value pairs). */
+sol_status sol_bc4_encode_block(const double values[16], sol_bc4_precision precision, sol_bc4_block *out,
+                                double *squared_error);
+
+/* ---- BC5 (3Dc) ---- */
+
+typedef struct sol_bc5_block {
+    sol_bc4_block x, y; /* x in the first 8 bytes (red), y in the second (green) */
+} sol_bc5_block;
+
+typedef enum sol_bc5_metric {
+    SOL_BC5_SUM_SQUARED = 0, /* block error = sum over pixels of dN^2 (rad^2) */
+    SOL_BC5_MAX              /* block error = max over pixels of dN (rad) */
+} sol_bc5_metric;
+
+typedef enum sol_bc5_encoder {
+    SOL_BC5_COMMON = 0, /* x and y as two independent least-squares BC4 blocks (T10 "usual") */
+    SOL_BC5_OPTIMAL,    /* joint anchors and indices minimising the block's angular error (T10/T11) */
+    SOL_BC5_ADAPTIVE    /* common, then if above the threshold a window search around it (T13) */
+} sol_bc5_encoder;
+
+typedef struct sol_bc5_options {
+    sol_bc5_encoder encoder;
+    sol_bc4_precision precision; /* the decoder the error is measured for */
+    sol_bc5_metric metric;       /* optimal and adaptive minimise this */
+    /* Adaptive: each of the four anchors is searched within +-window codes of the common anchor
+     * (clamped to 0..255). 0 = default 4 (the talk's [v-4/255, v+4/255]); negative = 0, i.e. only the
+     * common anchors, with joint index choice. */
+    int window;
+    /* Adaptive: search only blocks whose common RMS angular error (sqrt(mean dN^2), or max dN for
+     * SOL_BC5_MAX) exceeds this many degrees. 0 = search every block. */
+    double threshold_deg;
+} sol_bc5_options;
+
+/* Anchor ranges for sol_bc5_search_block: each anchor code in [lo, hi] (inclusive). */
+typedef struct sol_bc5_range {
+    uint8_t x0_lo, x0_hi, x1_lo, x1_hi; /* x channel's e0 and e1 */
+    uint8_t y0_lo, y0_hi, y1_lo, y1_hi;
+} sol_bc5_range;
+
+/* What an encode did: the block error in the metric's units, whether a search ran, and how many
+ * (x pair, y pair) candidates were evaluated exactly. */
+typedef struct sol_bc5_info {
+    double error;
+    int searched;
+    uint64_t candidates;
+} sol_bc5_info;
+
+/* Decodes a block to 16 normals (x, y, z), z = sqrt(max(0, 1 - x^2 - y^2)). The result is NOT
+ * renormalised where x^2 + y^2 > 1 (angles are measured on the direction, so that is harmless). */
+sol_status sol_bc5_decode_block(const sol_bc5_block *block, sol_bc4_precision precision, double out[16][3]);
+
+/* Error of a block as encoded (its own indices) against source normals, in the metric's units. */
+sol_status sol_bc5_block_error(const sol_bc5_block *block, const double normals[16][3],
+                               sol_bc4_precision precision, sol_bc5_metric metric, double *error);
+
+/* Given the four anchors in `block` (its indices are ignored), chooses each pixel's index pair
+ * minimising its angle, writes the indices into block, and returns the block error. This is the
+ * objective every joint search minimises. */
+sol_status sol_bc5_choose_indices(sol_bc5_block *block, const double normals[16][3], sol_bc4_precision precision,
+                                  sol_bc5_metric metric, double *error);
+
+/* Encodes one block with options (NULL = all defaults). info may be NULL. */
+sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_options *options, sol_bc5_block *out,
+                                sol_bc5_info *info);
+
+/* The exact minimum of the joint objective (sol_bc5_choose_indices) over all anchors inside
+ * `range` (NULL = all 2^32 anchor combinations), by branch and bound: separable lower bounds
+ * sum_p min_a (a - Nx_p)^2 + min_b (b - Ny_p)^2 <= sum_p chord_p^2 <= sum_p dN_p^2 (and their max
+ * forms) over anchor pairs sorted by bound. Only options->precision and ->metric are used.
+ * Ties: the first minimiser found (its error equals the literal brute force's minimum exactly).
+ * SOL_ERR_INVALID_ARG if a range has lo > hi. */
+sol_status sol_bc5_search_block(const double normals[16][3], const sol_bc5_range *range,
+                                const sol_bc5_options *options, sol_bc5_block *out, sol_bc5_info *info);
+
+/* Statistics of an image encode (integers, so identical whatever the thread count). */
+typedef struct sol_bc5_image_stats {
+    uint64_t blocks;
+    uint64_t searched_blocks;
+    uint64_t candidates;
+} sol_bc5_image_stats;
+
+/* Encodes a 3-channel normal image (x, y, z per pixel; width and height multiples of 4) into
+ * blocks (16 bytes each, row-major over blocks; caller allocates width*height bytes). OpenMP over
+ * blocks; the output does not depend on the thread count. stats may be NULL.
+ * SOL_ERR_INVALID_ARG on a bad size or channel count. */
+sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options *options, uint8_t *blocks,
+                                sol_bc5_image_stats *stats);
+
+/* Decodes blocks to a newly allocated 3-channel image of normals (z rebuilt, normalised). */
+sol_status sol_bc5_decode_image(const uint8_t *blocks, int width, int height, sol_bc4_precision precision,
+                                sol_image *out);
+
+/* Writes a .dds file: fourcc "ATI2" (BC5, 16 bytes per block) or "ATI1" (BC4, 8 bytes per block),
+ * one mip level. channels: 1 (BC4) or 2 (BC5). SOL_ERR_IO if the file cannot be written. */
+sol_status sol_dds_write_bc(const char *path, const uint8_t *blocks, int width, int height, int channels);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

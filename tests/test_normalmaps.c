@@ -1,0 +1,363 @@
+/* test_normalmaps.c - BC4/BC5 codecs and the 3Dc encoders (T8-T13): palettes of both modes, packing,
+ * the exact least-squares BC4 encoder and the joint search against literal brute force, hard cases. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "sol_normalmaps.h"
+
+/* Small deterministic generator (tests must not depend on rand()'s implementation). */
+static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
+static double uniform(void)
+{
+    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(rng_state >> 11) / 9007199254740992.0;
+}
+
+/* A block of normals around a random direction of tilt up to max_tilt radians, spread `spread`. */
+static void random_block(double n[16][3], double max_tilt, double spread)
+{
+    double tilt = max_tilt * uniform(), phi = 2 * M_PI * uniform();
+    for (int p = 0; p < 16; ++p) {
+        double t = tilt + spread * (uniform() - 0.5), f = phi + spread * 4 * (uniform() - 0.5);
+        n[p][0] = sin(t) * cos(f);
+        n[p][1] = sin(t) * sin(f);
+        n[p][2] = cos(t);
+    }
+}
+
+Test(normalmaps, palettes_follow_the_two_modes)
+{
+    double p[8];
+    cr_assert_eq(sol_bc4_palette(200, 60, SOL_BC4_INTERP_FLOAT, p), SOL_OK); /* e0 > e1: 8 values */
+    cr_assert_float_eq(p[0], 200 / 255.0, 1e-15);
+    cr_assert_float_eq(p[1], 60 / 255.0, 1e-15);
+    cr_assert_float_eq(p[2], (6 * 200 + 60) / 7.0 / 255.0, 1e-15);
+    cr_assert_float_eq(p[7], (200 + 6 * 60) / 7.0 / 255.0, 1e-15);
+    cr_assert_eq(sol_bc4_palette(60, 200, SOL_BC4_INTERP_FLOAT, p), SOL_OK); /* e0 <= e1: 6 values */
+    cr_assert_float_eq(p[2], (4 * 60 + 200) / 5.0 / 255.0, 1e-15);
+    cr_assert_eq(p[6], 0.0);
+    cr_assert_eq(p[7], 1.0);
+    cr_assert_eq(sol_bc4_palette(60, 200, SOL_BC4_INTERP_8BIT, p), SOL_OK);
+    cr_assert_eq(p[2], round((4 * 60 + 200) / 5.0) / 255.0);
+    cr_assert_eq(sol_bc4_palette(200, 60, SOL_BC4_INTERP_16BIT, p), SOL_OK);
+    cr_assert_eq(p[2], round((6 * 200 + 60) * 257 / 7.0) / 65535.0);
+    cr_assert_eq(sol_bc4_palette(7, 7, SOL_BC4_INTERP_16BIT, p), SOL_OK); /* equal anchors: 6-value mode */
+    cr_assert_eq(p[6], 0.0);
+    cr_assert_eq(sol_bc4_palette(1, 2, (sol_bc4_precision)9, p), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_bc4_palette(1, 2, SOL_BC4_INTERP_8BIT, NULL), SOL_ERR_NULL_ARG);
+}
+
+Test(normalmaps, bc4_pack_round_trips_and_refuses_bad_indices)
+{
+    sol_bc4_block b = {.e0 = 17, .e1 = 230}, back;
+    for (int p = 0; p < 16; ++p)
+        b.index[p] = (uint8_t)((p * 5) & 7);
+    uint8_t bytes[8] = {0};
+    cr_assert_eq(sol_bc4_pack(&b, bytes), SOL_OK);
+    cr_assert_eq(bytes[0], 17);
+    cr_assert_eq(bytes[2] & 7, b.index[0]);
+    cr_assert_eq(sol_bc4_unpack(bytes, &back), SOL_OK);
+    cr_assert_eq(memcmp(&b, &back, sizeof b), 0);
+    b.index[3] = 8;
+    uint8_t untouched[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+    cr_assert_eq(sol_bc4_pack(&b, untouched), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(untouched[0], 1);
+}
+
+/* Literal brute force: every one of the 65536 ordered pairs, nearest entry per value. */
+static double bc4_brute_force(const double v[16], sol_bc4_precision precision)
+{
+    double best = INFINITY;
+    for (int e0 = 0; e0 < 256; ++e0)
+        for (int e1 = 0; e1 < 256; ++e1) {
+            double pal[8], s = 0.0;
+            sol_bc4_palette((uint8_t)e0, (uint8_t)e1, precision, pal);
+            for (int p = 0; p < 16; ++p) {
+                double m = INFINITY;
+                for (int i = 0; i < 8; ++i)
+                    m = fmin(m, (pal[i] - v[p]) * (pal[i] - v[p]));
+                s += m;
+            }
+            best = fmin(best, s);
+        }
+    return best;
+}
+
+Test(normalmaps, bc4_encoder_equals_brute_force_over_all_pairs)
+{
+    for (int trial = 0; trial < 6; ++trial) {
+        double v[16];
+        double c = uniform(), w = trial < 3 ? 0.05 : 1.0;
+        for (int p = 0; p < 16; ++p)
+            v[p] = fmin(1.0, fmax(0.0, c + w * (uniform() - 0.5)));
+        if (trial == 5)
+            v[3] = 1.0, v[7] = 0.0; /* extremes the 6-value mode holds exactly */
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        sol_bc4_block b;
+        double err;
+        cr_assert_eq(sol_bc4_encode_block(v, prec, &b, &err), SOL_OK);
+        double ref = bc4_brute_force(v, prec);
+        /* same minimum, up to the order of the sum (scaled by 4 internally) */
+        cr_assert(fabs(err - ref) <= 1e-12 * (1.0 + ref), "trial %d: %.17g vs %.17g", trial, err, ref);
+        double pal[8], s = 0.0;
+        sol_bc4_palette(b.e0, b.e1, prec, pal);
+        for (int p = 0; p < 16; ++p)
+            s += (pal[b.index[p]] - v[p]) * (pal[b.index[p]] - v[p]);
+        cr_assert(fabs(s - ref) <= 1e-12 * (1.0 + ref));
+    }
+    double bad[16] = {0};
+    sol_bc4_block b = {.e0 = 9};
+    bad[4] = NAN;
+    cr_assert_eq(sol_bc4_encode_block(bad, 0, &b, NULL), SOL_ERR_NONFINITE);
+    bad[4] = 1.5;
+    cr_assert_eq(sol_bc4_encode_block(bad, 0, &b, NULL), SOL_ERR_OUT_OF_RANGE);
+    cr_assert_eq(b.e0, 9);
+}
+
+static uint8_t clamp_code(int v)
+{
+    return (uint8_t)(v < 0 ? 0 : (v > 255 ? 255 : v));
+}
+
+/* Literal brute force over a range: every anchor combination through sol_bc5_choose_indices. */
+static double bc5_brute_force(const double n[16][3], const sol_bc5_range *r, const sol_bc5_options *o)
+{
+    double best = INFINITY;
+    for (int a = r->x0_lo; a <= r->x0_hi; ++a)
+        for (int b = r->x1_lo; b <= r->x1_hi; ++b)
+            for (int c = r->y0_lo; c <= r->y0_hi; ++c)
+                for (int d = r->y1_lo; d <= r->y1_hi; ++d) {
+                    sol_bc5_block blk = {.x = {.e0 = (uint8_t)a, .e1 = (uint8_t)b},
+                                         .y = {.e0 = (uint8_t)c, .e1 = (uint8_t)d}};
+                    double e;
+                    cr_assert_eq(sol_bc5_choose_indices(&blk, n, o->precision, o->metric, &e), SOL_OK);
+                    best = fmin(best, e);
+                }
+    return best;
+}
+
+/* T10/T11: the branch-and-bound search returns exactly the brute-force minimum. Full 4x4 blocks,
+ * anchors restricted to 7-code windows that straddle e0 = e1 (both modes) near the common anchors. */
+Test(normalmaps, joint_search_equals_literal_brute_force_T10_T11)
+{
+    for (int trial = 0; trial < 12; ++trial) {
+        double n[16][3];
+        random_block(n, trial == 11 ? 1.55 : 0.8, trial % 4 == 0 ? 0.02 : 0.25);
+        sol_bc5_options o = {.precision = (sol_bc4_precision)(trial % 3),
+                             .metric = trial % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED};
+        sol_bc5_block common;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &common, NULL), SOL_OK);
+        int sx = trial % 3 - 1, sy = 1 - trial % 3; /* shift the window off-centre */
+        int cx = (common.x.e0 + common.x.e1) / 2 + sx, cy = (common.y.e0 + common.y.e1) / 2 + sy;
+        sol_bc5_range r = {clamp_code(common.x.e0 - 3 + sx), clamp_code(common.x.e0 + 3 + sx),
+                           clamp_code(common.x.e1 - 3 + sx), clamp_code(common.x.e1 + 3 + sx),
+                           clamp_code(common.y.e0 - 3 + sy), clamp_code(common.y.e0 + 3 + sy),
+                           clamp_code(common.y.e1 - 3 + sy), clamp_code(common.y.e1 + 3 + sy)};
+        if (trial % 4 == 1) { /* both anchors of each channel in one window: both modes inside */
+            r = (sol_bc5_range){clamp_code(cx - 3), clamp_code(cx + 3), clamp_code(cx - 3), clamp_code(cx + 3),
+                                clamp_code(cy - 3), clamp_code(cy + 3), clamp_code(cy - 3), clamp_code(cy + 3)};
+        }
+        sol_bc5_block found;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_search_block(n, &r, &o, &found, &info), SOL_OK);
+        double ref = bc5_brute_force(n, &r, &o);
+        cr_assert_eq(info.error, ref, "trial %d: search %.17g, brute force %.17g", trial, info.error, ref);
+        cr_assert(found.x.e0 >= r.x0_lo && found.x.e0 <= r.x0_hi && found.y.e1 >= r.y1_lo && found.y.e1 <= r.y1_hi);
+        double own;
+        cr_assert_eq(sol_bc5_block_error(&found, n, o.precision, o.metric, &own), SOL_OK);
+        cr_assert_float_eq(own, ref, 1e-12 * (1 + ref));
+    }
+}
+
+/* Rim blocks (z ~ 0, where decoded z clamps) take the loose bound; still exact. */
+Test(normalmaps, joint_search_is_exact_at_the_rim)
+{
+    double n[16][3];
+    for (int p = 0; p < 16; ++p) {
+        double f = 0.3 + 0.05 * p, z = p % 3 ? 0.002 * p : 0.0;
+        n[p][0] = cos(f);
+        n[p][1] = sin(f);
+        n[p][2] = z;
+    }
+    sol_bc5_options o = {0};
+    sol_bc5_block common, found;
+    sol_bc5_info info;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &common, NULL), SOL_OK);
+    sol_bc5_range r = {clamp_code(common.x.e0 - 2), clamp_code(common.x.e0 + 2), clamp_code(common.x.e1 - 2),
+                       clamp_code(common.x.e1 + 2), clamp_code(common.y.e0 - 2), clamp_code(common.y.e0 + 2),
+                       clamp_code(common.y.e1 - 2), clamp_code(common.y.e1 + 2)};
+    cr_assert_eq(sol_bc5_search_block(n, &r, &o, &found, &info), SOL_OK);
+    cr_assert_eq(info.error, bc5_brute_force(n, &r, &o));
+}
+
+/* Full-range optimum (all 2^32 anchor combinations): never worse than common or adaptive, and no
+ * better solution within +-2 codes of it (a local brute-force check of the global search). */
+Test(normalmaps, optimal_encoder_beats_common_and_adaptive_T12_T13)
+{
+    for (int trial = 0; trial < 4; ++trial) {
+        double n[16][3];
+        random_block(n, 0.6, trial == 0 ? 0.01 : 0.06);
+        sol_bc5_block b;
+        sol_bc5_info common, adaptive, optimal, window0;
+        sol_bc5_options o = {.encoder = SOL_BC5_COMMON};
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &common), SOL_OK);
+        o.encoder = SOL_BC5_ADAPTIVE;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &adaptive), SOL_OK);
+        o.window = -1;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &window0), SOL_OK);
+        o.encoder = SOL_BC5_OPTIMAL;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &optimal), SOL_OK);
+        cr_assert(optimal.error <= adaptive.error && adaptive.error <= window0.error &&
+                  window0.error <= common.error * (1 + 1e-12));
+        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
+                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
+                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        cr_assert_eq(bc5_brute_force(n, &r, &o), optimal.error);
+    }
+}
+
+Test(normalmaps, hard_cases_flat_axis_outlier_and_bad_input)
+{
+    sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL};
+    sol_bc5_block b;
+    sol_bc5_info info;
+    double n[16][3];
+    /* flat block: all normals equal, straight up (0.5 is not a code: small non-zero error) */
+    for (int p = 0; p < 16; ++p)
+        n[p][0] = n[p][1] = 0.0, n[p][2] = 1.0;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+    /* nearest entries to 127.5 are 892/7 and 893/7: ~1/14 code off in x and in y (+16-bit rounding) */
+    cr_assert(isfinite(info.error) && info.error <= 2 * 16 * pow(2.0 / 14.0 / 255.0, 2) * 1.1, "flat %g", info.error);
+    /* exact +-1 components (the 6-value mode's extra entries) and -0.0 */
+    for (int p = 0; p < 16; ++p) {
+        n[p][0] = p % 2 ? 1.0 : -1.0;
+        n[p][1] = -0.0;
+        n[p][2] = 0.0;
+    }
+    /* The full-range optimum of this block is a known slow case (every 6-value x pair serves x = +-1
+     * exactly: ~33k tied x pairs under loose rim bounds), so it is checked over a window. */
+    o.encoder = SOL_BC5_ADAPTIVE;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+    cr_assert(info.error <= 16 * pow(2.0 / 14.0 / 255.0, 2) * 1.1, "axis block %g", info.error); /* y = 0 */
+    sol_bc5_range axis = {252, 255, 0, 3, 125, 130, 125, 130};
+    cr_assert_eq(sol_bc5_search_block(n, &axis, &o, &b, &info), SOL_OK);
+    cr_assert_eq(info.error, bc5_brute_force(n, &axis, &o));
+    o.encoder = SOL_BC5_OPTIMAL;
+    /* one outlier in a smooth block, and an unnormalised normal */
+    random_block(n, 0.3, 0.01);
+    n[5][0] = 0.5, n[5][1] = -0.5, n[5][2] = 0.7;
+    n[9][0] = 0.0, n[9][1] = 0.3, n[9][2] = 4.0;
+    sol_bc5_info common;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+    o.encoder = SOL_BC5_COMMON;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &common), SOL_OK);
+    cr_assert(isfinite(info.error) && info.error <= common.error);
+    /* a normal pointing down (z < 0) cannot be decoded (z >= 0): finite error, adaptive <= common.
+     * (Its large error loosens every bound, so the full-range optimum is slow on such blocks.) */
+    n[9][0] = 3.0, n[9][1] = 0.0, n[9][2] = -4.0;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &common), SOL_OK);
+    o.encoder = SOL_BC5_ADAPTIVE;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+    cr_assert(isfinite(info.error) && info.error <= common.error && info.error > 1.0);
+    /* bad input: outputs untouched */
+    sol_bc5_block untouched = {.x = {.e0 = 42}};
+    n[3][1] = NAN;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &untouched, &info), SOL_ERR_NONFINITE);
+    n[3][1] = INFINITY;
+    cr_assert_eq(sol_bc5_search_block(n, NULL, NULL, &untouched, NULL), SOL_ERR_NONFINITE);
+    n[3][0] = n[3][1] = n[3][2] = 0.0;
+    cr_assert_eq(sol_bc5_encode_block(n, NULL, &untouched, NULL), SOL_ERR_ZERO_LENGTH);
+    n[3][2] = 1.0;
+    sol_bc5_options bad = {.metric = (sol_bc5_metric)7};
+    cr_assert_eq(sol_bc5_encode_block(n, &bad, &untouched, NULL), SOL_ERR_INVALID_ARG);
+    bad = (sol_bc5_options){.threshold_deg = -1.0};
+    cr_assert_eq(sol_bc5_encode_block(n, &bad, &untouched, NULL), SOL_ERR_INVALID_ARG);
+    sol_bc5_range empty = {5, 4, 0, 255, 0, 255, 0, 255};
+    cr_assert_eq(sol_bc5_search_block(n, &empty, NULL, &untouched, NULL), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_bc5_encode_block(NULL, NULL, &untouched, NULL), SOL_ERR_NULL_ARG);
+    cr_assert_eq(untouched.x.e0, 42);
+}
+
+/* T9: decoding with 16-bit interpolation reproduces the normal at least as well as 8-bit. */
+Test(normalmaps, decoder_precision_and_z_reconstruction_T9)
+{
+    sol_bc5_block b = {.x = {.e0 = 255, .e1 = 0}, .y = {.e0 = 0, .e1 = 255}};
+    for (int p = 0; p < 16; ++p)
+        b.x.index[p] = b.y.index[p] = (uint8_t)(p & 7);
+    double d8[16][3], d16[16][3];
+    cr_assert_eq(sol_bc5_decode_block(&b, SOL_BC4_INTERP_8BIT, d8), SOL_OK);
+    cr_assert_eq(sol_bc5_decode_block(&b, SOL_BC4_INTERP_16BIT, d16), SOL_OK);
+    cr_assert_eq(d16[0][0], 1.0);
+    cr_assert_eq(d16[0][2], 0.0); /* x = 1, y = -1: beyond the rim, z clamped to 0 */
+    cr_assert_float_eq(d16[2][0], 2.0 * round(6.0 * 255 * 257 / 7.0) / 65535.0 - 1.0, 1e-15);
+    cr_assert_float_eq(d8[2][0], 2.0 * round(6.0 * 255 / 7.0) / 255.0 - 1.0, 1e-15);
+    b.x.index[4] = 9;
+    cr_assert_eq(sol_bc5_decode_block(&b, 0, d8), SOL_ERR_INVALID_ARG);
+}
+
+Test(normalmaps, image_encode_is_independent_of_thread_count_and_decodes)
+{
+    sol_image img = {0};
+    cr_assert_eq(sol_image_alloc(&img, 16, 8, 3), SOL_OK);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 16; ++x) {
+            float *v = sol_image_pixel(&img, x, y);
+            v[0] = (float)(0.3 * sin(0.4 * x + 0.1 * y));
+            v[1] = (float)(0.3 * cos(0.3 * y - 0.2 * x));
+            v[2] = 1.0f;
+        }
+    uint8_t a[128], b[128];
+    sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE};
+    sol_bc5_image_stats s1, s2;
+    int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, a, &s1), SOL_OK);
+    omp_set_num_threads(2);
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, b, &s2), SOL_OK);
+    omp_set_num_threads(threads);
+    cr_assert_eq(memcmp(a, b, sizeof a), 0);
+    cr_assert_eq(s1.candidates, s2.candidates);
+    cr_assert_eq(s1.blocks, 8u);
+    sol_image dec = {0};
+    cr_assert_eq(sol_bc5_decode_image(a, 16, 8, SOL_BC4_INTERP_16BIT, &dec), SOL_OK);
+    for (int i = 0; i < 16 * 8; ++i) {
+        double u[3] = {img.data[3 * i], img.data[3 * i + 1], img.data[3 * i + 2]};
+        double w[3] = {dec.data[3 * i], dec.data[3 * i + 1], dec.data[3 * i + 2]};
+        cr_assert(sol_angle3(u, w) < 0.04, "pixel %d off by %g rad", i, sol_angle3(u, w));
+    }
+    sol_image_free(&dec);
+    img.width = 14;
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, a, NULL), SOL_ERR_INVALID_ARG);
+    img.width = 16;
+    img.data[7] = NAN;
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, a, NULL), SOL_ERR_NONFINITE);
+    cr_assert_eq(sol_bc5_decode_image(a, 6, 8, 0, &dec), SOL_ERR_INVALID_ARG);
+    sol_image_free(&img);
+}
+
+Test(normalmaps, dds_writer_writes_an_ati2_header)
+{
+    uint8_t blocks[4 * 16] = {0};
+    char path[] = "/tmp/sol_test_dds_XXXXXX";
+    int fd = mkstemp(path);
+    cr_assert(fd >= 0);
+    close(fd);
+    cr_assert_eq(sol_dds_write_bc(path, blocks, 8, 8, 2), SOL_OK);
+    FILE *f = fopen(path, "rb");
+    uint8_t h[128];
+    cr_assert_eq(fread(h, 1, 128, f), 128u);
+    fseek(f, 0, SEEK_END);
+    cr_assert_eq(ftell(f), 128 + 64);
+    fclose(f);
+    cr_assert_eq(memcmp(h, "DDS ", 4), 0);
+    cr_assert_eq(memcmp(h + 84, "ATI2", 4), 0);
+    cr_assert_eq(h[12], 8);
+    cr_assert_eq(sol_dds_write_bc(path, blocks, 8, 6, 2), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_dds_write_bc("/nonexistent/dir/x.dds", blocks, 8, 8, 2), SOL_ERR_IO);
+    unlink(path);
+}
