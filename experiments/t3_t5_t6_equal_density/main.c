@@ -149,7 +149,7 @@ int main(int argc, char **argv)
             dark = s;
         if (r == 3)
             all = s;
-        sol_table_row(t, "[%.0f, %.0f]/255|%.3f|%.3f|%.3f|%.3f|%d|%d|%d", ranges[r][0] * 255, ranges[r][1] * 255,
+        sol_table_row(t, "%.0f/255 to %.0f/255|%.3f|%.3f|%.3f|%.3f|%d|%d|%d", ranges[r][0] * 255, ranges[r][1] * 255,
                       s.rms_as16, s.rms_cache8, s.max_cache8, s.rms_linear8, s.levels_as16, s.levels_cache8,
                       s.levels_linear8);
     }

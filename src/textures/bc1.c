@@ -315,7 +315,11 @@ static void cluster_fit_once(const float pts[16][3], const float axis[3], endpoi
                 if (!solve_endpoints(aa, bb, ab, ax, bx, a, b))
                     continue;
                 endpoints e;
-                quantize_endpoints(a, b, &e);
+                for (int c = 0; c < 3; ++c) { /* plain rounding to the grid: cheap, the loop runs 969 times */
+                    float to_code = (float)channel_max[c] / 255.0f;
+                    e.q[0][c] = (int)(fminf(255.0f, fmaxf(0.0f, a[c])) * to_code + 0.5f);
+                    e.q[1][c] = (int)(fminf(255.0f, fmaxf(0.0f, b[c])) * to_code + 0.5f);
+                }
                 float err = 0.0f; /* sum |alpha a + beta b - x|^2 without the constant sum |x|^2 */
                 for (int c = 0; c < 3; ++c) {
                     float qa = (float)expand_code(e.q[0][c], c), qb = (float)expand_code(e.q[1][c], c);
