@@ -384,3 +384,36 @@ Test(textures, storage_classifier_T4)
     cr_assert_eq(sol_storage_classify(&img, NULL, &choice, NULL), SOL_ERR_NONFINITE);
     sol_image_free(&img);
 }
+
+/* T2 at reduced size: a dark 16-bit gradient through BC1 has a lower error with renormalisation. */
+Test(textures, renormalisation_lowers_bc1_error_of_a_dark_texture_T2)
+{
+    sol_image img = {0}, plain = {0}, renorm = {0};
+    cr_assert_eq(sol_image_alloc(&img, 32, 32, 3), SOL_OK);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+            for (int c = 0; c < 3; ++c) /* stored (gamma) values between 0.02 and 0.12 */
+                sol_image_pixel(&img, x, y)[c] = 0.02f + 0.1f * (float)(x + 2 * y + c) / 99.0f;
+    uint8_t blocks[8 * 64];
+    cr_assert_eq(sol_bc1_encode(&img, NULL, blocks), SOL_OK);
+    cr_assert_eq(sol_bc1_decode(blocks, 32, 32, &plain), SOL_OK);
+    sol_image work = {0};
+    cr_assert_eq(sol_image_alloc(&work, 32, 32, 3), SOL_OK);
+    memcpy(work.data, img.data, sizeof(float) * 32 * 32 * 3);
+    sol_renorm r;
+    cr_assert_eq(sol_renorm_fit(&work, &r), SOL_OK);
+    cr_assert_eq(sol_renorm_apply(&r, &work), SOL_OK);
+    cr_assert_eq(sol_bc1_encode(&work, NULL, blocks), SOL_OK);
+    cr_assert_eq(sol_bc1_decode(blocks, 32, 32, &renorm), SOL_OK);
+    cr_assert_eq(sol_renorm_undo(&r, &renorm), SOL_OK);
+    double e_plain = 0.0, e_renorm = 0.0;
+    for (int i = 0; i < 32 * 32 * 3; ++i) {
+        e_plain += (plain.data[i] - img.data[i]) * (plain.data[i] - img.data[i]);
+        e_renorm += (renorm.data[i] - img.data[i]) * (renorm.data[i] - img.data[i]);
+    }
+    cr_assert(e_renorm < 0.25 * e_plain, "renorm %g plain %g", e_renorm, e_plain);
+    sol_image_free(&img);
+    sol_image_free(&work);
+    sol_image_free(&plain);
+    sol_image_free(&renorm);
+}
