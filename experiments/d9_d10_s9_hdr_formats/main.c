@@ -339,6 +339,7 @@ static void level_sweep(const sol_exp *exp, const sol_image *base, double *r11_n
     sol_exp_check(sol_image_alloc(&scaled, SCENE_W, SCENE_H, 3), "image");
     *r11_none_worst = *r11_avg_worst = 0.0;
     for (int i = 0; i < steps; ++i) {
+        sol_progress("d9 level sweep", (size_t)i, (size_t)steps);
         double level = pow(10.0, -8.0 + 16.0 * i / (steps - 1));
         for (int k = 0; k < SCENE_W * SCENE_H * 3; ++k)
             scaled.data[k] = (float)(base->data[k] * level);
@@ -355,6 +356,7 @@ static void level_sweep(const sol_exp *exp, const sol_image *base, double *r11_n
             }
         fputc('\n', f);
     }
+    sol_progress_done("d9 level sweep");
     fclose(f);
     sol_image_free(&scaled);
     sol_plot(exp, "level_sweep",

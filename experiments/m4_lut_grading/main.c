@@ -174,6 +174,7 @@ static void size_sweep(const sol_exp *exp, int *sufficient16, double worst16[2],
         double ns_exact = sol_time_per_item_ns(run_apply, &exact_job, exact_job.n, exp->quick ? 3 : 7);
         sol_table_row(t, "%s|exact|transform|0|0|0|0|0|%.1f", looks[l].name, ns_exact);
         for (int v = 0; v < VARIANT_COUNT; ++v) {
+            sol_progress("m4 LUT size sweep", (size_t)(l * VARIANT_COUNT + v), LOOK_COUNT * VARIANT_COUNT);
             for (int k = 0; k < n_sizes; ++k) {
                 sol_lut3d lut;
                 sol_exp_check(sol_lut3d_bake(sizes[k], grade_fn, (void *)&looks[l].grade, &lut), "baking");
@@ -215,6 +216,7 @@ static void size_sweep(const sol_exp *exp, int *sufficient16, double worst16[2],
         worst16[1] = fmax(worst16[1], mean16);
         colour_set_free(&set);
     }
+    sol_progress_done("m4 LUT size sweep");
     fclose(csv);
     sol_table_write(t, exp, "lut_error");
     sol_table_write(suff, exp, "lut_sufficient_size");

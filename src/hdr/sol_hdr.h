@@ -161,6 +161,7 @@ typedef struct sol_grade {
     double gain[3];     /* 0 = 1 */
     double hue_degrees; /* rotation about the grey axis */
 } sol_grade;
+/* grade must not be NULL; NaN inputs are treated as 0. */
 void sol_grade_apply(const sol_grade *grade, const double in[3], double out[3]);
 
 /* A size^3 RGB table on [0,1]^3, red index fastest: entry (r,g,b) at 3*(r + size*(g + size*b)). */
