@@ -417,3 +417,23 @@ Test(textures, renormalisation_lowers_bc1_error_of_a_dark_texture_T2)
     sol_image_free(&plain);
     sol_image_free(&renorm);
 }
+
+/* T7 at reduced size: over the bright range [0.5, 0.9] 8-bit sRGB storage has fewer codes (so
+ * wider bands once the contrast is stretched) than 8-bit linear storage. */
+Test(textures, bright_range_has_fewer_gamma_codes_than_linear_T7)
+{
+    sol_transfer srgb = {SOL_TRANSFER_SRGB, 0}, lin = {SOL_TRANSFER_LINEAR, 0};
+    int gamma_codes = 0, linear_codes = 0, last_g = -1, last_l = -1;
+    for (int i = 0; i <= 4000; ++i) {
+        double x = 0.5 + 0.4 * i / 4000.0;
+        uint8_t g, l;
+        cr_assert_eq(sol_transfer_quantize8(&srgb, x, &g), SOL_OK);
+        cr_assert_eq(sol_transfer_quantize8(&lin, x, &l), SOL_OK);
+        gamma_codes += g != last_g;
+        linear_codes += l != last_l;
+        last_g = g;
+        last_l = l;
+    }
+    cr_assert(gamma_codes < linear_codes, "gamma %d linear %d", gamma_codes, linear_codes);
+    cr_assert_eq(linear_codes, 103); /* round(0.5*255)=128 .. round(0.9*255)=230 */
+}

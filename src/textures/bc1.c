@@ -44,6 +44,9 @@ static int nearest_code(float v, int c)
     return best_code;
 }
 
+/* Clamp to [0,255] with plain comparisons (fminf/fmaxf may be library calls in the hot loop). */
+static inline float clamp255(float v) { return v < 0.0f ? 0.0f : (v > 255.0f ? 255.0f : v); }
+
 static uint16_t pack565(const int q[3]) { return (uint16_t)(q[0] << 11 | q[1] << 5 | q[2]); }
 
 static void unpack565(uint16_t c, int rgb[3])
@@ -238,9 +241,10 @@ static int solve_endpoints(float aa, float bb, float ab, const float ax[3], cons
     float det = aa * bb - ab * ab;
     if (!(fabsf(det) > 1e-6f))
         return 0;
+    float inv = 1.0f / det;
     for (int c = 0; c < 3; ++c) {
-        a[c] = (bb * ax[c] - ab * bx[c]) / det;
-        b[c] = (aa * bx[c] - ab * ax[c]) / det;
+        a[c] = (bb * ax[c] - ab * bx[c]) * inv;
+        b[c] = (aa * bx[c] - ab * ax[c]) * inv;
     }
     return 1;
 }
@@ -297,19 +301,22 @@ static void cluster_fit_once(const float pts[16][3], const float axis[3], endpoi
     for (int i = 0; i < 16; ++i)
         for (int c = 0; c < 3; ++c)
             prefix[i + 1][c] = prefix[i][c] + pts[order[i]][c];
+    /* multiplications by constants, not divisions: this loop runs 969 times per block */
+    const float third = 1.0f / 3.0f, two_thirds = 2.0f / 3.0f, ninth = 1.0f / 9.0f, four_ninths = 4.0f / 9.0f,
+                two_ninths = 2.0f / 9.0f;
     float best = FLT_MAX;
     for (int i = 0; i <= 16; ++i)
         for (int j = i; j <= 16; ++j)
             for (int k = j; k <= 16; ++k) {
                 /* clusters [0,i): endpoint a, [i,j): 2/3 a, [j,k): 1/3 a, [k,16): endpoint b */
                 float n0 = (float)i, n1 = (float)(j - i), n2 = (float)(k - j), n3 = (float)(16 - k);
-                float aa = n0 + n1 * 4.0f / 9.0f + n2 / 9.0f, bb = n3 + n1 / 9.0f + n2 * 4.0f / 9.0f;
-                float ab = (n1 + n2) * 2.0f / 9.0f, ax[3], bx[3];
+                float aa = n0 + n1 * four_ninths + n2 * ninth, bb = n3 + n1 * ninth + n2 * four_ninths;
+                float ab = (n1 + n2) * two_ninths, ax[3], bx[3];
                 for (int c = 0; c < 3; ++c) {
                     float x0 = prefix[i][c], x1 = prefix[j][c] - prefix[i][c];
                     float x2 = prefix[k][c] - prefix[j][c], x3 = prefix[16][c] - prefix[k][c];
-                    ax[c] = x0 + x1 * 2.0f / 3.0f + x2 / 3.0f;
-                    bx[c] = x3 + x1 / 3.0f + x2 * 2.0f / 3.0f;
+                    ax[c] = x0 + x1 * two_thirds + x2 * third;
+                    bx[c] = x3 + x1 * third + x2 * two_thirds;
                 }
                 float a[3], b[3];
                 if (!solve_endpoints(aa, bb, ab, ax, bx, a, b))
@@ -317,8 +324,8 @@ static void cluster_fit_once(const float pts[16][3], const float axis[3], endpoi
                 endpoints e;
                 for (int c = 0; c < 3; ++c) { /* plain rounding to the grid: cheap, the loop runs 969 times */
                     float to_code = (float)channel_max[c] / 255.0f;
-                    e.q[0][c] = (int)(fminf(255.0f, fmaxf(0.0f, a[c])) * to_code + 0.5f);
-                    e.q[1][c] = (int)(fminf(255.0f, fmaxf(0.0f, b[c])) * to_code + 0.5f);
+                    e.q[0][c] = (int)(clamp255(a[c]) * to_code + 0.5f);
+                    e.q[1][c] = (int)(clamp255(b[c]) * to_code + 0.5f);
                 }
                 float err = 0.0f; /* sum |alpha a + beta b - x|^2 without the constant sum |x|^2 */
                 for (int c = 0; c < 3; ++c) {
