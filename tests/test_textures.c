@@ -289,6 +289,10 @@ Test(textures, bc1_rejects_bad_input_and_leaves_output_untouched)
     cr_assert_eq(memcmp(block, keep, 8), 0);
     cr_assert_eq(sol_bc1_encode_block(rgb, NULL, block), SOL_OK);
     cr_assert_eq(block_error(rgb, block), 0.0);
+    for (int i = 0; i < 16; ++i) /* denormals: a black block */
+        rgb[i][0] = rgb[i][1] = rgb[i][2] = (i & 1) ? 1e-40f : 0.0f;
+    cr_assert_eq(sol_bc1_encode_block(rgb, NULL, block), SOL_OK);
+    cr_assert(block_error(rgb, block) < 1e-9);
 }
 
 Test(textures, bc1_images_of_any_size_round_trip)

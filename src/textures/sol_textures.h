@@ -150,7 +150,7 @@ typedef enum sol_storage { SOL_STORAGE_GAMMA = 0, SOL_STORAGE_LINEAR } sol_stora
 
 typedef struct sol_storage_options {
     double median;    /* linear value above which linear storage is denser; 0 = the equal-density
-                         point of the 2.2 power curve (0.2357), not the talk's 5/11 */
+                         point of the 2.2 power curve (0.2356), not the talk's 5/11 */
     double threshold; /* store linear if more than this fraction of values is above the median;
                          0 = 0.75 (the talk's rule of thumb) */
 } sol_storage_options;
