@@ -19,10 +19,12 @@ CFLAGS ?= -O2 -g
 CXXFLAGS ?= -O2 -g
 LDFLAGS ?=
 
-# Debian packages: what the tests need, and what reproducing everything needs.
+# Debian packages: what the tests need, and what reproducing everything needs (libsquish and
+# NVIDIA Texture Tools are peers for side-by-side comparison; colobot-common-textures ships real
+# game textures for the colour-texture experiments T1-T7).
 TEST_PKGS := gcc g++ make pkg-config libcriterion-dev libceres-dev libgoogle-glog-dev libeigen3-dev \
              libopenexr-dev libpng-dev
-REPRODUCE_PKGS := $(TEST_PKGS) gnuplot-nox libsquish-dev libnvtt-dev texlive-latex-base \
+REPRODUCE_PKGS := $(TEST_PKGS) gnuplot-nox libsquish-dev libnvtt-dev colobot-common-textures texlive-latex-base \
                   texlive-latex-recommended texlive-fonts-recommended latexmk
 
 # All three can be narrowed on the command line while one module is being worked on, e.g.

@@ -4,6 +4,7 @@
 function tex(s) {
     gsub(/\\/, "\\textbackslash{}", s); gsub(/[&%$#_{}]/, "\\\\&", s)
     gsub(/~/, "\\textasciitilde{}", s); gsub(/\^/, "\\textasciicircum{}", s)
+    if (substr(s, 1, 1) == "[") s = "{}" s   # a bare [ after \\ would start an optional argument
     return s
 }
 function row(id, text, talk, sol, tol, verdict, experiment, note) {

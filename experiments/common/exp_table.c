@@ -90,6 +90,8 @@ static void write_csv_cell(FILE *f, const char *s)
 
 static void write_tex_cell(FILE *f, const char *s)
 {
+    if (*s == '[')
+        fputs("{}", f); /* after the previous row's \\, a bare [ would start an optional argument */
     for (; *s; ++s) {
         if (strchr("&%$#_{}", *s))
             fprintf(f, "\\%c", *s);

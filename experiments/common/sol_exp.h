@@ -36,7 +36,8 @@ typedef struct sol_table sol_table;
 sol_table *sol_table_new(const char *title, const char *columns);
 /* Adds a row; the format yields the cells separated by '|' (e.g. "%s|%d|%.4f|%.4f"). */
 void sol_table_row(sol_table *table, const char *cells_fmt, ...);
-/* Writes the three files and frees the table. In bench mode also prints the Markdown on stdout. */
+/* Writes <name>.csv, <name>.md and <name>.tex (replacing any file of those names, so raw plot data
+ * needs another name) and frees the table. In bench mode also prints the Markdown on stdout. */
 void sol_table_write(sol_table *table, const sol_exp *exp, const char *name);
 
 /* ---- plots: gnuplot, rendered as <name>.png (reading) and <name>.pdf (paper) ---- */
