@@ -1,0 +1,9 @@
+set xlabel 'window half-width (codes)'
+set ylabel 'blocks at the exact optimum (%)'
+set y2label 'error left vs optimum (% of sum dN^2)'
+set ytics nomirror
+set y2tics
+set grid
+set key center right
+plot 't13_window.dat' using 1:2 with linespoints lw 2 title 'at optimum', '' using 1:3 axes x1y2 with linespoints lw 2 title 'error left'
+
