@@ -106,6 +106,23 @@ static double joint_objective(const double a[8], const double b[8], const double
     return s;
 }
 
+/* joint_objective with the pixels visited in `order` (worst first, so that hopeless candidates stop
+ * early). Its sum may differ from joint_objective's in the last bits, so the search only uses it to
+ * reject, with a relative margin, and re-evaluates survivors with joint_objective. */
+static double joint_objective_ordered(const double a[8], const double b[8], const double n[16][3],
+                                      const int order[16], int use_max, double budget)
+{
+    double s = 0.0;
+    for (int k = 0; k < 16; ++k) {
+        int i, j;
+        double e = best_pixel(a, b, n[order[k]], &i, &j);
+        s = use_max ? (e * e > s ? e * e : s) : s + e * e;
+        if (s >= budget)
+            return s;
+    }
+    return s;
+}
+
 static sol_status check_options(const sol_bc5_options *o)
 {
     if ((unsigned)o->precision >= SOL_BC4_PRECISION_COUNT || (unsigned)o->metric > SOL_BC5_MAX ||
@@ -241,6 +258,20 @@ static void search_unit(const double n[16][3], const sol_bc5_range *r, sol_bc4_p
         size_t ny = sol_nm_channel_collect(&cy, use_max ? room : room - sx_min * (1.0 - BOUND_SLACK), ws->y);
         qsort(ws->x, nx, sizeof *ws->x, compare_pairs);
         qsort(ws->y, ny, sizeof *ws->y, compare_pairs);
+        /* visit pixels worst-first (by the incumbent's per-pixel error) when rejecting candidates */
+        int order[16];
+        double pixel_err[16];
+        for (int p = 0; p < 16; ++p) {
+            int i, j;
+            pixel_err[p] = best_pixel(pal[px], pal[py], n[p], &i, &j);
+            order[p] = p;
+        }
+        for (int p = 1; p < 16; ++p)
+            for (int q = p; q > 0 && pixel_err[order[q - 1]] < pixel_err[order[q]]; --q) {
+                int t = order[q];
+                order[q] = order[q - 1];
+                order[q - 1] = t;
+            }
         for (size_t i = 0; i < nx && ny > 0; ++i) {
             if (combine(ws->x[i].score, ws->y[0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                 break;
@@ -249,6 +280,9 @@ static void search_unit(const double n[16][3], const sol_bc5_range *r, sol_bc4_p
                 if (combine(ws->x[i].score, ws->y[j].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                     break;
                 ++candidates;
+                double margin = best * (1.0 + BOUND_SLACK);
+                if (joint_objective_ordered(a, pal[ws->y[j].pair], n, order, use_max, margin) >= margin)
+                    continue;
                 double v = joint_objective(a, pal[ws->y[j].pair], n, use_max, best, NULL, NULL);
                 if (v < best) {
                     best = v;
