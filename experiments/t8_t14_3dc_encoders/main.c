@@ -214,9 +214,10 @@ static void pareto(const sol_exp *exp, const maps *m, results *r)
     fclose(csv);
     sol_table_write(t, exp, "pareto");
     sol_plot(exp, "pareto",
-             "set logscale x\nset xlabel 'encode time per 4x4 block (core-ns)'\n"
+             "set logscale x\nset offsets graph 0, graph 0.2, graph 0.12, graph 0.02\nset xlabel 'encode time per 4x4 block (core-ns)'\n"
              "set ylabel 'RMS angular error (deg), 16-bit interpolation'\nset grid\nset key off\n"
-             "plot 'pareto.dat' using 2:3 with points pt 7 ps 1.2, '' using 2:3:1 with labels offset 0,1 font ',8'\n");
+             "plot 'pareto.dat' using 2:3 with points pt 7 ps 1.2, '' using 2:3:1 with labels rotate by 35 left "
+             "offset 0.6,0.6 font ',8'\n");
 }
 
 /* ---- T8: source depth ---- */
