@@ -2,16 +2,17 @@
 # experiments/claims_list.tsv (claims no experiment covers yet show as `pending`).
 # usage: awk -F'\t' -v fmt=md|tex -f claims_table.awk experiments/claims_list.tsv results/*/claims.tsv
 function tex(s) {
-    gsub(/\\/, "\\textbackslash{}", s); gsub(/[&%$#_{}]/, "\\\\&", s)
+    gsub(/\\/, "\001", s); gsub(/[&%$#_{}]/, "\\\\&", s); gsub(/\001/, "\\textbackslash{}", s)
     gsub(/~/, "\\textasciitilde{}", s); gsub(/\^/, "\\textasciicircum{}", s)
     if (substr(s, 1, 1) == "[") s = "{}" s   # a bare [ after \\ would start an optional argument
     return s
 }
+function md(s) { gsub(/\|/, "\\|", s); return s }   # a | inside a cell would split it
 function row(id, text, talk, sol, tol, verdict, experiment, note) {
     if (fmt == "tex")
         printf "%s & %s & %s & %s & %s \\\\\n", tex(id), tex(talk), tex(sol), tex(verdict), tex(experiment)
     else
-        printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", id, text, talk, sol, tol, verdict, experiment, note
+        printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", id, md(text), md(talk), md(sol), md(tol), verdict, experiment, md(note)
 }
 FNR == 1 { file++; next }   # every input file starts with a header line
 file == 1 { order[++n] = $1; claim[$1] = $2; figure[$1] = $3; next }
