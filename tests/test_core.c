@@ -183,3 +183,16 @@ Test(core, rng_streams_are_reproducible_and_uniform)
     double y = sol_rng_uniform(&a, -1.0, 3.0);
     cr_assert(y >= -1.0 && y < 3.0);
 }
+
+Test(core, srgb_curve_round_trips_and_clamps)
+{
+    cr_assert_float_eq(sol_srgb_encode(0.0031308), 12.92 * 0.0031308, 1e-15);
+    cr_assert_float_eq(sol_srgb_encode(1.0), 1.0, 1e-12);
+    cr_assert_float_eq(sol_srgb_decode(0.5), 0.21404114048223255, 1e-12);
+    for (int i = 0; i <= 1000; ++i)
+        cr_assert_float_eq(sol_srgb_decode(sol_srgb_encode(i / 1000.0)), i / 1000.0, 1e-12);
+    cr_assert_eq(sol_srgb_encode(NAN), 0.0);
+    cr_assert_eq(sol_srgb_encode(-1.0), 0.0);
+    cr_assert_eq(sol_srgb_decode(INFINITY), 1.0);
+    cr_assert_eq(sol_srgb_encode(5e-324), 12.92 * 5e-324);
+}

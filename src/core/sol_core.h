@@ -105,6 +105,12 @@ static inline double sol_unorm_decode(uint32_t code, int bits)
     return (double)code / (double)((1u << bits) - 1u);
 }
 
+/* sRGB transfer functions (IEC 61966-2-1): linear <-> encoded, input clamped to [0, 1] (NaN
+ * gives 0). The one sRGB curve of the library: textures' SOL_TRANSFER_SRGB and hdr's display
+ * codes both use it. */
+double sol_srgb_encode(double linear);
+double sol_srgb_decode(double encoded);
+
 /* Deterministic pseudo-random numbers: SplitMix64 (Steele, Lea, Flood, "Fast splittable
  * pseudorandom number generators", OOPSLA 2014). The whole state is one uint64_t, so a parallel
  * loop can give every item its own stream (seed = item index) and stay thread-count independent. */

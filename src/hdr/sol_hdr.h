@@ -134,10 +134,7 @@ sol_status sol_tonemap_lower_bound(sol_tonemap op, double threshold, double *c_m
  * so the chain is this scalar function. x <= 0 is clamped like the reference (to HALF_MIN). */
 double sol_aces_reference(double x);
 
-/* sRGB transfer functions (IEC 61966-2-1), input clamped to [0, 1]. */
-double sol_srgb_encode(double linear);
-double sol_srgb_decode(double encoded);
-/* 8-bit display code of a linear value: round(255 * sol_srgb_encode(y)). */
+/* 8-bit display code (sRGB curve from sol_core.h) of a linear value: round(255 * sol_srgb_encode(y)). */
 int sol_display_code8(double linear);
 
 /* ======================================================================================

@@ -207,18 +207,6 @@ sol_status sol_tonemap_lower_bound(sol_tonemap op, double threshold, double *c_m
     return sol_tonemap_inverse(op, threshold, c_min_over_l);
 }
 
-double sol_srgb_encode(double linear)
-{
-    double v = linear > 0.0 ? (linear < 1.0 ? linear : 1.0) : 0.0;
-    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
-}
-
-double sol_srgb_decode(double encoded)
-{
-    double v = encoded > 0.0 ? (encoded < 1.0 ? encoded : 1.0) : 0.0;
-    return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
-}
-
 int sol_display_code8(double linear)
 {
     return (int)sol_unorm_encode(sol_srgb_encode(linear), 8);

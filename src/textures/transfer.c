@@ -45,7 +45,7 @@ static double encode_clamped(sol_transfer_kind kind, double gamma, double x)
 {
     switch (kind) {
     case SOL_TRANSFER_POWER: return pow(x, 1.0 / gamma);
-    case SOL_TRANSFER_SRGB: return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;
+    case SOL_TRANSFER_SRGB: return sol_srgb_encode(x);
     case SOL_TRANSFER_X360_PWL: {
         int s = pwl_segment(pwl_linear, x);
         return fmin(1.0, pwl_encoded[s] + (x - pwl_linear[s]) * pwl_slope(s));
@@ -58,7 +58,7 @@ static double decode_clamped(sol_transfer_kind kind, double gamma, double e)
 {
     switch (kind) {
     case SOL_TRANSFER_POWER: return pow(e, gamma);
-    case SOL_TRANSFER_SRGB: return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
+    case SOL_TRANSFER_SRGB: return sol_srgb_decode(e);
     case SOL_TRANSFER_X360_PWL: {
         int s = pwl_segment(pwl_encoded, e);
         return fmin(1.0, pwl_linear[s] + (e - pwl_encoded[s]) / pwl_slope(s));
