@@ -1,0 +1,131 @@
+/* sol_normals.h - unit normals in 24 G-buffer bits (claims D3-D7, S1, S5).
+ *
+ * Every method maps a direction to a 24-bit code (uint32_t, bits 24..31 zero) and back:
+ *  - three-channel methods (XYZ 8:8:8) pack channel codes r | g << 8 | b << 16; their channel
+ *    value is the talk's quantizer (Kaplanyan 2010, appendix A, quantize255):
+ *        code = round(255 * clamp(c * 0.5 + 0.5, 0, 1)),  c' = code / 255 * 2 - 1,
+ *    and decoding is one normalization of (r', g', b') (talk, "reconstruction is just a
+ *    normalization"). No code decodes to the zero vector: every c' is an odd multiple of 1/255.
+ *  - two-channel methods (12:12) pack a | b << 12.
+ *
+ * Input: any finite non-zero vector; it is normalized first (in double precision, scaled by its
+ * largest component so denormal and huge vectors work), so `n` need not be unit length.
+ * Errors: SOL_ERR_NULL_ARG (NULL pointer), SOL_ERR_NONFINITE (NaN or Inf component),
+ * SOL_ERR_ZERO_LENGTH (all components +-0), SOL_ERR_INVALID_ARG (unknown method, code above
+ * 2^24 - 1, bad table). On error outputs are untouched. Decoded normals are unit length (double).
+ * Sign convention: -0.0 is treated as +0.0 (sign(0) = +1) everywhere.
+ */
+#ifndef SOL_NORMALS_H
+#define SOL_NORMALS_H
+#include "sol_core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum sol_normal_method {
+    /* D3: normalize, then quantize255 each component (the classic RGBA8 G-buffer). */
+    SOL_NORMAL_XYZ_NORMALIZED,
+    /* D4: divide by the largest |component| (a point on the cube [-1,1]^3), then quantize255. */
+    SOL_NORMAL_XYZ_MAX_COMPONENT,
+    /* D5/D6: best fit by the exact along-the-ray search of the talk's appendix A, in double
+     * precision: over the 126 probes t = s / 127.5, s = 1.5, 2.5, ..., 127.5, of the normal
+     * divided by its largest component, keep the first probe whose quantized value has the least
+     * max-norm deviation |q - p|_inf / t (the appendix's error measure). Not real-time (~126
+     * quantizations); see sol_bestfit_table for the shader's baked path. */
+    SOL_NORMAL_XYZ_BEST_FIT,
+    /* The same search evaluated in single precision, as the appendix's HLSL does (float
+     * arithmetic, input rounded to float). Ties between a cell and its odd multiples, exact in
+     * double, break by rounding noise here. */
+    SOL_NORMAL_XYZ_BEST_FIT_FLOAT,
+    /* S5: octahedral map (Cigolle et al. 2014; Narkowicz's notes), 12:12 bits, each coordinate in
+     * [-1,1] stored as round((u * 0.5 + 0.5) * 4095), nearest-code rounding ("oct24"). */
+    SOL_NORMAL_OCTAHEDRAL_12,
+    /* S5: octahedral 12:12 with Cigolle et al.'s "precise" encoding: of the 4 codes around the
+     * projected point, the one whose decoded direction is closest in angle ("oct24P"). */
+    SOL_NORMAL_OCTAHEDRAL_12_PRECISE,
+    /* S5: spherical coordinates 12:12: theta = acos(z) in [0, pi] as round(theta / pi * 4095)
+     * (poles exact), phi = atan2(y, x) as round(phi / (2 pi) * 4096) mod 4096 (periodic). */
+    SOL_NORMAL_SPHERICAL_12,
+    /* S1: Mittring 2009's view-space 2-scalar encoding G = normalize(N.xy) * sqrt(N.z*0.5+0.5),
+     * each G component in [-1,1] stored as 12 bits round((g * 0.5 + 0.5) * 4095) (12:12, 24 bits).
+     * Decoding: z = 2|G|^2 - 1, xy = normalize(G) * sqrt(1 - z^2). N.xy = 0 encodes with
+     * normalize(N.xy) := (1, 0); |G| = 0 decodes to (0, 0, -1). */
+    SOL_NORMAL_MITTRING_12,
+    /* S1: the same with 8:8 bits (16 bits; Mittring's slides store G in two 8-bit channels). */
+    SOL_NORMAL_MITTRING_8,
+    SOL_NORMAL_METHOD_COUNT
+} sol_normal_method;
+
+/* Short stable name ("xyz-normalized", "octahedral-12", ...); "unknown" for bad values. */
+const char *sol_normal_method_name(sol_normal_method method);
+/* Bits a code of the method uses (24, or 16 for SOL_NORMAL_MITTRING_8); 0 for bad values. */
+int sol_normal_method_bits(sol_normal_method method);
+
+/* Encodes direction `n` (any finite non-zero vector) into `*code`. */
+sol_status sol_normal_encode(sol_normal_method method, const double n[3], uint32_t *code);
+/* Decodes `code` into the unit vector `n`. */
+sol_status sol_normal_decode(sol_normal_method method, uint32_t code, double n[3]);
+
+/* The talk's channel quantizer (appendix A quantize255) and its inverse: c in [-1,1] -> 0..255
+ * (clamped; NaN gives 0), code -> code / 255 * 2 - 1. */
+uint32_t sol_quantize255(double c);
+double sol_dequantize255(uint32_t code);
+
+/* ---- D6: the baked best-fit table, as the talk's shader uses it ----
+ * One face of the cube map, reduced by the 8 octants and the diagonal symmetry, stored as a
+ * size x size 2D texture. The shader's lookup (appendix A, CompressNormalToUnsignedGBuffer):
+ * a = |n| sorted descending (a0 >= a1 >= a2, n unit length); texture coordinate
+ * (u, v) = (a1, a2 / a1) (v = 0 when a1 = 0): "divide y by x to expand the triangle to a quad".
+ * Texel (i, j) holds the best-fit scale t of the direction at its centre u = (i + 0.5) / size,
+ * v = (j + 0.5) / size, i.e. (a0, a1, a2) proportional to (sqrt(1 - u^2 - (u v)^2), u, u v);
+ * texels with 2u^2 + (uv)^2 > 1 (a1 would exceed a0, outside the domain) hold the value of the
+ * direction (1, 1, v) so bilinear filtering near the edge stays sensible.
+ * The encoder scales n / a0 by the looked-up t and quantizes with quantize255.
+ * The stored scale is kept at `bits` precision: 8 or 16 (UNORM, as an 8/16-bit texture) or
+ * 0 (float). The scale t lies in [1.5/127.5, 1]. */
+typedef struct sol_bestfit_table {
+    int size;     /* texels per side */
+    int bits;     /* 8, 16 or 0 (float) */
+    float *scale; /* size * size values, row j = v, column i = u; owned, sol_bestfit_table_free */
+} sol_bestfit_table;
+
+/* Bakes the table with the double-precision exact search (OpenMP; identical for any thread
+ * count). size 1..16384, bits 0, 8 or 16, else SOL_ERR_INVALID_ARG; SOL_ERR_NO_MEMORY. */
+sol_status sol_bestfit_table_build(int size, int bits, sol_bestfit_table *out);
+/* Next mip level: 2x2 box average of `src` (size even, >= 2), re-quantized to src->bits. */
+sol_status sol_bestfit_table_downsample(const sol_bestfit_table *src, sol_bestfit_table *out);
+/* Frees the texels and zeroes the struct; safe on NULL or a zeroed table. */
+void sol_bestfit_table_free(sol_bestfit_table *table);
+
+typedef enum sol_table_filter {
+    SOL_TABLE_NEAREST = 0, /* point sampling */
+    SOL_TABLE_BILINEAR     /* bilinear, clamp to edge (a GPU's tex2D with a linear sampler) */
+} sol_table_filter;
+
+/* Encodes `n` through the table (the shader's path); the code decodes with
+ * sol_normal_decode(SOL_NORMAL_XYZ_NORMALIZED, ...) (reconstruction is one normalization). */
+sol_status sol_normal_encode_bestfit_table(const sol_bestfit_table *table, sol_table_filter filter,
+                                           const double n[3], uint32_t *code);
+/* The best-fit scale t for `n` by the exact double search (the value a table texel stores). */
+sol_status sol_bestfit_scale(const double n[3], double *t);
+
+/* ---- D3-D5: which cells of the 256^3 cube a method uses ----
+ * A cell is the code (r, g, b); its centre is (r', g', b') = 2 code / 255 - 1 (odd multiples of
+ * 1/255). Definitions (all exact integer or deterministic computations, OpenMP over r):
+ *  - fixed cells of an XYZ method: cells whose own centre direction encodes back to the same code
+ *    ("the method can produce this cell for some direction and returns it for its own").
+ *    Counts cells with r in [r_begin, r_end) (0 <= r_begin <= r_end <= 256), so a test can check
+ *    a slice; methods other than the four XYZ ones give SOL_ERR_INVALID_ARG.
+ *  - cells on the sphere: cells of an L^3 grid (L even, 2..4096) whose closed box meets the unit
+ *    sphere, i.e. the image of "normalize then round" over all directions; exact in integers.
+ *  - distinct directions: cells of an L^3 grid (L even) whose odd integer centre coordinates
+ *    (2 code - (L - 1)) have gcd 1; a cell with gcd k > 1 points where its 1/k multiple does. */
+sol_status sol_normal_cells_fixed(sol_normal_method method, int r_begin, int r_end, uint64_t *count);
+sol_status sol_normal_cells_on_sphere(int levels, uint64_t *count);
+sol_status sol_normal_cells_distinct_directions(int levels, uint64_t *count);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,265 @@
+/* test_normals.c - 24-bit G-buffer normals (claims D3-D7, S1, S5): hard inputs, round-trip error
+ * bounds, cell counts at reduced size, the baked best-fit table. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sol_normals.h"
+
+#define DEG (180.0 / M_PI)
+
+/* Worst angular error (degrees) each method may show for any direction: the measured maxima of
+ * results/s1_s5_d5_normal_errors/errors.md over 10^7 directions, rounded up by ~5-10%. */
+static double bound_deg(sol_normal_method m)
+{
+    switch (m) {
+    case SOL_NORMAL_XYZ_NORMALIZED: return 0.40;     /* measured 0.3816 */
+    case SOL_NORMAL_XYZ_MAX_COMPONENT: return 0.33;  /* 0.3130 */
+    case SOL_NORMAL_XYZ_BEST_FIT: return 0.33;       /* 0.3178 = sqrt(2)/255 rad next to an axis */
+    case SOL_NORMAL_XYZ_BEST_FIT_FLOAT: return 0.33; /* the same */
+    case SOL_NORMAL_OCTAHEDRAL_12: return 0.065;     /* 0.0585 */
+    case SOL_NORMAL_OCTAHEDRAL_12_PRECISE: return 0.043; /* 0.0393 */
+    case SOL_NORMAL_SPHERICAL_12: return 0.055;      /* 0.0489 */
+    case SOL_NORMAL_MITTRING_12: return 3.0;         /* 2.42, next to N = (0, 0, -1) */
+    case SOL_NORMAL_MITTRING_8: return 12.0;         /* 10.7 */
+    default: return 0.0;
+    }
+}
+
+static double round_trip_deg(sol_normal_method m, const double n[3])
+{
+    uint32_t code = 0xFFFFFFFFu;
+    double back[3];
+    cr_assert_eq(sol_normal_encode(m, n, &code), SOL_OK, "%s", sol_normal_method_name(m));
+    cr_assert_eq(code >> sol_normal_method_bits(m), 0u);
+    cr_assert_eq(sol_normal_decode(m, code, back), SOL_OK);
+    cr_assert(isfinite(back[0]) && isfinite(back[1]) && isfinite(back[2]));
+    cr_assert_float_eq(sol_dot3(back, back), 1.0, 1e-12);
+    return sol_angle3(n, back) * DEG;
+}
+
+/* Axes, face diagonals, cube diagonals, and each nudged by 1e-7 in both directions. */
+Test(normals, axes_diagonals_and_near_misses_round_trip_within_bounds)
+{
+    static const double base[][3] = {{1, 0, 0},  {0, 1, 0},   {0, 0, 1},  {-1, 0, 0}, {0, -1, 0}, {0, 0, -1},
+                                     {1, 1, 0},  {1, -1, 0},  {0, 1, 1},  {-1, 0, 1}, {1, 1, 1},  {-1, 1, -1},
+                                     {-1, -1, -1}, {1, -1, 1}};
+    for (int m = 0; m < SOL_NORMAL_METHOD_COUNT; ++m)
+        for (size_t b = 0; b < sizeof base / sizeof base[0]; ++b)
+            for (int nudge = -1; nudge <= 1; ++nudge) {
+                double n[3] = {base[b][0] + nudge * 1e-7, base[b][1] - nudge * 1e-7, base[b][2] + nudge * 3e-8};
+                double err = round_trip_deg((sol_normal_method)m, n);
+                cr_assert_leq(err, bound_deg((sol_normal_method)m), "%s base %zu nudge %d: %g deg",
+                              sol_normal_method_name((sol_normal_method)m), b, nudge, err);
+            }
+}
+
+Test(normals, random_directions_round_trip_within_bounds)
+{
+    uint64_t state = 7;
+    for (int k = 0; k < 20000; ++k) {
+        double n[3];
+        sol_sphere_uniform(sol_rng_uniform(&state, 0, 1), sol_rng_uniform(&state, 0, 1), n);
+        for (int m = 0; m < SOL_NORMAL_METHOD_COUNT; ++m)
+            cr_assert_leq(round_trip_deg((sol_normal_method)m, n), bound_deg((sol_normal_method)m), "%s",
+                          sol_normal_method_name((sol_normal_method)m));
+    }
+}
+
+Test(normals, negative_zero_denormal_and_scale_do_not_change_the_code)
+{
+    const double tiny = 4.9406564584124654e-324; /* smallest denormal */
+    const double pairs[][2][3] = {
+        {{-0.0, -0.0, 1.0}, {0.0, 0.0, 1.0}},
+        {{tiny, 0.0, -0.0}, {1.0, 0.0, 0.0}},
+        {{1e-310, -1e-310, 1e-310}, {1.0, -1.0, 1.0}},
+        {{3e300, 4e300, -1e300}, {0.3, 0.4, -0.1}},
+        {{3e-300, 4e-300, -1e-300}, {3, 4, -1}},
+        {{0.2, 0.0, -0.0}, {1.0, 0.0, 0.0}},
+    };
+    for (int m = 0; m < SOL_NORMAL_METHOD_COUNT; ++m)
+        for (size_t p = 0; p < sizeof pairs / sizeof pairs[0]; ++p) {
+            uint32_t a, b;
+            cr_assert_eq(sol_normal_encode((sol_normal_method)m, pairs[p][0], &a), SOL_OK);
+            cr_assert_eq(sol_normal_encode((sol_normal_method)m, pairs[p][1], &b), SOL_OK);
+            cr_assert_eq(a, b, "%s pair %zu", sol_normal_method_name((sol_normal_method)m), p);
+        }
+}
+
+Test(normals, bad_input_gives_status_and_leaves_outputs_untouched)
+{
+    const double zero[3] = {0.0, -0.0, 0.0}, nan3[3] = {NAN, 0, 1}, inf3[3] = {0, -INFINITY, 1}, ok[3] = {0, 0, 1};
+    for (int m = 0; m < SOL_NORMAL_METHOD_COUNT; ++m) {
+        sol_normal_method method = (sol_normal_method)m;
+        uint32_t code = 12345;
+        cr_assert_eq(sol_normal_encode(method, zero, &code), SOL_ERR_ZERO_LENGTH);
+        cr_assert_eq(sol_normal_encode(method, nan3, &code), SOL_ERR_NONFINITE);
+        cr_assert_eq(sol_normal_encode(method, inf3, &code), SOL_ERR_NONFINITE);
+        cr_assert_eq(sol_normal_encode(method, NULL, &code), SOL_ERR_NULL_ARG);
+        cr_assert_eq(sol_normal_encode(method, ok, NULL), SOL_ERR_NULL_ARG);
+        cr_assert_eq(code, 12345u);
+        double n[3] = {7, 7, 7};
+        cr_assert_eq(sol_normal_decode(method, 1u << 24, n), SOL_ERR_INVALID_ARG);
+        cr_assert_eq(sol_normal_decode(method, 0, NULL), SOL_ERR_NULL_ARG);
+        cr_assert_eq(n[0], 7.0);
+    }
+    uint32_t code = 1;
+    cr_assert_eq(sol_normal_encode(SOL_NORMAL_METHOD_COUNT, ok, &code), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_encode((sol_normal_method)-1, ok, &code), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_decode(SOL_NORMAL_MITTRING_8, 1u << 16, (double[3]){0}), SOL_ERR_INVALID_ARG);
+    cr_assert_str_eq(sol_normal_method_name(SOL_NORMAL_METHOD_COUNT), "unknown");
+    cr_assert_eq(code, 1u);
+}
+
+/* Every 24-bit code decodes to a finite unit vector (the 2-channel formats include unused codes:
+ * octahedral 4095, Mittring's corners with |G| > 1). Checked on a stride through all codes. */
+Test(normals, every_code_decodes_to_a_unit_vector)
+{
+    for (int m = 0; m < SOL_NORMAL_METHOD_COUNT; ++m) {
+        uint32_t limit = 1u << sol_normal_method_bits((sol_normal_method)m);
+        for (uint32_t code = 0; code < limit; code += (code & 1u) ? 4093u : 1u) {
+            double n[3];
+            cr_assert_eq(sol_normal_decode((sol_normal_method)m, code, n), SOL_OK);
+            cr_assert_float_eq(sol_dot3(n, n), 1.0, 1e-12, "%s code %u", sol_normal_method_name((sol_normal_method)m),
+                               code);
+        }
+        double n[3];
+        cr_assert_eq(sol_normal_decode((sol_normal_method)m, limit - 1, n), SOL_OK);
+        cr_assert_float_eq(sol_dot3(n, n), 1.0, 1e-12);
+    }
+}
+
+Test(normals, quantize255_matches_the_talks_appendix)
+{
+    cr_assert_eq(sol_quantize255(-1.0), 0u);
+    cr_assert_eq(sol_quantize255(1.0), 255u);
+    cr_assert_eq(sol_quantize255(0.0), 128u); /* 127.5 rounds up */
+    cr_assert_eq(sol_quantize255(-0.0), 128u);
+    cr_assert_eq(sol_quantize255(5.0), 255u);
+    cr_assert_eq(sol_quantize255(NAN), 0u);
+    cr_assert_float_eq(sol_dequantize255(128), 1.0 / 255.0, 1e-15);
+}
+
+/* D4: dividing by the largest component lands every normal on a boundary cell of the cube. */
+Test(normals, d4_max_component_codes_lie_on_the_cube_boundary)
+{
+    uint64_t state = 3;
+    for (int k = 0; k < 20000; ++k) {
+        double n[3];
+        uint32_t code;
+        sol_sphere_uniform(sol_rng_uniform(&state, 0, 1), sol_rng_uniform(&state, 0, 1), n);
+        cr_assert_eq(sol_normal_encode(SOL_NORMAL_XYZ_MAX_COMPONENT, n, &code), SOL_OK);
+        int boundary = 0;
+        for (int i = 0; i < 3; ++i) {
+            uint32_t c = (code >> (8 * i)) & 255u;
+            boundary |= c == 0 || c == 255;
+        }
+        cr_assert(boundary);
+    }
+}
+
+/* D3-D5 at reduced size: slices of the 256^3 cube and small grids checked against brute force. */
+Test(normals, d3_d5_cell_counts_on_slices_and_small_grids)
+{
+    uint64_t count = 0;
+    /* D4: slice r = 0 is a whole face (256^2 cells), slice r = 1 its boundary ring (4 * 255). */
+    cr_assert_eq(sol_normal_cells_fixed(SOL_NORMAL_XYZ_MAX_COMPONENT, 0, 1, &count), SOL_OK);
+    cr_assert_eq(count, 65536u);
+    cr_assert_eq(sol_normal_cells_fixed(SOL_NORMAL_XYZ_MAX_COMPONENT, 1, 2, &count), SOL_OK);
+    cr_assert_eq(count, 1020u);
+    /* The sphere meets every cell of a 2^3 grid; larger grids against a floating-point brute force. */
+    cr_assert_eq(sol_normal_cells_on_sphere(2, &count), SOL_OK);
+    cr_assert_eq(count, 8u);
+    for (int levels = 4; levels <= 16; levels += 6) {
+        uint64_t brute = 0;
+        for (int i = 0; i < levels; ++i)
+            for (int j = 0; j < levels; ++j)
+                for (int k = 0; k < levels; ++k) {
+                    double lo = 0, hi = 0;
+                    int c[3] = {i, j, k};
+                    for (int a = 0; a < 3; ++a) { /* the talk's grid: centres -1 + 2c/(L-1) */
+                        double centre = fabs(-1.0 + 2.0 * c[a] / (levels - 1)), half = 1.0 / (levels - 1);
+                        double near = centre > half ? centre - half : 0.0, far = centre + half;
+                        lo += near * near;
+                        hi += far * far;
+                    }
+                    brute += lo <= 1.0 + 1e-12 && hi >= 1.0 - 1e-12;
+                }
+        cr_assert_eq(sol_normal_cells_on_sphere(levels, &count), SOL_OK);
+        cr_assert_eq(count, brute, "levels %d: %llu vs %llu", levels, (unsigned long long)count,
+                     (unsigned long long)brute);
+    }
+    /* Distinct directions of a 4^3 grid: coordinates in {-3,-1,1,3}; gcd > 1 only for (+-3,+-3,+-3). */
+    cr_assert_eq(sol_normal_cells_distinct_directions(4, &count), SOL_OK);
+    cr_assert_eq(count, 64u - 8u);
+    cr_assert_eq(sol_normal_cells_on_sphere(3, &count), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_cells_fixed(SOL_NORMAL_OCTAHEDRAL_12, 0, 1, &count), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_cells_fixed(SOL_NORMAL_XYZ_BEST_FIT, 0, 257, &count), SOL_ERR_INVALID_ARG);
+}
+
+/* D5 at reduced size: on a slice both searches keep about as many cells as there are distinct
+ * directions (gcd 1; ties between a cell and its odd multiples break by rounding noise, so
+ * the sets differ a little), far more than normalized normals. */
+Test(normals, d5_best_fit_keeps_most_cells_of_a_slice)
+{
+    uint64_t fit = 0, fit_float = 0, normalized = 0;
+    cr_assert_eq(sol_normal_cells_fixed(SOL_NORMAL_XYZ_BEST_FIT, 200, 201, &fit), SOL_OK);
+    cr_assert_eq(sol_normal_cells_fixed(SOL_NORMAL_XYZ_BEST_FIT_FLOAT, 200, 201, &fit_float), SOL_OK);
+    cr_assert_eq(sol_normal_cells_fixed(SOL_NORMAL_XYZ_NORMALIZED, 200, 201, &normalized), SOL_OK);
+    uint64_t distinct = 0;
+    for (int g = 0; g < 256; ++g)
+        for (int b = 0; b < 256; ++b) {
+            int x = 2 * 200 - 255, y = abs(2 * g - 255), z = abs(2 * b - 255);
+            int a = x;
+            for (int v = y; v;) { int t = a % v; a = v; v = t; }
+            for (int v = z; v;) { int t = a % v; a = v; v = t; }
+            distinct += a == 1;
+        }
+    cr_assert_gt(fit, 0.95 * distinct);
+    cr_assert_gt(fit_float, 0.95 * distinct);
+    cr_assert_gt(fit, 0.9 * 65536);
+    cr_assert_lt(normalized, 0.05 * 65536);
+}
+
+/* D6: a 128^2 table with point sampling stays within its measured worst case (0.734 deg over 2e5
+ * directions); bilinear filtering blends scales of different cells and is worse on average. */
+Test(normals, d6_table_path_matches_the_search_closely)
+{
+    sol_bestfit_table table = {0}, mip = {0};
+    cr_assert_eq(sol_bestfit_table_build(0, 8, &table), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_bestfit_table_build(64, 12, &table), SOL_ERR_INVALID_ARG);
+    cr_assert_null(table.scale);
+    cr_assert_eq(sol_bestfit_table_build(128, 16, &table), SOL_OK);
+    for (int i = 0; i < 128 * 128; ++i)
+        cr_assert(table.scale[i] >= 1.5 / 127.5 - 1e-4 && table.scale[i] <= 1.0f);
+    uint64_t state = 11;
+    double worst = 0, sum[2] = {0, 0};
+    for (int k = 0; k < 20000; ++k) {
+        double n[3], back[3];
+        uint32_t code;
+        sol_sphere_uniform(sol_rng_uniform(&state, 0, 1), sol_rng_uniform(&state, 0, 1), n);
+        for (int filter = 0; filter < 2; ++filter) {
+            cr_assert_eq(sol_normal_encode_bestfit_table(&table, (sol_table_filter)filter, n, &code), SOL_OK);
+            sol_normal_decode(SOL_NORMAL_XYZ_NORMALIZED, code, back);
+            double e = sol_angle3(n, back) * DEG;
+            sum[filter] += e;
+            if (filter == SOL_TABLE_NEAREST)
+                worst = e > worst ? e : worst;
+        }
+    }
+    cr_assert_leq(worst, 0.8, "table path worst %g deg", worst);
+    cr_assert_gt(sum[SOL_TABLE_BILINEAR], sum[SOL_TABLE_NEAREST]);
+    uint32_t code = 99;
+    cr_assert_eq(sol_normal_encode_bestfit_table(&table, SOL_TABLE_NEAREST, (double[3]){0, 0, 0}, &code),
+                 SOL_ERR_ZERO_LENGTH);
+    cr_assert_eq(sol_normal_encode_bestfit_table(&table, (sol_table_filter)5, (double[3]){0, 0, 1}, &code),
+                 SOL_ERR_INVALID_ARG);
+    cr_assert_eq(code, 99u);
+    cr_assert_eq(sol_bestfit_table_downsample(&table, &mip), SOL_OK);
+    cr_assert_eq(mip.size, 64);
+    sol_bestfit_table_free(&mip);
+    sol_bestfit_table_free(&table);
+    sol_bestfit_table_free(&table);
+    cr_assert_null(table.scale);
+}
