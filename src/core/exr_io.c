@@ -2,7 +2,9 @@
  *
  * Channels are matched by name because the core keeps them sorted alphabetically (A, B, G, R).
  * Each channel is decoded into its own float plane and interleaved here: OpenEXR 3.1's decoder
- * mis-orders channels when it unpacks half data straight into an interleaved float buffer. */
+ * mis-orders channels when it unpacks half data straight into an interleaved float buffer.
+ * Channels we do not keep still get a destination (see aim_decoder): 3.1's half-to-float fast
+ * paths write every channel of a 3- or 4-channel file, NULL pointer or not. */
 #include "sol_core.h"
 
 #include <openexr.h>
@@ -48,13 +50,22 @@ static int pick_layout(const exr_attr_chlist_t *list)
     return 0;
 }
 
-/* Points each decoder channel we want at its plane row; others are skipped (NULL). */
+/* Points each decoder channel we keep at its plane row, and every other channel at a one-row
+ * scratch (line stride 0) in the channel's stored type. A NULL destination is not enough in 3.1:
+ * when a file holds 3 or 4 half channels and all outputs are float, the core picks a fast path
+ * that writes all of them (a NULL one segfaults) and assumes no subsampling. Leaving the unkept
+ * channels in their own type makes the output types differ, so the core falls back to its
+ * generic unpacker, which honours strides and sampling. */
 static void aim_decoder(exr_decode_pipeline_t *decoder, float *const planes[4], int channels, int width,
-                        int first_row)
+                        int first_row, uint8_t *scratch)
 {
     for (int c = 0; c < decoder->channel_count; ++c) {
         exr_coding_channel_info_t *info = &decoder->channels[c];
-        info->decode_to_ptr = NULL;
+        info->decode_to_ptr = scratch;
+        info->user_pixel_stride = info->bytes_per_element;
+        info->user_line_stride = 0;
+        info->user_data_type = info->data_type;
+        info->user_bytes_per_element = info->bytes_per_element;
         for (int k = 0; k < channels; ++k) {
             if (strcmp(info->channel_name, channel_names[channels - 1][k]))
                 continue;
@@ -67,15 +78,18 @@ static void aim_decoder(exr_decode_pipeline_t *decoder, float *const planes[4], 
     }
 }
 
-static exr_result_t decode_planes(exr_context_t ctx, exr_attr_box2i_t window, float *const planes[4], int channels)
+/* `scratch` holds one row of 4-byte values: the widest line an unkept channel can have. */
+static exr_result_t decode_planes(exr_context_t ctx, exr_attr_box2i_t window, float *const planes[4], int channels,
+                                  uint8_t *scratch)
 {
     int32_t lines_per_chunk = 0;
     exr_result_t rv = exr_get_scanlines_per_chunk(ctx, 0, &lines_per_chunk);
     exr_decode_pipeline_t decoder = EXR_DECODE_PIPELINE_INITIALIZER;
     int width = window.max.x - window.min.x + 1, initialised = 0;
-    for (int y = window.min.y; rv == EXR_ERR_SUCCESS && y <= window.max.y; y += lines_per_chunk) {
+    /* 64-bit row: a window ending near INT32_MAX must not overflow the step past its end */
+    for (int64_t y = window.min.y; rv == EXR_ERR_SUCCESS && y <= window.max.y; y += lines_per_chunk) {
         exr_chunk_info_t chunk;
-        rv = exr_read_scanline_chunk_info(ctx, 0, y, &chunk);
+        rv = exr_read_scanline_chunk_info(ctx, 0, (int)y, &chunk);
         if (rv != EXR_ERR_SUCCESS)
             break;
         rv = initialised ? exr_decoding_update(ctx, 0, &chunk, &decoder)
@@ -83,7 +97,7 @@ static exr_result_t decode_planes(exr_context_t ctx, exr_attr_box2i_t window, fl
         if (rv != EXR_ERR_SUCCESS)
             break;
         initialised = 1;
-        aim_decoder(&decoder, planes, channels, width, chunk.start_y - window.min.y);
+        aim_decoder(&decoder, planes, channels, width, chunk.start_y - window.min.y, scratch);
         rv = exr_decoding_choose_default_routines(ctx, 0, &decoder);
         if (rv == EXR_ERR_SUCCESS)
             rv = exr_decoding_run(ctx, 0, &decoder);
@@ -101,7 +115,28 @@ static void interleave(const sol_image *image, float *const planes[4])
             image->data[i * (size_t)image->channels + (size_t)k] = planes[k][i];
 }
 
-/* Reads an opened context into a new image (planes are one allocation of `channels` planes). */
+/* Decodes the chosen channels of `image` (already sized) through planes and a scratch row, one
+ * allocation: pixels * channels floats, then `width` floats of scratch. */
+static sol_status decode_image(exr_context_t ctx, exr_attr_box2i_t window, const sol_image *image)
+{
+    size_t pixels = (size_t)image->width * (size_t)image->height;
+    float *buffer = calloc(pixels * (size_t)image->channels + (size_t)image->width, sizeof(float));
+    if (!buffer)
+        return SOL_ERR_NO_MEMORY;
+    float *planes[4] = {NULL};
+    for (int k = 0; k < image->channels; ++k)
+        planes[k] = buffer + (size_t)k * pixels;
+    uint8_t *scratch = (uint8_t *)(buffer + pixels * (size_t)image->channels);
+    exr_result_t rv = decode_planes(ctx, window, planes, image->channels, scratch);
+    if (rv == EXR_ERR_SUCCESS)
+        interleave(image, planes);
+    free(buffer);
+    if (rv == EXR_ERR_OUT_OF_MEMORY)
+        return SOL_ERR_NO_MEMORY;
+    return rv == EXR_ERR_SUCCESS ? SOL_OK : SOL_ERR_FORMAT; /* truncated or corrupt chunks */
+}
+
+/* Reads an opened context into a new image; `*out` is written only on success. */
 static sol_status read_context(exr_context_t ctx, sol_image *out)
 {
     exr_storage_t storage;
@@ -112,40 +147,42 @@ static sol_status read_context(exr_context_t ctx, sol_image *out)
         return SOL_ERR_FORMAT;
     int channels = pick_layout(list);
     int64_t width = (int64_t)window.max.x - window.min.x + 1, height = (int64_t)window.max.y - window.min.y + 1;
-    if (!channels || width < 1 || height < 1 || width > INT32_MAX || height > INT32_MAX)
+    /* the core takes line strides in bytes as int32_t; a wider plane row cannot be described */
+    if (!channels || width < 1 || height < 1 || width > INT32_MAX / (int64_t)sizeof(float) || height > INT32_MAX)
         return SOL_ERR_FORMAT;
     sol_image image = {0};
     sol_status status = sol_image_alloc(&image, (int)width, (int)height, channels);
-    if (status != SOL_OK)
-        return status;
-    size_t pixels = (size_t)width * (size_t)height;
-    float *storage_planes = calloc(pixels * (size_t)channels, sizeof(float));
-    if (!storage_planes) {
-        sol_image_free(&image);
-        return SOL_ERR_NO_MEMORY;
-    }
-    float *planes[4] = {NULL};
-    for (int k = 0; k < channels; ++k)
-        planes[k] = storage_planes + (size_t)k * pixels;
-    if (decode_planes(ctx, window, planes, channels) != EXR_ERR_SUCCESS) {
-        free(storage_planes);
-        sol_image_free(&image);
+    if (status == SOL_ERR_INVALID_ARG) /* a data window too large to address is the file's fault */
         return SOL_ERR_FORMAT;
+    if (status == SOL_OK)
+        status = decode_image(ctx, window, &image);
+    if (status != SOL_OK) {
+        sol_image_free(&image);
+        return status;
     }
-    interleave(&image, planes);
-    free(storage_planes);
     *out = image;
     return SOL_OK;
+}
+
+/* fopen alone succeeds on a directory; reading one byte tells "cannot read" (IO) apart from
+ * "readable but not an EXR" (FORMAT, decided by the core). */
+static int readable(const char *path)
+{
+    FILE *probe = fopen(path, "rb");
+    if (!probe)
+        return 0;
+    (void)fgetc(probe);
+    int ok = !ferror(probe);
+    fclose(probe);
+    return ok;
 }
 
 sol_status sol_exr_read(const char *path, sol_image *out)
 {
     if (!path || !out)
         return SOL_ERR_NULL_ARG;
-    FILE *probe = fopen(path, "rb"); /* tells "cannot open" (IO) from "not an EXR" (FORMAT) */
-    if (!probe)
+    if (!readable(path))
         return SOL_ERR_IO;
-    fclose(probe);
     exr_context_initializer_t init = silent_initializer();
     exr_context_t ctx = NULL;
     if (exr_start_read(&ctx, path, &init) != EXR_ERR_SUCCESS) {
@@ -233,6 +270,8 @@ sol_status sol_exr_write(const char *path, const sol_image *image, int half_prec
         return SOL_ERR_NULL_ARG;
     if (image->width <= 0 || image->height <= 0 || image->channels < 1 || image->channels > 4)
         return SOL_ERR_INVALID_ARG;
+    if ((int64_t)image->width * image->channels > INT32_MAX / (int64_t)sizeof(float))
+        return SOL_ERR_INVALID_ARG; /* the core's line stride (bytes, int32_t) cannot span the row */
     sol_status status = check_exr_values(image, half_precision);
     if (status != SOL_OK)
         return status;
