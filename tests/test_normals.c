@@ -10,7 +10,7 @@
 #define DEG (180.0 / M_PI)
 
 /* Worst angular error (degrees) each method may show for any direction: the measured maxima of
- * results/s1_s5_d5_normal_errors/errors.md over 10^7 directions, rounded up by ~5-10%. */
+ * results/d6_d7_s1_s5_normal_encodings/errors.md over 10^7 directions, rounded up by ~5-10%. */
 static double bound_deg(sol_normal_method m)
 {
     switch (m) {

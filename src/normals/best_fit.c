@@ -17,14 +17,16 @@ uint32_t sol_normals_encode_best_fit(const double unit[3], double *t_out)
     double best_err = HUGE_VAL, best_t = 1.0;
     uint32_t best = 0;
     for (int s = 3; s <= 255; s += 2) {
-        double t = s / 255.0, err = 0.0;
+        double t = s / 255.0, dev = 0.0;
         uint32_t c[3];
         for (int i = 0; i < 3; ++i) {
             double p = d[i] * t;
-            c[i] = sol_quantize255(p);
-            double e = fabs(sol_dequantize255(c[i]) - p) / t;
-            err = e > err ? e : err;
+            c[i] = sol_normals_quantize255_fast(p);
+            double e = fabs(sol_dequantize255(c[i]) - p);
+            dev = e > dev ? e : dev;
         }
+        /* max(|q-p|) / t equals the appendix's max(|q-p| / t): division is monotonic */
+        double err = dev / t;
         if (err < best_err) {
             best_err = err;
             best_t = t;
@@ -39,7 +41,7 @@ static float quantize255_float(float c)
 {
     float w = c * .5f + .5f;
     w = w < 0.f ? 0.f : (w > 1.f ? 1.f : w);
-    return floorf(w * 255.f + .5f);
+    return (float)(uint32_t)(w * 255.f + .5f); /* floor: the argument is positive */
 }
 
 /* The same search in single precision, statement by statement as the appendix's HLSL (input
@@ -53,13 +55,14 @@ uint32_t sol_normals_encode_best_fit_float(const double unit[3])
     float best_err = 100000.f;
     uint32_t best = 0;
     for (float step = 1.5f; step <= 127.5f; ++step) {
-        float t = step / 127.5f, err = 0.f;
+        float t = step / 127.5f, dev = 0.f;
         uint32_t c[3];
         for (int i = 0; i < 3; ++i) {
             float p = n[i] * t, r = quantize255_float(p);
             c[i] = (uint32_t)r;
-            err = fmaxf(err, fabsf((r / 255.f * 2.f - 1.f - p) / t));
+            dev = fmaxf(dev, fabsf(r / 255.f * 2.f - 1.f - p));
         }
+        float err = dev / t; /* = the appendix's max of |q-p|/t: division is monotonic */
         if (err < best_err) {
             best_err = err;
             best = sol_normals_pack3(c);
