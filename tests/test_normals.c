@@ -14,15 +14,15 @@
 static double bound_deg(sol_normal_method m)
 {
     switch (m) {
-    case SOL_NORMAL_XYZ_NORMALIZED: return 0.40;     /* measured 0.3816 */
-    case SOL_NORMAL_XYZ_MAX_COMPONENT: return 0.33;  /* 0.3130 */
+    case SOL_NORMAL_XYZ_NORMALIZED: return 0.40;     /* measured 0.3857 */
+    case SOL_NORMAL_XYZ_MAX_COMPONENT: return 0.33;  /* 0.3178 */
     case SOL_NORMAL_XYZ_BEST_FIT: return 0.33;       /* 0.3178 = sqrt(2)/255 rad next to an axis */
     case SOL_NORMAL_XYZ_BEST_FIT_FLOAT: return 0.33; /* the same */
-    case SOL_NORMAL_OCTAHEDRAL_12: return 0.065;     /* 0.0585 */
-    case SOL_NORMAL_OCTAHEDRAL_12_PRECISE: return 0.043; /* 0.0393 */
-    case SOL_NORMAL_SPHERICAL_12: return 0.055;      /* 0.0489 */
-    case SOL_NORMAL_MITTRING_12: return 3.0;         /* 2.42, next to N = (0, 0, -1) */
-    case SOL_NORMAL_MITTRING_8: return 12.0;         /* 10.7 */
+    case SOL_NORMAL_OCTAHEDRAL_12: return 0.065;     /* 0.0592 */
+    case SOL_NORMAL_OCTAHEDRAL_12_PRECISE: return 0.043; /* 0.0395 */
+    case SOL_NORMAL_SPHERICAL_12: return 0.055;      /* 0.0491 */
+    case SOL_NORMAL_MITTRING_12: return 3.0;         /* 2.86, next to N = (0, 0, +1) */
+    case SOL_NORMAL_MITTRING_8: return 12.0;         /* 11.75 */
     default: return 0.0;
     }
 }
@@ -262,4 +262,20 @@ Test(normals, d6_table_path_matches_the_search_closely)
     sol_bestfit_table_free(&table);
     sol_bestfit_table_free(&table);
     cr_assert_null(table.scale);
+}
+
+/* D6 "8-bit precision is sufficient": every scale the search returns is t = 2s/255 with 2s odd
+ * (3..255), an exact 8-bit UNORM code, so an 8-bit table stores the scales without loss. */
+Test(normals, d6_best_fit_scales_are_exact_8bit_codes)
+{
+    uint64_t state = 5;
+    for (int k = 0; k < 5000; ++k) {
+        double n[3], t = -1;
+        sol_sphere_uniform(sol_rng_uniform(&state, 0, 1), sol_rng_uniform(&state, 0, 1), n);
+        cr_assert_eq(sol_bestfit_scale(n, &t), SOL_OK);
+        double code = t * 255.0;
+        cr_assert_float_eq(code, nearbyint(code), 1e-9, "t = %.17g", t);
+        cr_assert_eq(((long)nearbyint(code)) % 2, 1, "t * 255 = %g is even", code);
+        cr_assert(code >= 3.0 - 1e-9 && code <= 255.0 + 1e-9);
+    }
 }
