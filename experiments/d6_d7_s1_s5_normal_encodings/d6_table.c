@@ -109,7 +109,7 @@ void run_d6_table(const sol_exp *exp)
                                      "size,precision,filter,mean deg,rms deg,p99 deg,max deg,same cell as search %");
     sol_table *knob = sol_table_new("Best-fit table size vs time per normal (D6; nearest, 16-bit)",
                                     "encoder,ns per normal,rms deg,max deg");
-    double rms16[6] = {0}, rms8[6] = {0};
+    double rms16[6] = {0}, rms8[6] = {0}, rms_all[6][3][2] = {{{0}}}; /* [size][precision][filter] */
     for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; ++s) {
         sol_bestfit_table base;
         sol_exp_check(sol_bestfit_table_build(sizes[s], 0, &base), "table %d", sizes[s]);
@@ -120,6 +120,7 @@ void run_d6_table(const sol_exp *exp)
                     continue;
                 double same;
                 error_stats st = table_errors(&t, (sol_table_filter)f, exact, n, err, &same);
+                rms_all[s][b][f] = st.rms;
                 if (f == SOL_TABLE_NEAREST && bits[b] == 16)
                     rms16[s] = st.rms;
                 if (f == SOL_TABLE_NEAREST && bits[b] == 8)
@@ -143,15 +144,23 @@ void run_d6_table(const sol_exp *exp)
     sol_progress_done("d6 sweep");
     sol_table_write(sweep, exp, "table_sweep");
     sol_table_write(knob, exp, "table_timing");
-    sol_plot(exp, "table_sweep",
-             "set datafile separator comma\nset logscale x 2\nset logscale y\nset xlabel 'table size (texels per side)'\n"
-             "set ylabel 'RMS angular error (deg)'\nset grid\nset key top right\n"
-             "plot 'table_sweep.csv' skip 1 using (strcol(2) eq '8-bit' && strcol(3) eq 'nearest' ? $1 : 1/0):5 with linespoints "
-             "title '8-bit, nearest', '' skip 1 using (strcol(2) eq '16-bit' && strcol(3) eq 'nearest' ? $1 : 1/0):5 "
-             "with linespoints title '16-bit, nearest', '' skip 1 using (strcol(2) eq 'float' && strcol(3) eq 'nearest' ? $1 : 1/0):5 "
-             "with linespoints title 'float, nearest', '' skip 1 using (strcol(2) eq '16-bit' && strcol(3) eq 'bilinear' ? $1 : 1/0):5 "
-             "with linespoints title '16-bit, bilinear', %.6f with lines dt 2 title 'exact search'",
-             exact_stats.rms);
+    if (!exp->bench) {
+        FILE *f = sol_exp_open(exp, "table_sweep_plot.csv"); /* one column per curve, for the figure */
+        fprintf(f, "size,8-bit nearest,16-bit nearest,float nearest,16-bit bilinear\n");
+        for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; ++s)
+            fprintf(f, "%d,%.6f,%.6f,%.6f,%.6f\n", sizes[s], rms_all[s][0][0], rms_all[s][1][0], rms_all[s][2][0],
+                    rms_all[s][1][1]);
+        fclose(f);
+        sol_plot(exp, "table_sweep",
+                 "set datafile separator comma\nset logscale x 2\nset logscale y\nset xlabel 'table size (texels per side)'\n"
+                 "set ylabel 'RMS angular error (deg)'\nset grid\nset key top right\n"
+                 "plot 'table_sweep_plot.csv' skip 1 using 1:2 with linespoints lw 3 title '8-bit, nearest', "
+                 "'' skip 1 using 1:3 with linespoints title '16-bit, nearest', "
+                 "'' skip 1 using 1:4 with linespoints dt 3 title 'float, nearest', "
+                 "'' skip 1 using 1:5 with linespoints title '16-bit, bilinear', "
+                 "%.6f with lines dt 2 title 'exact search'",
+                 exact_stats.rms);
+    }
 
     if (!exp->bench) {
         /* Mip levels of the 512 table (2x2 box, re-quantized to 16 bits) against tables baked at

@@ -52,6 +52,7 @@ void run_d7_blending(const sol_exp *exp)
     sol_table *t = sol_table_new("Blending two encoded normals in an 8-bit target vs blending the originals (D7)",
                                  "angle deg,alpha,best fit mean deg,best fit max deg,normalized mean deg,"
                                  "normalized max deg,best fit unblended mean deg,best fit vs length-weighted mean deg");
+    double curve[2][3][ALPHAS] = {{{0}}}; /* [method][angle][alpha] mean errors, for the figure */
     double mid_fit = 0, mid_norm = 0, end_fit = 0, mid_weighted = 0;
     for (size_t a = 0; a < sizeof angles_deg / sizeof angles_deg[0]; ++a) {
         double sum[2][ALPHAS] = {{0}}, worst[2][ALPHAS] = {{0}}, weighted[ALPHAS] = {0};
@@ -80,6 +81,10 @@ void run_d7_blending(const sol_exp *exp)
                 }
             }
         }
+        for (int k = 0; k < ALPHAS; ++k) {
+            curve[0][a][k] = sum[0][k] / pairs;
+            curve[1][a][k] = sum[1][k] / pairs;
+        }
         for (int k = 0; k < ALPHAS; ++k)
             sol_table_row(t, "%.0f|%.1f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f", angles_deg[a], k / (double)(ALPHAS - 1),
                           sum[0][k] / pairs, worst[0][k], sum[1][k] / pairs, worst[1][k],
@@ -92,12 +97,17 @@ void run_d7_blending(const sol_exp *exp)
         }
     }
     sol_table_write(t, exp, "blending");
+    FILE *f = sol_exp_open(exp, "blending_plot.csv"); /* one column per curve, for the figure */
+    fprintf(f, "alpha,best fit 5,best fit 30,best fit 90,normalized 5,normalized 30,normalized 90\n");
+    for (int k = 0; k < ALPHAS; ++k)
+        fprintf(f, "%.1f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f\n", k / (double)(ALPHAS - 1), curve[0][0][k], curve[0][1][k],
+                curve[0][2][k], curve[1][0][k], curve[1][1][k], curve[1][2][k]);
+    fclose(f);
     sol_plot(exp, "blending",
              "set datafile separator comma\nset xlabel 'alpha'\nset ylabel 'mean angular error (deg)'\nset logscale y\n"
              "set grid\nset key outside right\n"
-             "plot for [a in '5 30 90'] 'blending.csv' skip 1 using (strcol(1) eq a ? $2 : 1/0):3 with linespoints "
-             "title 'best fit, '.a.' deg', for [a in '5 30 90'] '' skip 1 using (strcol(1) eq a ? $2 : 1/0):5 "
-             "with linespoints dt 2 title 'normalized, '.a.' deg'");
+             "plot for [c=2:4] 'blending_plot.csv' skip 1 using 1:c with linespoints lc c title 'best fit, '.word('5 30 90', c-1).' deg', "
+             "for [c=5:7] '' skip 1 using 1:c with linespoints dt 2 lc (c-3) title 'normalized, '.word('5 30 90', c-4).' deg'");
     char s[300];
     snprintf(s, sizeof s,
              "30 deg pairs, alpha 0.5: best fit %.3f deg vs normalized %.3f deg (best fit unblended %.3f; vs the "

@@ -4,4 +4,4 @@ set ylabel 'mean angular error (deg)'
 set logscale y
 set grid
 set key outside right
-plot for [a in '5 30 90'] 'blending.csv' skip 1 using (strcol(1) eq a ? $2 : 1/0):3 with linespoints title 'best fit, '.a.' deg', for [a in '5 30 90'] '' skip 1 using (strcol(1) eq a ? $2 : 1/0):5 with linespoints dt 2 title 'normalized, '.a.' deg'
+plot for [c=2:4] 'blending_plot.csv' skip 1 using 1:c with linespoints lc c title 'best fit, '.word('5 30 90', c-1).' deg', for [c=5:7] '' skip 1 using 1:c with linespoints dt 2 lc (c-3) title 'normalized, '.word('5 30 90', c-4).' deg'
