@@ -21,6 +21,7 @@ static double bound_deg(sol_normal_method m)
     case SOL_NORMAL_OCTAHEDRAL_12: return 0.065;     /* 0.0592 */
     case SOL_NORMAL_OCTAHEDRAL_12_PRECISE: return 0.043; /* 0.0395 */
     case SOL_NORMAL_SPHERICAL_12: return 0.055;      /* 0.0491 */
+    case SOL_NORMAL_SPHERICAL_Z_12: return 1.35;    /* 1.257 over 2e5 random directions, next to the poles */
     case SOL_NORMAL_MITTRING_12: return 3.0;         /* 2.86, next to N = (0, 0, +1) */
     case SOL_NORMAL_MITTRING_8: return 12.0;         /* 11.75 */
     default: return 0.0;

@@ -39,6 +39,7 @@ static const struct {
     [SOL_NORMAL_OCTAHEDRAL_12] = {"octahedral-12", 24},
     [SOL_NORMAL_OCTAHEDRAL_12_PRECISE] = {"octahedral-12-precise", 24},
     [SOL_NORMAL_SPHERICAL_12] = {"spherical-12", 24},
+    [SOL_NORMAL_SPHERICAL_Z_12] = {"spherical-z-12", 24},
     [SOL_NORMAL_MITTRING_12] = {"mittring-12", 24},
     [SOL_NORMAL_MITTRING_8] = {"mittring-8", 16},
 };
@@ -77,6 +78,7 @@ sol_status sol_normal_encode(sol_normal_method method, const double n[3], uint32
     case SOL_NORMAL_OCTAHEDRAL_12: *code = sol_normals_encode_octahedral(u, 0); break;
     case SOL_NORMAL_OCTAHEDRAL_12_PRECISE: *code = sol_normals_encode_octahedral(u, 1); break;
     case SOL_NORMAL_SPHERICAL_12: *code = sol_normals_encode_spherical(u); break;
+    case SOL_NORMAL_SPHERICAL_Z_12: *code = sol_normals_encode_spherical_z(u); break;
     case SOL_NORMAL_MITTRING_12: *code = sol_normals_encode_mittring(u, 12); break;
     case SOL_NORMAL_MITTRING_8: *code = sol_normals_encode_mittring(u, 8); break;
     default: return SOL_ERR_INVALID_ARG;
@@ -98,6 +100,7 @@ sol_status sol_normal_decode(sol_normal_method method, uint32_t code, double n[3
     case SOL_NORMAL_OCTAHEDRAL_12:
     case SOL_NORMAL_OCTAHEDRAL_12_PRECISE: sol_normals_decode_octahedral(code, n); break;
     case SOL_NORMAL_SPHERICAL_12: sol_normals_decode_spherical(code, n); break;
+    case SOL_NORMAL_SPHERICAL_Z_12: sol_normals_decode_spherical_z(code, n); break;
     case SOL_NORMAL_MITTRING_12: sol_normals_decode_mittring(code, 12, n); break;
     case SOL_NORMAL_MITTRING_8: sol_normals_decode_mittring(code, 8, n); break;
     default: return SOL_ERR_INVALID_ARG;

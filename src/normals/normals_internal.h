@@ -51,6 +51,8 @@ uint32_t sol_normals_encode_octahedral(const double unit[3], int precise);
 void sol_normals_decode_octahedral(uint32_t code, double n[3]);
 uint32_t sol_normals_encode_spherical(const double unit[3]);
 void sol_normals_decode_spherical(uint32_t code, double n[3]);
+uint32_t sol_normals_encode_spherical_z(const double unit[3]);
+void sol_normals_decode_spherical_z(uint32_t code, double n[3]);
 uint32_t sol_normals_encode_mittring(const double unit[3], int bits);
 void sol_normals_decode_mittring(uint32_t code, int bits, double n[3]);
 

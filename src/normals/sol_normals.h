@@ -47,6 +47,9 @@ typedef enum sol_normal_method {
     /* S5: spherical coordinates 12:12: theta = acos(z) in [0, pi] as round(theta / pi * 4095)
      * (poles exact), phi = atan2(y, x) as round(phi / (2 pi) * 4096) mod 4096 (periodic). */
     SOL_NORMAL_SPHERICAL_12,
+    /* S5: the spherical variant of Narkowicz's notes: phi = atan2(y, x) and z itself (not theta),
+     * each a 12-bit UNORM of (phi / pi) * 0.5 + 0.5 and z * 0.5 + 0.5 (equal-area in z). */
+    SOL_NORMAL_SPHERICAL_Z_12,
     /* S1: Mittring 2009's view-space 2-scalar encoding G = normalize(N.xy) * sqrt(N.z*0.5+0.5),
      * each G component in [-1,1] stored as 12 bits round((g * 0.5 + 0.5) * 4095) (12:12, 24 bits).
      * Decoding: z = 2|G|^2 - 1, xy = normalize(G) * sqrt(1 - z^2). N.xy = 0 encodes with
