@@ -38,11 +38,13 @@ Test(core, image_alloc_rejects_bad_sizes_and_leaves_output_untouched)
 
 /* Each test runs in its own process: one scratch folder per test, removed by remove_temp(). */
 static char temp_dir[] = "/tmp/sol_test_XXXXXX";
+static int temp_made; /* a flag, not a look at the name: mkdtemp's random letters may be X */
 
 static char *temp_path(const char *name)
 {
-    if (temp_dir[sizeof temp_dir - 2] == 'X')
+    if (!temp_made)
         cr_assert_not_null(mkdtemp(temp_dir));
+    temp_made = 1;
     char *path = malloc(4096);
     snprintf(path, 4096, "%s/%s", temp_dir, name);
     return path;
@@ -50,7 +52,7 @@ static char *temp_path(const char *name)
 
 static void remove_temp(void)
 {
-    if (temp_dir[sizeof temp_dir - 2] != 'X')
+    if (temp_made)
         rmdir(temp_dir);
 }
 

@@ -9,12 +9,14 @@
 #include "sol_core.h"
 
 static char scratch[] = "/tmp/sol_exr_XXXXXX";
+static int scratch_made; /* a flag, not a look at the name: mkdtemp's random letters may be X */
 
 static const char *scratch_file(const char *name)
 {
     static char path[4096];
-    if (scratch[sizeof scratch - 2] == 'X')
+    if (!scratch_made)
         cr_assert_not_null(mkdtemp(scratch));
+    scratch_made = 1;
     snprintf(path, sizeof path, "%s/%s", scratch, name);
     return path;
 }
@@ -24,6 +26,7 @@ static void clean_scratch(const char *path)
     unlink(path);
     rmdir(scratch);
     memcpy(scratch + sizeof scratch - 7, "XXXXXX", 6); /* the next file gets a fresh folder */
+    scratch_made = 0;
 }
 
 /* Values exactly representable in half: small integers over powers of two, and a large one. */

@@ -125,13 +125,17 @@ int main(int argc, char **argv)
     snprintf(s, sizeof s, "%llu (%.2f%%) over %.0e directions; all: %llu (%.2f%%)", (unsigned long long)sampled3->cells,
              100.0 * sampled3->cells / CUBE_CELLS, (double)samples, (unsigned long long)sphere->cells,
              100.0 * sphere->cells / CUBE_CELLS);
-    int d3_ok = llabs((long long)sampled3->cells - 289880) <= 2899;
+    /* D3 counts as reproduced only if a sample-free definition gives the talk's figure: a sampled
+     * count can be made to match by the choice of sample size. */
+    int d3_exact = llabs((long long)sphere->cells - 289880) <= 2899 || llabs((long long)fixed3->cells - 289880) <= 2899;
+    int d3_sampled = llabs((long long)sampled3->cells - 289880) <= 2899;
     sol_claim(&exp, "D3", "~289880 of 16777216 cells, ~1.73%", s, "1% of the count",
-              d3_ok ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
-              "the talk's figure matches the distinct codes of normalized normals over 10^7 uniform directions; "
-              "the count grows with the sample towards the exhaustive %llu cells the sphere meets (%.2f%%), and "
-              "%llu cells map back to themselves", (unsigned long long)sphere->cells,
-              100.0 * sphere->cells / CUBE_CELLS, (unsigned long long)fixed3->cells);
+              d3_exact ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+              "no sample-free definition gives the talk's figure: the sphere meets %llu cells (%.2f%%) and %llu cells "
+              "map back to themselves; the distinct codes of %.0e uniform directions %s the talk's figure, a count "
+              "that grows with the sample size (table), so the talk's number reads as a sampled count",
+              (unsigned long long)sphere->cells, 100.0 * sphere->cells / CUBE_CELLS, (unsigned long long)fixed3->cells,
+              (double)samples, d3_sampled ? "match" : "do not match");
     snprintf(s, sizeof s, "%llu (%.2f%%)", (unsigned long long)cube->cells, 100.0 * cube->cells / CUBE_CELLS);
     sol_claim(&exp, "D4", "~390152 cells, ~2.33%", s, "exact", cube->cells == 390152 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
               "the boundary cells of the cube, 256^3 - 254^3, whether counted as image or as fixed cells");
