@@ -220,152 +220,215 @@ static void save_crops(const sol_exp *exp, const sol_image *a, const sol_image *
     sol_image_free(&out);
 }
 
+/* The images every part measures: uniform noise (the worst case for cancellation), and the scene's
+ * 1-sample (aliased) and supersampled reference renders. */
+typedef struct test_images {
+    int size;
+    scene s;
+    sol_image noise, aliased, reference;
+    double rms_alias_all, rms_alias_edge; /* error of the aliased render: the baseline */
+} test_images;
+
+static void images_init(test_images *im, const sol_exp *exp)
+{
+    const int size = exp->quick ? 128 : 256, ref_n = exp->quick ? 8 : 16;
+    im->size = size;
+    im->s = make_scene(exp->quick ? 12 : 24, size);
+    sol_exp_check(sol_image_alloc(&im->noise, size, size, 3), "allocating");
+    sol_exp_check(sol_image_alloc(&im->aliased, size, size, 3), "allocating");
+    sol_exp_check(sol_image_alloc(&im->reference, size, size, 3), "allocating");
+    for (size_t i = 0; i < (size_t)size * size * 3; ++i)
+        im->noise.data[i] = (float)rng_uniform(0, 1);
+    render(&im->s, 1, &im->aliased);
+    render(&im->s, ref_n, &im->reference);
+    errors(&im->aliased, &im->reference, &im->aliased, &im->rms_alias_all, &im->rms_alias_edge);
+}
+
+static void images_free(test_images *im)
+{
+    sol_image_free(&im->noise);
+    sol_image_free(&im->aliased);
+    sol_image_free(&im->reference);
+    free(im->s.tris);
+}
+
+/* Part 2: fetched neighbourhood vs the 8 point fetches on noise and on the render. Returns the
+ * pinwheel's statistics on the render (the D17 deviation claim). */
+static deviation_stats deviation_table(const sol_exp *exp, const test_images *im)
+{
+    deviation_stats edge_pin = {0};
+    sol_table *t = sol_table_new("Fetched neighbourhood against the 8 point fetches",
+                                 "image,fetches,max |mean - 8-neighbour mean|,mean deviation ratio,min ratio,pixels");
+    const sol_image *imgs[2] = {&im->noise, &im->aliased};
+    const char *names[2] = {"uniform noise", "aliased triangles (d>0 pixels)"};
+    for (int i = 0; i < 2; ++i)
+        for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIAGONAL4; ++taps) {
+            deviation_stats st = deviation_compare(imgs[i], (sol_postaa_taps)taps);
+            if (i == 1 && taps == SOL_POSTAA_PINWHEEL4)
+                edge_pin = st;
+            sol_table_row(t, "%s|%s|%.2e|%.4f|%.4f|%ld", names[i], taps_name((sol_postaa_taps)taps), st.max_mean_err,
+                          st.mean_ratio, st.min_ratio, st.pixels);
+        }
+    sol_table_write(t, exp, "deviation");
+    return edge_pin;
+}
+
+/* What parts 3a and 3b found, per fetch placement (indexed by sol_postaa_taps). */
+typedef struct filter_results {
+    double best_edge[3], best_thr[3];       /* lowest edge-pixel error over the threshold sweep */
+    double best_all, best_all_thr;          /* pinwheel, over all pixels */
+    double default_edge[3], default_all[3]; /* at the default threshold */
+} filter_results;
+
+/* Part 3a: threshold sweep (the filter's only knob) for each placement. */
+static void threshold_sweep(const sol_exp *exp, const test_images *im, filter_results *r)
+{
+    FILE *csv = sol_exp_open(exp, "threshold_curves.csv");
+    fputs("taps,threshold,rms_all,rms_edge\n", csv);
+    for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
+        for (int i = 0; i <= 16; ++i) {
+            double thr = 0.02 * pow(2.0, i * 0.5); /* 0.02 .. 5.12 */
+            sol_postaa_options opt = {(sol_postaa_taps)taps, thr};
+            sol_image out;
+            sol_exp_check(sol_postaa_filter(&im->aliased, &opt, &out), "filtering");
+            double a, e;
+            errors(&out, &im->reference, &im->aliased, &a, &e);
+            fprintf(csv, "%d,%.5f,%.6f,%.6f\n", taps, thr, a, e);
+            if (e < r->best_edge[taps]) {
+                r->best_edge[taps] = e;
+                r->best_thr[taps] = thr;
+            }
+            if (taps == SOL_POSTAA_PINWHEEL4 && a < r->best_all) {
+                r->best_all = a;
+                r->best_all_thr = thr;
+            }
+            sol_image_free(&out);
+        }
+        fputs("\n\n", csv); /* gnuplot index: one block per placement */
+    }
+    fclose(csv);
+}
+
+/* Part 3b, filters: error and time per pixel of each placement at the default threshold. */
+static void filter_cost_rows(const sol_exp *exp, const test_images *im, int repeats, sol_table *cost, FILE *csv,
+                             filter_results *r)
+{
+    for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
+        filter_job job = {&im->aliased, {(sol_postaa_taps)taps, 0.0}};
+        double ns = sol_time_per_item_ns(run_filter, &job, (size_t)im->size * im->size, repeats);
+        sol_image out;
+        sol_exp_check(sol_postaa_filter(&im->aliased, &job.opt, &out), "filtering");
+        errors(&out, &im->reference, &im->aliased, &r->default_all[taps], &r->default_edge[taps]);
+        if (taps == SOL_POSTAA_PINWHEEL4 && !exp->bench)
+            save_crops(exp, &im->aliased, &out, &im->reference);
+        sol_image_free(&out);
+        sol_table_row(cost, "filter, %s|%.5f|%.5f|%.1f|%.2f", taps_name((sol_postaa_taps)taps), r->default_all[taps],
+                      r->default_edge[taps], 100.0 * r->default_edge[taps] / im->rms_alias_edge, ns);
+        fprintf(csv, "\"%s\",%.4f,%.6f\n", taps_name((sol_postaa_taps)taps), ns, r->default_edge[taps]);
+    }
+}
+
+/* Part 3b, supersampling for scale: its cost is the render time beyond the 1-sample render. */
+static void supersampling_cost_rows(const test_images *im, int repeats, sol_table *cost, FILE *csv)
+{
+    const size_t pixels = (size_t)im->size * im->size;
+    for (int n = 2; n <= 4; n += 2) {
+        sol_image ss;
+        sol_exp_check(sol_image_alloc(&ss, im->size, im->size, 3), "allocating");
+        render_job job = {&im->s, n, &ss};
+        double ns = sol_time_per_item_ns(run_render, &job, pixels, repeats);
+        render_job one = {&im->s, 1, &ss};
+        double ns1 = sol_time_per_item_ns(run_render, &one, pixels, repeats);
+        render(&im->s, n, &ss);
+        double a, e;
+        errors(&ss, &im->reference, &im->aliased, &a, &e);
+        sol_table_row(cost, "supersampling %dx%d (extra render cost)|%.5f|%.5f|%.1f|%.2f", n, n, a, e,
+                      100.0 * e / im->rms_alias_edge, ns - ns1);
+        fprintf(csv, "\"supersampling %dx%d\",%.4f,%.6f\n", n, n, ns - ns1, e);
+        sol_image_free(&ss);
+    }
+}
+
+/* Part 3b: error and time per pixel of each method (the table --bench prints). */
+static void edge_error_table(const sol_exp *exp, const test_images *im, filter_results *r)
+{
+    const int repeats = exp->quick ? 3 : 7;
+    sol_table *cost = sol_table_new("Edge anti-aliasing: error against a 16x16 supersampled reference, and cost",
+                                    "method,RMS error (all),RMS error (edge pixels),edge error vs aliased %,ns per pixel");
+    FILE *csv = sol_exp_open(exp, "error_vs_time.csv");
+    fputs("method,ns,rms_edge\n", csv);
+    sol_table_row(cost, "aliased (1 sample)|%.5f|%.5f|100.0|-", im->rms_alias_all, im->rms_alias_edge);
+    filter_cost_rows(exp, im, repeats, cost, csv, r);
+    supersampling_cost_rows(im, repeats, cost, csv);
+    fclose(csv);
+    sol_table_write(cost, exp, "edge_error");
+}
+
+static void plot_results(const sol_exp *exp, const test_images *im)
+{
+    sol_plot(exp, "threshold_sweep",
+             "set datafile separator comma\nset logscale x\nset xlabel 'threshold (deviation of full blur)'\n"
+             "set ylabel 'RMS error'\nset grid\nset key right center\n"
+             "plot 'threshold_curves.csv' index 0 using 2:4 with linespoints lw 2 title 'pinwheel 4 bilinear', "
+             "'' index 1 using 2:4 with linespoints title 'diagonal 4 bilinear', "
+             "'' index 2 using 2:4 with linespoints dt 2 title 'direct 8 point', "
+             "%.6f with lines lc rgb 'black' title 'aliased (no filter)', "
+             "'' index 0 using 2:3 with linespoints dt 3 title 'pinwheel, all pixels', "
+             "%.6f with lines dt 3 lc rgb 'black' title 'aliased, all pixels'",
+             im->rms_alias_edge, im->rms_alias_all);
+    sol_plot(exp, "error_vs_time",
+             "set datafile separator comma\nset xlabel 'ns per pixel (median)'\nset ylabel 'RMS error on edge pixels'\n"
+             "set grid\nset key off\nset logscale x\nset offsets graph 0.1, graph 0.3, graph 0.1, graph 0.1\n"
+             "plot 'error_vs_time.csv' using 2:3 with points pt 7 ps 1.5, '' using 2:3:1 with labels left rotate by 20 offset 1,0.5");
+}
+
+/* D17 rows: the pinwheel's kernel, the fetched deviation against the talk's d, and the edge error. */
+static void write_claims(const sol_exp *exp, const test_images *im, double pinwheel_kernel_err,
+                         deviation_stats edge_pin, const filter_results *r)
+{
+    char fig[256];
+    snprintf(fig, sizeof fig, "pinwheel taps (+1,+1/2) and rotations: kernel = 8-neighbour mean, max weight error %.1e",
+             pinwheel_kernel_err);
+    sol_claim(exp, "D17", "4 bilinear taps cover all 8 neighbours", fig, "weights equal to 1/8 to 1e-6",
+              pinwheel_kernel_err < 1e-6 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+              "the talk gives no tap positions; the diagonal placement (+-1/2,+-1/2) also reaches all 8 but applies the "
+              "tent [1 2 1;2 4 2;1 2 1]/16 including the centre (kernels table)");
+    snprintf(fig, sizeof fig, "fetched deviation / d: mean %.3f, min %.3f on edge pixels", edge_pin.mean_ratio,
+             edge_pin.min_ratio);
+    sol_claim(exp, "D17", "d = sum |s_i - s_0| over the 8 neighbours, from the 4 taps", fig, "ratio 1",
+              SOL_DIFFERS_EXPLAINED,
+              "a bilinear tap returns the average of two neighbours, so it sees |(s_a+s_b)/2 - s_0|: opposite differences "
+              "cancel and the fetched deviation is a lower bound of d (equal when each pair differs with one sign)");
+    snprintf(fig, sizeof fig,
+             "edge-pixel RMS %.4f -> %.4f (%.0f%%) at threshold 0.5 (default), best %.4f at %.2f; all-pixel RMS %.4f -> %.4f, best "
+             "%.4f at %.2f",
+             im->rms_alias_edge, r->default_edge[0], 100.0 * r->default_edge[0] / im->rms_alias_edge, r->best_edge[0],
+             r->best_thr[0], im->rms_alias_all, r->default_all[0], r->best_all, r->best_all_thr);
+    sol_claim(exp, "D17", "blur by deviation smooths edges (qualitative)", fig, "edge error reduced",
+              r->default_edge[0] < im->rms_alias_edge ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+              "1-sample renders of shaded triangles vs 16x16 supersampling; the blur also spreads error onto the correct "
+              "pixels beside an edge, so the all-pixel gain is smaller; 2x2 supersampling does better (edge_error table)");
+}
+
 int main(int argc, char **argv)
 {
     sol_exp exp;
     sol_exp_init(&exp, "d17_postaa", argc, argv);
-    const int size = exp.quick ? 128 : 256, ref_n = exp.quick ? 8 : 16, repeats = exp.quick ? 3 : 7;
-
+    /* --bench runs only the timed edge-error table (part 3b). */
     double pinwheel_kernel_err = exp.bench ? 0.0 : kernel_table(&exp);
-
-    /* Part 2: random images (uniform noise, the worst case for cancellation) and a render. */
-    scene s = make_scene(exp.quick ? 12 : 24, size);
-    sol_image noise, aliased, reference;
-    sol_exp_check(sol_image_alloc(&noise, size, size, 3), "allocating");
-    sol_exp_check(sol_image_alloc(&aliased, size, size, 3), "allocating");
-    sol_exp_check(sol_image_alloc(&reference, size, size, 3), "allocating");
-    for (size_t i = 0; i < (size_t)size * size * 3; ++i)
-        noise.data[i] = (float)rng_uniform(0, 1);
-    render(&s, 1, &aliased);
-    render(&s, ref_n, &reference);
+    test_images im;
+    images_init(&im, &exp);
     deviation_stats edge_pin = {0};
+    filter_results r = {{INFINITY, INFINITY, INFINITY}, {0}, INFINITY, 0.0, {0}, {0}};
     if (!exp.bench) {
-        sol_table *t = sol_table_new("Fetched neighbourhood against the 8 point fetches",
-                                     "image,fetches,max |mean - 8-neighbour mean|,mean deviation ratio,min ratio,pixels");
-        const sol_image *imgs[2] = {&noise, &aliased};
-        const char *names[2] = {"uniform noise", "aliased triangles (d>0 pixels)"};
-        for (int i = 0; i < 2; ++i)
-            for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIAGONAL4; ++taps) {
-                deviation_stats st = deviation_compare(imgs[i], (sol_postaa_taps)taps);
-                if (i == 1 && taps == SOL_POSTAA_PINWHEEL4)
-                    edge_pin = st;
-                sol_table_row(t, "%s|%s|%.2e|%.4f|%.4f|%ld", names[i], taps_name((sol_postaa_taps)taps), st.max_mean_err,
-                              st.mean_ratio, st.min_ratio, st.pixels);
-            }
-        sol_table_write(t, &exp, "deviation");
+        edge_pin = deviation_table(&exp, &im);
+        threshold_sweep(&exp, &im, &r);
     }
-
-    /* Part 3a: threshold sweep (the filter's only knob) for each placement. */
-    double rms_alias_all, rms_alias_edge;
-    errors(&aliased, &reference, &aliased, &rms_alias_all, &rms_alias_edge);
-    double best_edge[3] = {INFINITY, INFINITY, INFINITY}, best_thr[3] = {0}, default_edge[3] = {0}, default_all[3] = {0};
-    double best_all = INFINITY, best_all_thr = 0.0; /* pinwheel, over all pixels */
+    edge_error_table(&exp, &im, &r);
     if (!exp.bench) {
-        FILE *csv = sol_exp_open(&exp, "threshold_curves.csv");
-        fputs("taps,threshold,rms_all,rms_edge\n", csv);
-        for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
-            for (int i = 0; i <= 16; ++i) {
-                double thr = 0.02 * pow(2.0, i * 0.5); /* 0.02 .. 5.12 */
-                sol_postaa_options opt = {(sol_postaa_taps)taps, thr};
-                sol_image out;
-                sol_exp_check(sol_postaa_filter(&aliased, &opt, &out), "filtering");
-                double a, e;
-                errors(&out, &reference, &aliased, &a, &e);
-                fprintf(csv, "%d,%.5f,%.6f,%.6f\n", taps, thr, a, e);
-                if (e < best_edge[taps]) {
-                    best_edge[taps] = e;
-                    best_thr[taps] = thr;
-                }
-                if (taps == SOL_POSTAA_PINWHEEL4 && a < best_all) {
-                    best_all = a;
-                    best_all_thr = thr;
-                }
-                sol_image_free(&out);
-            }
-            fputs("\n\n", csv);
-        }
-        fclose(csv);
+        plot_results(&exp, &im);
+        write_claims(&exp, &im, pinwheel_kernel_err, edge_pin, &r);
     }
-
-    /* Part 3b: error and time per pixel of each method at the default threshold, and of
-     * supersampling for scale (time of supersampling = its render; of the filters = the filter). */
-    sol_table *cost = sol_table_new("Edge anti-aliasing: error against a 16x16 supersampled reference, and cost",
-                                    "method,RMS error (all),RMS error (edge pixels),edge error vs aliased %,ns per pixel");
-    FILE *csv = sol_exp_open(&exp, "error_vs_time.csv");
-    fputs("method,ns,rms_edge\n", csv);
-    sol_table_row(cost, "aliased (1 sample)|%.5f|%.5f|100.0|-", rms_alias_all, rms_alias_edge);
-    for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
-        filter_job job = {&aliased, {(sol_postaa_taps)taps, 0.0}};
-        double ns = sol_time_per_item_ns(run_filter, &job, (size_t)size * size, repeats);
-        sol_image out;
-        sol_exp_check(sol_postaa_filter(&aliased, &job.opt, &out), "filtering");
-        errors(&out, &reference, &aliased, &default_all[taps], &default_edge[taps]);
-        if (taps == SOL_POSTAA_PINWHEEL4 && !exp.bench)
-            save_crops(&exp, &aliased, &out, &reference);
-        sol_image_free(&out);
-        sol_table_row(cost, "filter, %s|%.5f|%.5f|%.1f|%.2f", taps_name((sol_postaa_taps)taps), default_all[taps],
-                      default_edge[taps], 100.0 * default_edge[taps] / rms_alias_edge, ns);
-        fprintf(csv, "\"%s\",%.4f,%.6f\n", taps_name((sol_postaa_taps)taps), ns, default_edge[taps]);
-    }
-    for (int n = 2; n <= 4; n += 2) {
-        sol_image ss;
-        sol_exp_check(sol_image_alloc(&ss, size, size, 3), "allocating");
-        render_job job = {&s, n, &ss};
-        double ns = sol_time_per_item_ns(run_render, &job, (size_t)size * size, repeats);
-        render_job one = {&s, 1, &ss};
-        double ns1 = sol_time_per_item_ns(run_render, &one, (size_t)size * size, repeats);
-        render(&s, n, &ss);
-        double a, e;
-        errors(&ss, &reference, &aliased, &a, &e);
-        sol_table_row(cost, "supersampling %dx%d (extra render cost)|%.5f|%.5f|%.1f|%.2f", n, n, a, e,
-                      100.0 * e / rms_alias_edge, ns - ns1);
-        fprintf(csv, "\"supersampling %dx%d\",%.4f,%.6f\n", n, n, ns - ns1, e);
-        sol_image_free(&ss);
-    }
-    fclose(csv);
-    sol_table_write(cost, &exp, "edge_error");
-
-    if (!exp.bench) {
-        sol_plot(&exp, "threshold_sweep",
-                 "set datafile separator comma\nset logscale x\nset xlabel 'threshold (deviation of full blur)'\n"
-                 "set ylabel 'RMS error'\nset grid\nset key right center\n"
-                 "plot 'threshold_curves.csv' index 0 using 2:4 with linespoints lw 2 title 'pinwheel 4 bilinear', "
-                 "'' index 1 using 2:4 with linespoints title 'diagonal 4 bilinear', "
-                 "'' index 2 using 2:4 with linespoints dt 2 title 'direct 8 point', "
-                 "%.6f with lines lc rgb 'black' title 'aliased (no filter)', "
-                 "'' index 0 using 2:3 with linespoints dt 3 title 'pinwheel, all pixels', "
-                 "%.6f with lines dt 3 lc rgb 'black' title 'aliased, all pixels'",
-                 rms_alias_edge, rms_alias_all);
-        sol_plot(&exp, "error_vs_time",
-                 "set datafile separator comma\nset xlabel 'ns per pixel (median)'\nset ylabel 'RMS error on edge pixels'\n"
-                 "set grid\nset key off\nset logscale x\nset offsets graph 0.1, graph 0.3, graph 0.1, graph 0.1\n"
-                 "plot 'error_vs_time.csv' using 2:3 with points pt 7 ps 1.5, '' using 2:3:1 with labels left rotate by 20 offset 1,0.5");
-        char fig[256];
-        snprintf(fig, sizeof fig, "pinwheel taps (+1,+1/2) and rotations: kernel = 8-neighbour mean, max weight error %.1e",
-                 pinwheel_kernel_err);
-        sol_claim(&exp, "D17", "4 bilinear taps cover all 8 neighbours", fig, "weights equal to 1/8 to 1e-6",
-                  pinwheel_kernel_err < 1e-6 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
-                  "the talk gives no tap positions; the diagonal placement (+-1/2,+-1/2) also reaches all 8 but applies the "
-                  "tent [1 2 1;2 4 2;1 2 1]/16 including the centre (kernels table)");
-        snprintf(fig, sizeof fig, "fetched deviation / d: mean %.3f, min %.3f on edge pixels", edge_pin.mean_ratio,
-                 edge_pin.min_ratio);
-        sol_claim(&exp, "D17", "d = sum |s_i - s_0| over the 8 neighbours, from the 4 taps", fig, "ratio 1",
-                  SOL_DIFFERS_EXPLAINED,
-                  "a bilinear tap returns the average of two neighbours, so it sees |(s_a+s_b)/2 - s_0|: opposite differences "
-                  "cancel and the fetched deviation is a lower bound of d (equal when each pair differs with one sign)");
-        snprintf(fig, sizeof fig,
-                 "edge-pixel RMS %.4f -> %.4f (%.0f%%) at threshold 0.5 (default), best %.4f at %.2f; all-pixel RMS %.4f -> %.4f, best "
-                 "%.4f at %.2f",
-                 rms_alias_edge, default_edge[0], 100.0 * default_edge[0] / rms_alias_edge, best_edge[0], best_thr[0],
-                 rms_alias_all, default_all[0], best_all, best_all_thr);
-        sol_claim(&exp, "D17", "blur by deviation smooths edges (qualitative)", fig, "edge error reduced",
-                  default_edge[0] < rms_alias_edge ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
-                  "1-sample renders of shaded triangles vs 16x16 supersampling; the blur also spreads error onto the correct "
-                  "pixels beside an edge, so the all-pixel gain is smaller; 2x2 supersampling does better (edge_error table)");
-    }
-    sol_image_free(&noise);
-    sol_image_free(&aliased);
-    sol_image_free(&reference);
-    free(s.tris);
+    images_free(&im);
     return 0;
 }
