@@ -128,32 +128,149 @@ typedef struct run_config {
     const sol_exp *out; /* NULL: no files */
 } run_config;
 
+/* Per-frame images of one run, and the TAA histories (ping-pong pairs, in method order from M_TAA). */
+typedef struct sequence_buffers {
+    float *ref, *center, *jittered, *jdepth, *cdepth;
+    long *ids;
+    long *moving_hist; /* per pixel: bit i set when the moving box covered it i frames ago */
+    sol_history hist[N_TAA][2];
+} sequence_buffers;
+
+static void buffers_alloc(sequence_buffers *b, const sol_camera *cam)
+{
+    const size_t n = (size_t)cam->width * cam->height;
+    b->ref = malloc(n * 3 * sizeof(float));
+    b->center = malloc(n * 3 * sizeof(float));
+    b->jittered = malloc(n * 3 * sizeof(float));
+    b->jdepth = malloc(n * sizeof(float));
+    b->cdepth = malloc(n * sizeof(float));
+    b->ids = malloc(n * sizeof(long));
+    b->moving_hist = calloc(n, sizeof(long));
+    if (!b->ref || !b->center || !b->jittered || !b->jdepth || !b->cdepth || !b->ids || !b->moving_hist)
+        sol_exp_die("out of memory");
+    for (int r = 0; r < N_TAA; ++r)
+        for (int k = 0; k < 2; ++k)
+            sol_exp_check(sol_history_alloc(&b->hist[r][k], cam->width, cam->height, 3), "history");
+}
+
+static void buffers_free(sequence_buffers *b)
+{
+    for (int r = 0; r < N_TAA; ++r)
+        for (int k = 0; k < 2; ++k)
+            sol_history_free(&b->hist[r][k]);
+    free(b->ref);
+    free(b->center);
+    free(b->jittered);
+    free(b->jdepth);
+    free(b->cdepth);
+    free(b->ids);
+    free(b->moving_hist);
+}
+
+/* The accumulating runs' options, in method order from M_TAA. */
+static const sol_temporal_options taa_opts[N_TAA] = {{.max_frames = 16, .edge_tolerant = 1},
+                                                     {.max_frames = 16},
+                                                     {.max_frames = 16, .no_depth_test = 1},
+                                                     {.max_frames = 16, .edge_tolerant = 1}};
+
+/* Frame f's supersampled reference, centre-sampled (aliased) and jittered renders. */
+static void render_frame(const run_config *rc, const frame_scene *s, int f, sequence_buffers *b)
+{
+    render(rc->cam, s, rc->ref_n, 0, 0, b->ref, NULL, NULL);
+    render(rc->cam, s, 1, 0, 0, b->center, b->cdepth, b->ids);
+    double jx, jy;
+    sol_jitter_offset((unsigned)f, &jx, &jy);
+    render(rc->cam, s, 1, jx, jy, b->jittered, b->jdepth, NULL);
+}
+
+/* Each TAA variant accumulates frame f (the unjittered one from the centre samples); its output
+ * is the history just written. */
+static void accumulate_taa(const sol_camera *cam, sequence_buffers *b, int f, const double motion[3],
+                           const float *outputs[N_METHODS])
+{
+    for (int r = 0; r < N_TAA; ++r) {
+        const int unjittered = M_TAA + r == M_TAA_NO_JITTER;
+        const float *cur = unjittered ? b->center : b->jittered, *dep = unjittered ? b->cdepth : b->jdepth;
+        sol_exp_check(sol_temporal_accumulate(cam, dep, cur, motion, &taa_opts[r], &b->hist[r][f % 2], &b->hist[r][(f + 1) % 2]),
+                      "accumulating");
+        outputs[M_TAA + r] = b->hist[r][(f + 1) % 2].values;
+    }
+}
+
+/* Squared error per method summed per region over frame f's pixels, with the pixel counts.
+ * Ghost region: pixels the moving box covered in some but not all of the last 8 frames. */
+static void frame_errors(sequence_buffers *b, size_t n, int f, const float *outputs[N_METHODS],
+                         double frame_sum[N_METHODS][N_REGIONS], long frame_count[N_REGIONS])
+{
+    for (size_t p = 0; p < n; ++p) {
+        b->moving_hist[p] = ((b->moving_hist[p] << 1) | (b->ids[p] == BOX_MOVING)) & 0xFF;
+        int in_ghost = f >= 8 && b->moving_hist[p] != 0 && b->moving_hist[p] != 0xFF;
+        int regions[3] = {R_ALL, region_of(b->ids[p]), in_ghost ? R_GHOST : -1};
+        for (int m = 0; m < N_METHODS; ++m) {
+            double e2 = 0.0;
+            for (int c = 0; c < 3; ++c) {
+                double d = (double)outputs[m][3 * p + (size_t)c] - b->ref[3 * p + (size_t)c];
+                e2 += d * d / 3.0;
+            }
+            for (int k = 0; k < 3; ++k)
+                if (regions[k] >= 0)
+                    frame_sum[m][regions[k]] += e2;
+        }
+        for (int k = 0; k < 3; ++k)
+            if (regions[k] >= 0)
+                frame_count[regions[k]]++;
+    }
+}
+
+static FILE *open_frame_csv(const sol_exp *out)
+{
+    FILE *csv = sol_exp_open(out, "error_per_frame.csv");
+    fputs("frame,aliased,postaa,taa,taa_pixel_test,taa_no_depth_test,taa_no_jitter,ghost_taa,ghost_pixel_test,"
+          "ghost_no_depth_test\n", csv);
+    return csv;
+}
+
+/* Frame f's RMS over all pixels per method, then over the ghost region per TAA variant (empty
+ * while the region is empty). */
+static void write_frame_csv_row(FILE *csv, int f, size_t n, double frame_sum[N_METHODS][N_REGIONS],
+                                const long frame_count[N_REGIONS])
+{
+    fprintf(csv, "%d", f + 1);
+    for (int m = 0; m < N_METHODS; ++m)
+        fprintf(csv, ",%.6f", sqrt(frame_sum[m][R_ALL] / (double)n));
+    for (int m = M_TAA; m <= M_TAA_NO_DEPTH_TEST; ++m) /* ghost columns */
+        if (frame_count[R_GHOST])
+            fprintf(csv, ",%.6f", sqrt(frame_sum[m][R_GHOST] / (double)frame_count[R_GHOST]));
+        else
+            fputs(",", csv);
+    fputc('\n', csv);
+}
+
+/* Side by side: aliased | TAA | TAA without depth test. */
+static void save_last_frame(const sol_exp *out, const sol_camera *cam, const float *outputs[N_METHODS])
+{
+    sol_image img;
+    sol_exp_check(sol_image_alloc(&img, 3 * cam->width, cam->height, 3), "allocating");
+    const float *panels[3] = {outputs[M_ALIASED], outputs[M_TAA], outputs[M_TAA_NO_DEPTH_TEST]};
+    for (int y = 0; y < cam->height; ++y)
+        for (int x = 0; x < 3 * cam->width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                size_t i = 3 * ((size_t)y * (size_t)cam->width + (size_t)(x % cam->width)) + (size_t)c;
+                sol_image_pixel(&img, x, y)[c] = fminf(1.0f, fmaxf(0.0f, panels[x / cam->width][i]));
+            }
+    sol_exp_check(sol_png_write(sol_exp_path(out, "last_frame.png"), &img, 8), "writing last_frame.png");
+    sol_image_free(&img);
+}
+
+/* Renders, filters and accumulates every frame of the run; rms as described at run_config. */
 static void run_sequence(const run_config *rc, double rms[N_METHODS][N_REGIONS])
 {
     const sol_camera *cam = rc->cam;
     const int frames = rc->frames, settle = frames / 2;
     const size_t n = (size_t)cam->width * cam->height;
-    float *ref = malloc(n * 3 * sizeof(float)), *center = malloc(n * 3 * sizeof(float));
-    float *jittered = malloc(n * 3 * sizeof(float)), *jdepth = malloc(n * sizeof(float));
-    float *cdepth = malloc(n * sizeof(float));
-    long *ids = malloc(n * sizeof(long)), *moving_hist = calloc(n, sizeof(long));
-    if (!ref || !center || !jittered || !jdepth || !cdepth || !ids || !moving_hist)
-        sol_exp_die("out of memory");
-    /* The accumulating runs, in method order from M_TAA. */
-    sol_history hist[N_TAA][2];
-    for (int r = 0; r < N_TAA; ++r)
-        for (int k = 0; k < 2; ++k)
-            sol_exp_check(sol_history_alloc(&hist[r][k], cam->width, cam->height, 3), "history");
-    const sol_temporal_options taa_opts[N_TAA] = {{.max_frames = 16, .edge_tolerant = 1},
-                                                  {.max_frames = 16},
-                                                  {.max_frames = 16, .no_depth_test = 1},
-                                                  {.max_frames = 16, .edge_tolerant = 1}};
-    FILE *csv = NULL;
-    if (rc->out) {
-        csv = sol_exp_open(rc->out, "error_per_frame.csv");
-        fputs("frame,aliased,postaa,taa,taa_pixel_test,taa_no_depth_test,taa_no_jitter,ghost_taa,ghost_pixel_test,"
-              "ghost_no_depth_test\n", csv);
-    }
+    sequence_buffers b;
+    buffers_alloc(&b, cam);
+    FILE *csv = rc->out ? open_frame_csv(rc->out) : NULL;
     double late_sum[N_METHODS][N_REGIONS] = {{0}};
     long late_count[N_REGIONS] = {0};
     frame_scene s, prev_s;
@@ -163,73 +280,25 @@ static void run_sequence(const run_config *rc, double rms[N_METHODS][N_REGIONS])
         if (f > 0)
             for (int k = 0; k < 3; ++k)
                 motion[k] = s.eye[k] - prev_s.eye[k];
-        render(cam, &s, rc->ref_n, 0, 0, ref, NULL, NULL);
-        render(cam, &s, 1, 0, 0, center, cdepth, ids);
-        double jx, jy;
-        sol_jitter_offset((unsigned)f, &jx, &jy);
-        render(cam, &s, 1, jx, jy, jittered, jdepth, NULL);
-        sol_image aliased_img = {cam->width, cam->height, 3, center}, post;
+        render_frame(rc, &s, f, &b);
+        sol_image aliased_img = {cam->width, cam->height, 3, b.center}, post;
         sol_exp_check(sol_postaa_filter(&aliased_img, NULL, &post), "post-process AA");
-        const float *outputs[N_METHODS] = {center, post.data};
-        for (int r = 0; r < N_TAA; ++r) {
-            const int unjittered = M_TAA + r == M_TAA_NO_JITTER;
-            const float *cur = unjittered ? center : jittered, *dep = unjittered ? cdepth : jdepth;
-            sol_exp_check(sol_temporal_accumulate(cam, dep, cur, motion, &taa_opts[r], &hist[r][f % 2], &hist[r][(f + 1) % 2]),
-                          "accumulating");
-            outputs[M_TAA + r] = hist[r][(f + 1) % 2].values;
-        }
-        /* Ghost region: pixels the moving box covered in some but not all of the last 8 frames. */
+        const float *outputs[N_METHODS] = {b.center, post.data};
+        accumulate_taa(cam, &b, f, motion, outputs);
         double frame_sum[N_METHODS][N_REGIONS] = {{0}};
         long frame_count[N_REGIONS] = {0};
-        for (size_t p = 0; p < n; ++p) {
-            moving_hist[p] = ((moving_hist[p] << 1) | (ids[p] == BOX_MOVING)) & 0xFF;
-            int in_ghost = f >= 8 && moving_hist[p] != 0 && moving_hist[p] != 0xFF;
-            int regions[3] = {R_ALL, region_of(ids[p]), in_ghost ? R_GHOST : -1};
-            for (int m = 0; m < N_METHODS; ++m) {
-                double e2 = 0.0;
-                for (int c = 0; c < 3; ++c) {
-                    double d = (double)outputs[m][3 * p + (size_t)c] - ref[3 * p + (size_t)c];
-                    e2 += d * d / 3.0;
-                }
-                for (int k = 0; k < 3; ++k)
-                    if (regions[k] >= 0)
-                        frame_sum[m][regions[k]] += e2;
-            }
-            for (int k = 0; k < 3; ++k)
-                if (regions[k] >= 0)
-                    frame_count[regions[k]]++;
-        }
-        if (csv) {
-            fprintf(csv, "%d", f + 1);
-            for (int m = 0; m < N_METHODS; ++m)
-                fprintf(csv, ",%.6f", sqrt(frame_sum[m][R_ALL] / (double)n));
-            for (int m = M_TAA; m <= M_TAA_NO_DEPTH_TEST; ++m) /* ghost columns */
-                if (frame_count[R_GHOST])
-                    fprintf(csv, ",%.6f", sqrt(frame_sum[m][R_GHOST] / (double)frame_count[R_GHOST]));
-                else
-                    fputs(",", csv);
-            fputc('\n', csv);
-        }
-        if (f >= settle) {
+        frame_errors(&b, n, f, outputs, frame_sum, frame_count);
+        if (csv)
+            write_frame_csv_row(csv, f, n, frame_sum, frame_count);
+        if (f >= settle) { /* histories settled: this frame counts towards the averages */
             for (int m = 0; m < N_METHODS; ++m)
                 for (int r = 0; r < N_REGIONS; ++r)
                     late_sum[m][r] += frame_sum[m][r];
             for (int r = 0; r < N_REGIONS; ++r)
                 late_count[r] += frame_count[r];
         }
-        if (rc->out && f == frames - 1) { /* aliased | TAA | TAA without depth test */
-            sol_image img;
-            sol_exp_check(sol_image_alloc(&img, 3 * cam->width, cam->height, 3), "allocating");
-            const float *panels[3] = {center, outputs[M_TAA], outputs[M_TAA_NO_DEPTH_TEST]};
-            for (int y = 0; y < cam->height; ++y)
-                for (int x = 0; x < 3 * cam->width; ++x)
-                    for (int c = 0; c < 3; ++c) {
-                        size_t i = 3 * ((size_t)y * (size_t)cam->width + (size_t)(x % cam->width)) + (size_t)c;
-                        sol_image_pixel(&img, x, y)[c] = fminf(1.0f, fmaxf(0.0f, panels[x / cam->width][i]));
-                    }
-            sol_exp_check(sol_png_write(sol_exp_path(rc->out, "last_frame.png"), &img, 8), "writing last_frame.png");
-            sol_image_free(&img);
-        }
+        if (rc->out && f == frames - 1)
+            save_last_frame(rc->out, cam, outputs);
         sol_image_free(&post);
         prev_s = s;
         sol_progress("d18 frames", (size_t)f + 1, (size_t)frames);
@@ -240,16 +309,7 @@ static void run_sequence(const run_config *rc, double rms[N_METHODS][N_REGIONS])
     for (int m = 0; m < N_METHODS; ++m)
         for (int r = 0; r < N_REGIONS; ++r)
             rms[m][r] = late_count[r] ? sqrt(late_sum[m][r] / (double)late_count[r]) : NAN;
-    for (int r = 0; r < N_TAA; ++r)
-        for (int k = 0; k < 2; ++k)
-            sol_history_free(&hist[r][k]);
-    free(ref);
-    free(center);
-    free(jittered);
-    free(jdepth);
-    free(cdepth);
-    free(ids);
-    free(moving_hist);
+    buffers_free(&b);
 }
 
 static void table_rows(sol_table *t, const char *camera, double rms[N_METHODS][N_REGIONS])
