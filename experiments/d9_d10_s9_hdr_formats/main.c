@@ -401,87 +401,105 @@ static void rgb8_normals(const sol_exp *exp, double *mean_deg, double *max_deg)
     sol_table_write(t, exp, "rgb8_normals");
 }
 
-int main(int argc, char **argv)
+/* The float formats place their window from the average alone: the window policy is not run. */
+static int policy_applies(format f, policy p)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d9_d10_s9_hdr_formats", argc, argv);
-    if (exp.bench)
-        return 0; /* no accuracy knob here: formats are fixed */
+    return !((f == FP16 || f == R11G11B10F) && p == RANGE_WINDOW);
+}
 
+/* Per format and policy: worst scene's max code error and mean of the mean code errors. */
+typedef struct format_stats {
+    double worst_max[FORMAT_COUNT][POLICY_COUNT], mean_mean[FORMAT_COUNT][POLICY_COUNT];
+} format_stats;
+
+/* One scene through every format and policy: a table row each, folded into `st`. */
+static void scene_format_rows(sol_table *t, const sol_image *img, scene_id id, double l, format_stats *st)
+{
+    for (int f = 0; f < FORMAT_COUNT; ++f)
+        for (int p = 0; p < POLICY_COUNT; ++p) {
+            if (!policy_applies((format)f, (policy)p))
+                continue;
+            store_error e = measure_store(img, (format)f, (policy)p, l, NULL);
+            sol_table_row(t, "%s|%.3g|%s|%d|%s|%.0f|%.3f|%.2f|%.2f|%.4f", scene_name[id], l, format_name[f],
+                          format_bits[f], policy_name[p], e.max_code, e.mean_code, e.pct_changed, e.pct_2codes,
+                          e.max_rel_window);
+            st->worst_max[f][p] = fmax(st->worst_max[f][p], e.max_code);
+            st->mean_mean[f][p] += e.mean_code / SCENE_COUNT;
+        }
+}
+
+static void format_error_table(const sol_exp *exp, const sol_image scenes[SCENE_COUNT], format_stats *st)
+{
     sol_table *t = sol_table_new("HDR scenes stored in each format (HBD filmic, 8-bit sRGB display codes)",
                                  "scene,l,format,bits/px,range policy,max code error,mean code error,% px changed,"
                                  "% px >= 2 codes,max rel. error in c_min..c_max");
-    /* per format and policy: worst scene's max code error and mean of the mean code errors */
-    double worst_max[FORMAT_COUNT][POLICY_COUNT] = {{0}}, mean_mean[FORMAT_COUNT][POLICY_COUNT] = {{0}};
-    sol_image scenes[SCENE_COUNT];
-    load_scenes(&exp, scenes);
     for (int id = 0; id < SCENE_COUNT; ++id) {
         const sol_image *img = &scenes[id];
         double l = log_average_luminance(img);
-        for (int f = 0; f < FORMAT_COUNT; ++f)
-            for (int p = 0; p < POLICY_COUNT; ++p) {
-                if ((f == FP16 || f == R11G11B10F) && p == RANGE_WINDOW)
-                    continue; /* float formats: the average alone places the window */
-                store_error e = measure_store(img, (format)f, (policy)p, l, NULL);
-                sol_table_row(t, "%s|%.3g|%s|%d|%s|%.0f|%.3f|%.2f|%.2f|%.4f", scene_name[id], l, format_name[f],
-                              format_bits[f], policy_name[p], e.max_code, e.mean_code, e.pct_changed, e.pct_2codes,
-                              e.max_rel_window);
-                worst_max[f][p] = fmax(worst_max[f][p], e.max_code);
-                mean_mean[f][p] += e.mean_code / SCENE_COUNT;
-            }
+        scene_format_rows(t, img, (scene_id)id, l, st);
         if (id != SKY_SUN) /* the sky is all bright: nothing to see in the pair */
-            comparison_images(&exp, img, scene_name[id], l);
+            comparison_images(exp, img, scene_name[id], l);
     }
-    sol_table_write(t, &exp, "format_errors");
+    sol_table_write(t, exp, "format_errors");
+}
 
+static void format_summary_table(const sol_exp *exp, const format_stats *st)
+{
     sol_table *summary = sol_table_new("Formats over the four scenes", "format,bits/px,range policy,"
                                        "worst max code error,average mean code error");
     for (int f = 0; f < FORMAT_COUNT; ++f)
         for (int p = 0; p < POLICY_COUNT; ++p)
-            if (!((f == FP16 || f == R11G11B10F) && p == RANGE_WINDOW))
+            if (policy_applies((format)f, (policy)p))
                 sol_table_row(summary, "%s|%d|%s|%.0f|%.3f", format_name[f], format_bits[f], policy_name[p],
-                              worst_max[f][p], mean_mean[f][p]);
-    sol_table_write(summary, &exp, "format_summary");
+                              st->worst_max[f][p], st->mean_mean[f][p]);
+    sol_table_write(summary, exp, "format_summary");
+}
 
+/* Each format blends with its better policy in format_summary: the window for RGBM, c / l for the rest. */
+static policy accumulation_policy(format f)
+{
+    return f == RGBM8 ? RANGE_WINDOW : RANGE_AVERAGE;
+}
+
+/* Additive light accumulation in the interior scene; returns the mean code errors with 16 lights
+ * of R11G11B10F and RGBA16F (the D9 row). */
+static void light_accumulation_table(const sol_exp *exp, const sol_image *interior, double *r11_many, double *fp16_many)
+{
     sol_table *acc = sol_table_new("Additive light accumulation in the buffer (interior scene, re-quantised per blend)",
                                    "format,range policy,lights,max code error,mean code error");
-    double r11_many = 0.0, fp16_many = 0.0;
     const int light_counts[] = {1, 4, 16, 64};
     for (int f = 0; f < FORMAT_COUNT; ++f) {
-        policy p = f == FP16 || f == R11G11B10F ? RANGE_AVERAGE : RANGE_WINDOW;
-        if (f == RGB10_0_2 || f == RGB8)
-            p = RANGE_AVERAGE; /* their better policy in format_summary */
+        policy p = accumulation_policy((format)f);
         for (size_t c = 0; c < sizeof light_counts / sizeof light_counts[0]; ++c) {
-            if (exp.quick && light_counts[c] > 16)
+            if (exp->quick && light_counts[c] > 16)
                 continue;
-            const sol_image *interior = &scenes[INTERIOR_WINDOW];
             double max_code, mean = accumulate_lights(interior, (format)f, p, log_average_luminance(interior),
                                                       light_counts[c], &max_code);
             sol_table_row(acc, "%s|%s|%d|%.0f|%.3f", format_name[f], policy_name[p], light_counts[c], max_code, mean);
             if (light_counts[c] == 16 && f == R11G11B10F)
-                r11_many = mean;
+                *r11_many = mean;
             if (light_counts[c] == 16 && f == FP16)
-                fp16_many = mean;
+                *fp16_many = mean;
         }
     }
-    sol_table_write(acc, &exp, "light_accumulation");
-    precision_plot(&exp);
-    double r11_none = 0.0, r11_avg = 0.0;
-    level_sweep(&exp, &scenes[INTERIOR_WINDOW], &r11_none, &r11_avg);
+    sol_table_write(acc, exp, "light_accumulation");
+}
 
+static void claim_d9(const sol_exp *exp, const format_stats *st, double r11_many, double fp16_many)
+{
     char fig[256];
     snprintf(fig, sizeof fig,
              "32 bpp both; worst max / mean code error: RGBM+window %.0f / %.3f, R11G11B10F unscaled %.0f / %.3f, "
              "R11G11B10F c/l %.0f / %.3f",
-             worst_max[RGBM8][RANGE_WINDOW], mean_mean[RGBM8][RANGE_WINDOW], worst_max[R11G11B10F][RANGE_NONE],
-             mean_mean[R11G11B10F][RANGE_NONE], worst_max[R11G11B10F][RANGE_AVERAGE],
-             mean_mean[R11G11B10F][RANGE_AVERAGE]);
-    int r11_worse = mean_mean[R11G11B10F][RANGE_NONE] > mean_mean[RGBM8][RANGE_WINDOW];
+             st->worst_max[RGBM8][RANGE_WINDOW], st->mean_mean[RGBM8][RANGE_WINDOW], st->worst_max[R11G11B10F][RANGE_NONE],
+             st->mean_mean[R11G11B10F][RANGE_NONE], st->worst_max[R11G11B10F][RANGE_AVERAGE],
+             st->mean_mean[R11G11B10F][RANGE_AVERAGE]);
+    int r11_worse = st->mean_mean[R11G11B10F][RANGE_NONE] > st->mean_mean[RGBM8][RANGE_WINDOW];
     char acc_note[160];
     snprintf(acc_note, sizeof acc_note, "; 16 lights blended: R11G11B10F mean code error %.3f vs RGBA16F %.3f",
              r11_many, fp16_many);
     strncat(fig, acc_note, sizeof fig - strlen(fig) - 1);
-    sol_claim(&exp, "D9", "RGBK at LDR bandwidth; R11G11B10F same bandwidth, not enough precision for linear HDR",
+    sol_claim(exp, "D9", "RGBK at LDR bandwidth; R11G11B10F same bandwidth, not enough precision for linear HDR",
               fig, "qualitative", r11_worse ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
               "four synthetic scenes (interior, night street, sky with sun, dark cave; float EXR files) through "
               "each 32-bit format, HBD "
@@ -490,29 +508,68 @@ int main(int argc, char **argv)
               "its denormals (dark_cave error images) and when lights are blended into it (table light_accumulation, "
               "an order of magnitude above RGBA16F); RGBM at the same 32 bits is usable only with range scaling and "
               "is not more precise (table format_summary)");
+}
+
+static void claim_d10(const sol_exp *exp, double r11_none, double r11_avg)
+{
+    char fig[256];
     snprintf(fig, sizeof fig, "R11G11B10F mean code error over levels 1e-8..1e8: %.3f unscaled vs %.3f scaled by 1/l",
              r11_none, r11_avg);
-    sol_claim(&exp, "D10", "range scaling from the average luminance improves precision", fig, "qualitative",
+    sol_claim(exp, "D10", "range scaling from the average luminance improves precision", fig, "qualitative",
               r11_avg < r11_none ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
               "the interior scene at absolute levels 1e-8..1e8: scaling the stored range by 1/l keeps the error flat, "
               "without it the error grows once values fall into denormals or above 65024 (plot level_sweep)");
+}
+
+static void claim_s9_rgb10(const sol_exp *exp, const format_stats *st)
+{
+    char fig[256];
     snprintf(fig, sizeof fig,
              "RGB10 0..2 step %.5f vs RGB8 %.5f; mean code error c/l %.3f vs %.3f, window %.3f vs %.3f; "
              "R11G11B10F c/l %.3f",
-             2.0 / 1023.0, 1.0 / 255.0, mean_mean[RGB10_0_2][RANGE_AVERAGE], mean_mean[RGB8][RANGE_AVERAGE],
-             mean_mean[RGB10_0_2][RANGE_WINDOW], mean_mean[RGB8][RANGE_WINDOW], mean_mean[R11G11B10F][RANGE_AVERAGE]);
-    int rgb10_better = mean_mean[RGB10_0_2][RANGE_WINDOW] < mean_mean[RGB8][RANGE_WINDOW] &&
-                       mean_mean[RGB10_0_2][RANGE_AVERAGE] < mean_mean[RGB8][RANGE_AVERAGE];
-    sol_claim(&exp, "S9", "RGB10 scaled to 0..2: overbright and better precision than RGB8", fig, "qualitative",
+             2.0 / 1023.0, 1.0 / 255.0, st->mean_mean[RGB10_0_2][RANGE_AVERAGE], st->mean_mean[RGB8][RANGE_AVERAGE],
+             st->mean_mean[RGB10_0_2][RANGE_WINDOW], st->mean_mean[RGB8][RANGE_WINDOW],
+             st->mean_mean[R11G11B10F][RANGE_AVERAGE]);
+    int rgb10_better = st->mean_mean[RGB10_0_2][RANGE_WINDOW] < st->mean_mean[RGB8][RANGE_WINDOW] &&
+                       st->mean_mean[RGB10_0_2][RANGE_AVERAGE] < st->mean_mean[RGB8][RANGE_AVERAGE];
+    sol_claim(exp, "S9", "RGB10 scaled to 0..2: overbright and better precision than RGB8", fig, "qualitative",
               rgb10_better ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
               "half the step of RGB8 with twice the headroom; R11G11B10F (the preferred format) keeps a constant "
               "relative step of 2^-6 (2^-5 in blue) instead (plot relative_step)");
+}
+
+/* Measures the RGB8 normals (table rgb8_normals) and writes their S9 row. */
+static void claim_s9_normals(const sol_exp *exp)
+{
     double normal_mean, normal_max;
-    rgb8_normals(&exp, &normal_mean, &normal_max);
+    rgb8_normals(exp, &normal_mean, &normal_max);
+    char fig[256];
     snprintf(fig, sizeof fig, "RGB8 world-space normals: mean %.3f deg, max %.3f deg", normal_mean, normal_max);
-    sol_claim(&exp, "S9", "world-space RGB8 normals", fig, "qualitative (measured)", SOL_REPRODUCED,
+    sol_claim(exp, "S9", "world-space RGB8 normals", fig, "qualitative (measured)", SOL_REPRODUCED,
               "the notes make no quantitative claim; this is the precision the layout buys: n/2 + 1/2 in three UNORM8 "
               "channels, normalised on decode, over uniformly distributed directions");
+}
+
+int main(int argc, char **argv)
+{
+    sol_exp exp;
+    sol_exp_init(&exp, "d9_d10_s9_hdr_formats", argc, argv);
+    if (exp.bench)
+        return 0; /* no accuracy knob here: formats are fixed */
+    sol_image scenes[SCENE_COUNT];
+    load_scenes(&exp, scenes);
+    format_stats st = {{{0}}, {{0}}};
+    format_error_table(&exp, scenes, &st);
+    format_summary_table(&exp, &st);
+    double r11_many = 0.0, fp16_many = 0.0;
+    light_accumulation_table(&exp, &scenes[INTERIOR_WINDOW], &r11_many, &fp16_many);
+    precision_plot(&exp);
+    double r11_none = 0.0, r11_avg = 0.0;
+    level_sweep(&exp, &scenes[INTERIOR_WINDOW], &r11_none, &r11_avg);
+    claim_d9(&exp, &st, r11_many, fp16_many);
+    claim_d10(&exp, r11_none, r11_avg);
+    claim_s9_rgb10(&exp, &st);
+    claim_s9_normals(&exp);
     for (int id = 0; id < SCENE_COUNT; ++id)
         sol_image_free(&scenes[id]);
     return 0;
