@@ -446,49 +446,84 @@ static void t11(const sol_exp *exp, const maps *m, const results *r)
 }
 
 /* ---- T13: window and threshold sweeps (64x64 crops) ---- */
-static void t13(const sol_exp *exp, const maps *m)
-{
-    int size = exp->quick ? 32 : 64, nb = size * size / 16;
+/* The crops of the 16-bit maps, and the exact optimum's per-block errors the sweeps compare with. */
+typedef struct t13_crops {
+    int nb; /* blocks per crop */
     sol_image src[INPUT_COUNT];
-    double *opt_err[INPUT_COUNT];
-    double opt_total = 0.0;
+    double *opt_err[INPUT_COUNT], opt_total;
+    double *err; /* scratch: per-block errors of the encoding under test */
+} t13_crops;
+
+static void t13_crops_init(const sol_exp *exp, const maps *m, t13_crops *c)
+{
+    int size = exp->quick ? 32 : 64;
+    c->nb = size * size / 16;
+    c->opt_total = 0.0;
     for (int k = 0; k < INPUT_COUNT; ++k) {
-        src[k] = crop(&m->q16[k], size);
-        uint8_t *b = alloc_blocks(&src[k]);
+        c->src[k] = crop(&m->q16[k], size);
+        uint8_t *b = alloc_blocks(&c->src[k]);
         sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL};
-        sol_exp_check(sol_bc5_encode_image(&src[k], &o, b, NULL), "optimal");
-        opt_err[k] = malloc(sizeof(double) * (size_t)nb);
-        block_errors(&src[k], b, opt_err[k]);
-        for (int i = 0; i < nb; ++i)
-            opt_total += opt_err[k][i];
+        sol_exp_check(sol_bc5_encode_image(&c->src[k], &o, b, NULL), "optimal");
+        c->opt_err[k] = malloc(sizeof(double) * (size_t)c->nb);
+        block_errors(&c->src[k], b, c->opt_err[k]);
+        for (int i = 0; i < c->nb; ++i)
+            c->opt_total += c->opt_err[k][i];
         free(b);
     }
+    c->err = malloc(sizeof(double) * (size_t)c->nb);
+}
+
+static void t13_crops_free(t13_crops *c)
+{
+    free(c->err);
+    for (int k = 0; k < INPUT_COUNT; ++k) {
+        free(c->opt_err[k]);
+        sol_image_free(&c->src[k]);
+    }
+}
+
+/* Error left above the optimum, % of the optimum's summed error. */
+static double error_left_pct(const t13_crops *c, double total)
+{
+    return 100.0 * (total - c->opt_total) / c->opt_total;
+}
+
+/* One window over every crop: blocks at the optimum (count), summed error; returns core-ns per block. */
+static double window_point(t13_crops *c, int window, int *at, double *total)
+{
+    sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .window = window};
+    double ns = 0.0;
+    *at = 0;
+    *total = 0.0;
+    for (int k = 0; k < INPUT_COUNT; ++k) {
+        uint8_t *b = alloc_blocks(&c->src[k]);
+        encoder enc = {"adaptive", ENC_SOL, o, 0};
+        ns += time_encoder(&enc, &c->src[k], b) / INPUT_COUNT;
+        block_errors(&c->src[k], b, c->err);
+        for (int i = 0; i < c->nb; ++i) {
+            *at += same_error(c->err[i], c->opt_err[k][i]);
+            *total += c->err[i];
+        }
+        free(b);
+    }
+    return ns;
+}
+
+/* Window sweep at threshold 0; returns the talk's +-4 window's blocks at optimum and error left (%). */
+static void t13_window_sweep(const sol_exp *exp, t13_crops *c, double *at4, double *left4)
+{
     sol_table *t = sol_table_new("T13: adaptive window (codes around the common anchors), threshold 0",
                                  "window,blocks at optimum %,error left %,core-ns per block");
     FILE *dat = sol_exp_open(exp, "t13_window.dat");
     const int windows[] = {-1, 1, 2, 3, 4, 6, 8, 12, 16};
-    double at4 = 0.0, left4 = 0.0;
-    double *e = malloc(sizeof(double) * (size_t)nb);
     for (size_t w = 0; w < sizeof windows / sizeof windows[0]; ++w) {
-        sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .window = windows[w]};
-        int at = 0;
-        double total = 0.0, ns = 0.0;
-        for (int k = 0; k < INPUT_COUNT; ++k) {
-            uint8_t *b = alloc_blocks(&src[k]);
-            encoder enc = {"adaptive", ENC_SOL, o, 0};
-            ns += time_encoder(&enc, &src[k], b) / INPUT_COUNT;
-            block_errors(&src[k], b, e);
-            for (int i = 0; i < nb; ++i) {
-                at += same_error(e[i], opt_err[k][i]);
-                total += e[i];
-            }
-            free(b);
-        }
-        double pct = 100.0 * at / (nb * INPUT_COUNT), left = 100.0 * (total - opt_total) / opt_total;
+        int at;
+        double total, ns = window_point(c, windows[w], &at, &total);
+        double pct = 100.0 * at / (c->nb * INPUT_COUNT), left = error_left_pct(c, total);
         int wcodes = windows[w] < 0 ? 0 : windows[w];
         if (wcodes == 4) {
-            at4 = pct;
-            left4 = left;
+            *at4 = pct;
+            *left4 = left;
         }
         sol_table_row(t, "%d|%.1f|%.3f|%.0f", wcodes, pct, left, ns);
         fprintf(dat, "%d %.6g %.6g %.6g\n", wcodes, pct, left, ns);
@@ -502,49 +537,75 @@ static void t13(const sol_exp *exp, const maps *m)
              "set y2label 'error left vs optimum (%% of sum dN^2)'\nset ytics nomirror\nset y2tics\nset grid\n"
              "set key center right\nplot 't13_window.dat' using 1:2 with linespoints lw 2 title 'at optimum', "
              "'' using 1:3 axes x1y2 with linespoints lw 2 title 'error left'\n");
-    /* threshold sweep at the talk's window */
+}
+
+/* The common encoder's core-ns per block over the crops: the baseline of the overhead. */
+static double common_ns_per_block(const t13_crops *c)
+{
+    double ns = 0.0;
+    for (int k = 0; k < INPUT_COUNT; ++k) {
+        uint8_t *b = alloc_blocks(&c->src[k]);
+        ns += time_encoder(&ENCODERS[E_COMMON], &c->src[k], b) / INPUT_COUNT;
+        free(b);
+    }
+    return ns;
+}
+
+/* One threshold (window 4, the default) over every crop: searched blocks, summed error; returns
+ * core-ns per block (wall x threads, as time_encoder). */
+static double threshold_point(t13_crops *c, double threshold_deg, uint64_t *searched, double *total)
+{
+    sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .threshold_deg = threshold_deg};
+    double ns = 0.0;
+    *total = 0.0;
+    *searched = 0;
+    for (int k = 0; k < INPUT_COUNT; ++k) {
+        uint8_t *b = alloc_blocks(&c->src[k]);
+        sol_bc5_image_stats st;
+        double t0 = sol_now_ns();
+        sol_exp_check(sol_bc5_encode_image(&c->src[k], &o, b, &st), "adaptive");
+        ns += (sol_now_ns() - t0) * omp_get_max_threads() / c->nb / INPUT_COUNT;
+        *searched += st.searched_blocks;
+        block_errors(&c->src[k], b, c->err);
+        for (int j = 0; j < c->nb; ++j)
+            *total += c->err[j];
+        free(b);
+    }
+    return ns;
+}
+
+/* Threshold sweep at the talk's window; returns the overhead vs the common encoder at the largest
+ * threshold that keeps the window's gain, and that threshold. */
+static void t13_threshold_sweep(const sol_exp *exp, t13_crops *c, double *overhead_at_talk, double *threshold_at_talk)
+{
     sol_table *tt = sol_table_new("T13: adaptive threshold (block RMS angle of the common encoding), window 4",
                                   "threshold deg,searched blocks %,error left %,core-ns per block,overhead vs common %");
     const double thresholds[] = {0.0, 0.05, 0.1, 0.2, 0.3, 0.5, 1.0, 2.0};
-    double common_ns = 0.0;
-    for (int k = 0; k < INPUT_COUNT; ++k) {
-        uint8_t *b = alloc_blocks(&src[k]);
-        common_ns += time_encoder(&ENCODERS[E_COMMON], &src[k], b) / INPUT_COUNT;
-        free(b);
-    }
-    double overhead_at_talk = 0.0, threshold_at_talk = 0.0, left0 = 0.0;
+    double common_ns = common_ns_per_block(c), left0 = 0.0;
     for (size_t i = 0; i < sizeof thresholds / sizeof thresholds[0]; ++i) {
-        sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .threshold_deg = thresholds[i]};
-        double total = 0.0, ns = 0.0;
-        uint64_t searched = 0;
-        for (int k = 0; k < INPUT_COUNT; ++k) {
-            uint8_t *b = alloc_blocks(&src[k]);
-            sol_bc5_image_stats st;
-            double t0 = sol_now_ns();
-            sol_exp_check(sol_bc5_encode_image(&src[k], &o, b, &st), "adaptive");
-            ns += (sol_now_ns() - t0) * omp_get_max_threads() / nb / INPUT_COUNT;
-            searched += st.searched_blocks;
-            block_errors(&src[k], b, e);
-            for (int j = 0; j < nb; ++j)
-                total += e[j];
-            free(b);
-        }
-        double overhead = 100.0 * (ns - common_ns) / common_ns, left = 100.0 * (total - opt_total) / opt_total;
+        uint64_t searched;
+        double total, ns = threshold_point(c, thresholds[i], &searched, &total);
+        double overhead = 100.0 * (ns - common_ns) / common_ns, left = error_left_pct(c, total);
         if (i == 0)
             left0 = left;
         if (left <= left0 + 0.1) { /* the largest threshold that keeps the window's gain */
-            overhead_at_talk = overhead;
-            threshold_at_talk = thresholds[i];
+            *overhead_at_talk = overhead;
+            *threshold_at_talk = thresholds[i];
         }
-        sol_table_row(tt, "%.2f|%.1f|%.3f|%.0f|%.0f", thresholds[i], 100.0 * searched / (nb * INPUT_COUNT), left, ns,
+        sol_table_row(tt, "%.2f|%.1f|%.3f|%.0f|%.0f", thresholds[i], 100.0 * searched / (c->nb * INPUT_COUNT), left, ns,
                       overhead);
     }
     sol_table_write(tt, exp, "t13_threshold");
-    free(e);
-    for (int k = 0; k < INPUT_COUNT; ++k) {
-        free(opt_err[k]);
-        sol_image_free(&src[k]);
-    }
+}
+
+static void t13(const sol_exp *exp, const maps *m)
+{
+    t13_crops c;
+    t13_crops_init(exp, m, &c);
+    double at4 = 0.0, left4 = 0.0, overhead_at_talk = 0.0, threshold_at_talk = 0.0;
+    t13_window_sweep(exp, &c, &at4, &left4);
+    t13_threshold_sweep(exp, &c, &overhead_at_talk, &threshold_at_talk);
+    t13_crops_free(&c);
     char fig[160];
     snprintf(fig, sizeof fig, "+-4: %.1f%% of blocks at optimum, %.3f%% error left; overhead %.0f%% (threshold %.2f deg)",
              at4, left4, overhead_at_talk, threshold_at_talk);
