@@ -77,132 +77,186 @@ static void time_table(void *p)
     }
 }
 
-void run_d6_table(const sol_exp *exp)
+/* What every measurement shares: the R2 directions' exact-search codes and errors (the reference),
+ * an error scratch array, and a small direction set for the timings. */
+typedef struct d6_data {
+    size_t n, tn;
+    float *err;
+    uint32_t *exact;
+    error_stats exact_stats;
+    double *dirs; /* tn directions, 3 doubles each, for the timings */
+} d6_data;
+
+static void d6_data_init(const sol_exp *exp, d6_data *d)
 {
-    size_t n = exp->quick || exp->bench ? 200000 : 2000000;
-    float *err = malloc(sizeof *err * n);
-    uint32_t *exact = malloc(sizeof *exact * n);
-    if (!err || !exact)
+    d->n = exp->quick || exp->bench ? 200000 : 2000000;
+    d->err = malloc(sizeof *d->err * d->n);
+    d->exact = malloc(sizeof *d->exact * d->n);
+    if (!d->err || !d->exact)
         sol_exp_die("out of memory");
 #pragma omp parallel for schedule(static)
-    for (int64_t i = 0; i < (int64_t)n; ++i) {
-        double d[3];
-        r2_direction((uint64_t)i, d);
-        sol_normal_encode(SOL_NORMAL_XYZ_BEST_FIT, d, &exact[i]);
+    for (int64_t i = 0; i < (int64_t)d->n; ++i) {
+        double dir[3];
+        r2_direction((uint64_t)i, dir);
+        sol_normal_encode(SOL_NORMAL_XYZ_BEST_FIT, dir, &d->exact[i]);
     }
     encoder search = {"search", SOL_NORMAL_XYZ_BEST_FIT, NULL, 0};
-    encoder_errors(&search, n, err);
-    error_stats exact_stats = stats_of(err, n);
-    if (!exp->bench)
-        write_table_files(exp);
-
-    size_t tn = 4096;
-    double *dirs = malloc(sizeof *dirs * 3 * tn);
-    if (!dirs)
+    encoder_errors(&search, d->n, d->err);
+    d->exact_stats = stats_of(d->err, d->n);
+    d->tn = 4096;
+    d->dirs = malloc(sizeof *d->dirs * 3 * d->tn);
+    if (!d->dirs)
         sol_exp_die("out of memory");
-    for (size_t i = 0; i < tn; ++i)
-        r2_direction(5000011 + 3 * i, dirs + 3 * i);
+    for (size_t i = 0; i < d->tn; ++i) /* offset: directions the error sets do not use */
+        r2_direction(5000011 + 3 * i, d->dirs + 3 * i);
+}
 
-    static const int sizes[] = {64, 128, 256, 512, 1024, 2048};
-    static const int bits[] = {8, 16, 0};
+static void d6_data_free(d6_data *d)
+{
+    free(d->dirs);
+    free(d->exact);
+    free(d->err);
+}
+
+/* The sweep's axes: table size, and stored precision (0 = float). */
+static const int sizes[] = {64, 128, 256, 512, 1024, 2048};
+static const int precision_bits[] = {8, 16, 0};
+enum { N_SIZES = sizeof sizes / sizeof sizes[0], N_BITS = sizeof precision_bits / sizeof precision_bits[0] };
+
+/* RMS errors of the sweep, for the figure and the claim; [size][precision][filter]. */
+typedef struct sweep_rms {
+    double rms16[N_SIZES], rms8[N_SIZES], rms_all[N_SIZES][N_BITS][2];
+} sweep_rms;
+
+/* The accuracy knob: time per normal of the table path (nearest, 16-bit) at this size. */
+static void timing_row(sol_table *knob, const d6_data *d, const sol_bestfit_table *t, int size, error_stats st)
+{
+    table_timing c = {t, d->dirs, d->tn, 0};
+    char name[64];
+    snprintf(name, sizeof name, "table %dx%d", size, size);
+    sol_table_row(knob, "%s|%.1f|%.5f|%.5f", name, sol_time_per_item_ns(time_table, &c, d->tn, 5), st.rms, st.max);
+}
+
+/* One table size at every precision and filter (--bench: 16-bit nearest only, the timed one). */
+static void sweep_one_size(const sol_exp *exp, d6_data *d, size_t s, sol_table *sweep, sol_table *knob, sweep_rms *r)
+{
+    sol_bestfit_table base;
+    sol_exp_check(sol_bestfit_table_build(sizes[s], 0, &base), "table %d", sizes[s]);
+    for (size_t b = 0; b < N_BITS; ++b) {
+        sol_bestfit_table t = requantized(&base, precision_bits[b]);
+        for (int f = 0; f < 2; ++f) {
+            if (exp->bench && (precision_bits[b] != 16 || f != SOL_TABLE_NEAREST))
+                continue;
+            double same;
+            error_stats st = table_errors(&t, (sol_table_filter)f, d->exact, d->n, d->err, &same);
+            r->rms_all[s][b][f] = st.rms;
+            if (f == SOL_TABLE_NEAREST && precision_bits[b] == 16)
+                r->rms16[s] = st.rms;
+            if (f == SOL_TABLE_NEAREST && precision_bits[b] == 8)
+                r->rms8[s] = st.rms;
+            sol_table_row(sweep, "%d|%s|%s|%.5f|%.5f|%.5f|%.5f|%.2f", sizes[s],
+                          precision_bits[b] == 8 ? "8-bit" : precision_bits[b] == 16 ? "16-bit" : "float",
+                          f ? "bilinear" : "nearest", st.mean, st.rms, st.p99, st.max, same);
+            if (f == SOL_TABLE_NEAREST && precision_bits[b] == 16)
+                timing_row(knob, d, &t, sizes[s], st);
+        }
+        sol_bestfit_table_free(&t);
+    }
+    sol_bestfit_table_free(&base);
+}
+
+static void size_sweep(const sol_exp *exp, d6_data *d, sweep_rms *r)
+{
     sol_table *sweep = sol_table_new("Best-fit table: size, stored precision, filter vs angular error (D6)",
                                      "size,precision,filter,mean deg,rms deg,p99 deg,max deg,same cell as search %");
     sol_table *knob = sol_table_new("Best-fit table size vs time per normal (D6; nearest, 16-bit)",
                                     "encoder,ns per normal,rms deg,max deg");
-    double rms16[6] = {0}, rms8[6] = {0}, rms_all[6][3][2] = {{{0}}}; /* [size][precision][filter] */
-    for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; ++s) {
-        sol_bestfit_table base;
-        sol_exp_check(sol_bestfit_table_build(sizes[s], 0, &base), "table %d", sizes[s]);
-        for (size_t b = 0; b < 3; ++b) {
-            sol_bestfit_table t = requantized(&base, bits[b]);
-            for (int f = 0; f < 2; ++f) {
-                if (exp->bench && (bits[b] != 16 || f != SOL_TABLE_NEAREST))
-                    continue;
-                double same;
-                error_stats st = table_errors(&t, (sol_table_filter)f, exact, n, err, &same);
-                rms_all[s][b][f] = st.rms;
-                if (f == SOL_TABLE_NEAREST && bits[b] == 16)
-                    rms16[s] = st.rms;
-                if (f == SOL_TABLE_NEAREST && bits[b] == 8)
-                    rms8[s] = st.rms;
-                sol_table_row(sweep, "%d|%s|%s|%.5f|%.5f|%.5f|%.5f|%.2f", sizes[s],
-                              bits[b] == 8 ? "8-bit" : bits[b] == 16 ? "16-bit" : "float",
-                              f ? "bilinear" : "nearest", st.mean, st.rms, st.p99, st.max, same);
-                if (f == SOL_TABLE_NEAREST && bits[b] == 16) {
-                    table_timing c = {&t, dirs, tn, 0};
-                    char name[64];
-                    snprintf(name, sizeof name, "table %dx%d", sizes[s], sizes[s]);
-                    sol_table_row(knob, "%s|%.1f|%.5f|%.5f", name, sol_time_per_item_ns(time_table, &c, tn, 5), st.rms,
-                                  st.max);
-                }
-            }
-            sol_bestfit_table_free(&t);
-        }
-        sol_bestfit_table_free(&base);
-        sol_progress("d6 sweep", s + 1, sizeof sizes / sizeof sizes[0]);
+    for (size_t s = 0; s < N_SIZES; ++s) {
+        sweep_one_size(exp, d, s, sweep, knob, r);
+        sol_progress("d6 sweep", s + 1, N_SIZES);
     }
     sol_progress_done("d6 sweep");
     sol_table_write(sweep, exp, "table_sweep");
     sol_table_write(knob, exp, "table_timing");
-    if (!exp->bench) {
-        FILE *f = sol_exp_open(exp, "table_sweep_plot.csv"); /* one column per curve, for the figure */
-        fprintf(f, "size,8-bit nearest,16-bit nearest,float nearest,16-bit bilinear\n");
-        for (size_t s = 0; s < sizeof sizes / sizeof sizes[0]; ++s)
-            fprintf(f, "%d,%.6f,%.6f,%.6f,%.6f\n", sizes[s], rms_all[s][0][0], rms_all[s][1][0], rms_all[s][2][0],
-                    rms_all[s][1][1]);
-        fclose(f);
-        sol_plot(exp, "table_sweep",
-                 "set datafile separator comma\nset logscale x 2\nset logscale y\nset xlabel 'table size (texels per side)'\n"
-                 "set ylabel 'RMS angular error (deg)'\nset grid\nset key top right\n"
-                 "plot 'table_sweep_plot.csv' skip 1 using 1:2 with linespoints lw 3 title '8-bit, nearest', "
-                 "'' skip 1 using 1:3 with linespoints title '16-bit, nearest', "
-                 "'' skip 1 using 1:4 with linespoints dt 3 title 'float, nearest', "
-                 "'' skip 1 using 1:5 with linespoints title '16-bit, bilinear', "
-                 "%.6f with lines dt 2 title 'exact search'",
-                 exact_stats.rms);
-    }
+}
 
-    if (!exp->bench) {
-        /* Mip levels of the 512 table (2x2 box, re-quantized to 16 bits) against tables baked at
-         * the same size: what a sampler that picks a coarser level does to the fit. */
-        sol_table *mips = sol_table_new("Sampling a mip level of the 512x512 16-bit table (D6)",
-                                        "level,size,filter,mip rms deg,mip max deg,baked-at-size rms deg,same cell %");
-        sol_bestfit_table level;
-        sol_exp_check(sol_bestfit_table_build(512, 16, &level), "mip 0");
-        for (int l = 0; l <= 4; ++l) {
-            sol_bestfit_table baked;
-            sol_exp_check(sol_bestfit_table_build(level.size, 16, &baked), "baked");
-            for (int f = 0; f < 2; ++f) {
-                double same, same_b;
-                error_stats st = table_errors(&level, (sol_table_filter)f, exact, n, err, &same);
-                error_stats sb = table_errors(&baked, (sol_table_filter)f, exact, n, err, &same_b);
-                sol_table_row(mips, "%d|%d|%s|%.5f|%.5f|%.5f|%.2f", l, level.size, f ? "bilinear" : "nearest", st.rms,
-                              st.max, sb.rms, same);
-            }
-            sol_bestfit_table_free(&baked);
-            sol_bestfit_table next;
-            sol_exp_check(sol_bestfit_table_downsample(&level, &next), "mip %d", l + 1);
-            sol_bestfit_table_free(&level);
-            level = next;
+static void plot_size_sweep(const sol_exp *exp, const sweep_rms *r, double exact_rms)
+{
+    FILE *f = sol_exp_open(exp, "table_sweep_plot.csv"); /* one column per curve, for the figure */
+    fprintf(f, "size,8-bit nearest,16-bit nearest,float nearest,16-bit bilinear\n");
+    for (size_t s = 0; s < N_SIZES; ++s)
+        fprintf(f, "%d,%.6f,%.6f,%.6f,%.6f\n", sizes[s], r->rms_all[s][0][0], r->rms_all[s][1][0], r->rms_all[s][2][0],
+                r->rms_all[s][1][1]);
+    fclose(f);
+    sol_plot(exp, "table_sweep",
+             "set datafile separator comma\nset logscale x 2\nset logscale y\nset xlabel 'table size (texels per side)'\n"
+             "set ylabel 'RMS angular error (deg)'\nset grid\nset key top right\n"
+             "plot 'table_sweep_plot.csv' skip 1 using 1:2 with linespoints lw 3 title '8-bit, nearest', "
+             "'' skip 1 using 1:3 with linespoints title '16-bit, nearest', "
+             "'' skip 1 using 1:4 with linespoints dt 3 title 'float, nearest', "
+             "'' skip 1 using 1:5 with linespoints title '16-bit, bilinear', "
+             "%.6f with lines dt 2 title 'exact search'",
+             exact_rms);
+}
+
+/* Mip levels of the 512 table (2x2 box, re-quantized to 16 bits) against tables baked at the same
+ * size: what a sampler that picks a coarser level does to the fit. */
+static void mip_table(const sol_exp *exp, d6_data *d)
+{
+    sol_table *mips = sol_table_new("Sampling a mip level of the 512x512 16-bit table (D6)",
+                                    "level,size,filter,mip rms deg,mip max deg,baked-at-size rms deg,same cell %");
+    sol_bestfit_table level;
+    sol_exp_check(sol_bestfit_table_build(512, 16, &level), "mip 0");
+    for (int l = 0; l <= 4; ++l) {
+        sol_bestfit_table baked;
+        sol_exp_check(sol_bestfit_table_build(level.size, 16, &baked), "baked");
+        for (int f = 0; f < 2; ++f) {
+            double same, same_b;
+            error_stats st = table_errors(&level, (sol_table_filter)f, d->exact, d->n, d->err, &same);
+            error_stats sb = table_errors(&baked, (sol_table_filter)f, d->exact, d->n, d->err, &same_b);
+            sol_table_row(mips, "%d|%d|%s|%.5f|%.5f|%.5f|%.2f", l, level.size, f ? "bilinear" : "nearest", st.rms,
+                          st.max, sb.rms, same);
         }
+        sol_bestfit_table_free(&baked);
+        sol_bestfit_table next;
+        sol_exp_check(sol_bestfit_table_downsample(&level, &next), "mip %d", l + 1);
         sol_bestfit_table_free(&level);
-        sol_table_write(mips, exp, "mips");
-
-        char s[300];
-        snprintf(s, sizeof s,
-                 "RMS deg (nearest): 256: %.4f, 512: %.4f, 2048: %.4f (16-bit); 512 8-bit %.4f; exact search %.4f",
-                 rms16[2], rms16[3], rms16[5], rms8[3], exact_stats.rms);
-        int bigger_helps = rms16[3] < 0.9 * rms16[2];
-        int eight_ok = rms8[3] < 1.1 * rms16[3];
-        sol_claim(exp, "D6", "face > 256x256; unique part 512x512 (y/x); 8 bits sufficient; mips essential", s,
-                  "8-bit within 10% of 16-bit; 512 at least 10% better than 256",
-                  bigger_helps && eight_ok ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
-                  "nearest sampling; 8 bits are exact, not just sufficient: the search's scales t = (2s)/255 "
-                  "with 2s odd are 8-bit UNORM codes; bilinear filtering and coarser mip levels blend scales of different cells and "
-                  "lose the fit (mips table), so mips help the texture cache only, not accuracy; the performance "
-                  "claim is not measurable on a CPU");
+        level = next;
     }
-    free(dirs);
-    free(exact);
-    free(err);
+    sol_bestfit_table_free(&level);
+    sol_table_write(mips, exp, "mips");
+}
+
+/* The D6 row: indices 2, 3, 5 of `sizes` are 256, 512 and 2048. */
+static void write_claim(const sol_exp *exp, const sweep_rms *r, double exact_rms)
+{
+    char s[300];
+    snprintf(s, sizeof s,
+             "RMS deg (nearest): 256: %.4f, 512: %.4f, 2048: %.4f (16-bit); 512 8-bit %.4f; exact search %.4f",
+             r->rms16[2], r->rms16[3], r->rms16[5], r->rms8[3], exact_rms);
+    int bigger_helps = r->rms16[3] < 0.9 * r->rms16[2];
+    int eight_ok = r->rms8[3] < 1.1 * r->rms16[3];
+    sol_claim(exp, "D6", "face > 256x256; unique part 512x512 (y/x); 8 bits sufficient; mips essential", s,
+              "8-bit within 10% of 16-bit; 512 at least 10% better than 256",
+              bigger_helps && eight_ok ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+              "nearest sampling; 8 bits are exact, not just sufficient: the search's scales t = (2s)/255 "
+              "with 2s odd are 8-bit UNORM codes; bilinear filtering and coarser mip levels blend scales of different cells and "
+              "lose the fit (mips table), so mips help the texture cache only, not accuracy; the performance "
+              "claim is not measurable on a CPU");
+}
+
+void run_d6_table(const sol_exp *exp)
+{
+    d6_data d;
+    d6_data_init(exp, &d);
+    if (!exp->bench)
+        write_table_files(exp);
+    sweep_rms r = {{0}, {0}, {{{0}}}};
+    size_sweep(exp, &d, &r);
+    if (!exp->bench) { /* --bench prints only the timed size sweep */
+        plot_size_sweep(exp, &r, d.exact_stats.rms);
+        mip_table(exp, &d);
+        write_claim(exp, &r, d.exact_stats.rms);
+    }
+    d6_data_free(&d);
 }
