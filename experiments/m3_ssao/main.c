@@ -105,6 +105,7 @@ static void save_gray(const sol_exp *exp, const char *file, const float *v, int 
     sol_exp_check(sol_png_write(sol_exp_path(exp, file), &img, 8), "writing %s", file);
     sol_image_free(&img);
 }
+
 /* The scene every measurement shares: cameras, the still-camera depth buffer, its reference VO and
  * scratch buffers for the estimates. */
 typedef struct ssao_scene {
