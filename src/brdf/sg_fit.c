@@ -220,6 +220,10 @@ static void seed_lobe(const fit_setup *s, const double *params, int k, double la
     p_new[3] = resid > 0.0 ? resid : 0.0;
 }
 
+static const double LOG_SHARPNESS_MIN = -4.605170185988091; /* ln 0.01 */
+static const double LOG_SHARPNESS_MAX = 13.815510557964274; /* ln 1e6 */
+static const double AMPLITUDE_MAX = 1e3;
+
 /* Splits the lobe of largest energy (amplitude / sharpness) of the first k into two concentric
  * halves, one twice as sharp and one half as sharp (the new one goes to slot k): the start that
  * lets concentric lobes shape a radial profile, which a lobe at the largest residual does not. */
@@ -236,12 +240,162 @@ static void split_lobe(double *params, int k, double log_sharpness_cap)
     old[3] *= 0.5;
     fresh[3] *= 0.5;
     old[2] = fmin(old[2] + M_LN2, log_sharpness_cap);
-    fresh[2] = fmax(fresh[2] - M_LN2, -4.605170185988091);
+    fresh[2] = fmax(fresh[2] - M_LN2, LOG_SHARPNESS_MIN);
 }
 
-static const double LOG_SHARPNESS_MIN = -4.605170185988091; /* ln 0.01 */
-static const double LOG_SHARPNESS_MAX = 13.815510557964274; /* ln 1e6 */
-static const double AMPLITUDE_MAX = 1e3;
+/* Buffers of one greedy fit with up to k_max lobes: current fit, bounds, the start being solved,
+ * the best start so far, and the outputs (fits for every k in triangle layout, errors, summaries). */
+typedef struct sg_fit_work {
+    int k_max;
+    double *params, *lower, *upper, *trial, *best; /* LOBE_PARAMS * k_max each, one block */
+    sol_sg *scratch, *out;
+    sol_sg_fit_error *errs;
+    sol_lsq_summary *sums;
+    double lambda0;        /* sharpness of a new lobe at the default width */
+    double log_lambda_cap; /* upper bound of log sharpness for this roughness */
+} sg_fit_work;
+
+static void sg_fit_work_free(sg_fit_work *w)
+{
+    free(w->params);
+    free(w->scratch);
+    free(w->out);
+    free(w->errs);
+    free(w->sums);
+}
+
+/* Allocates every buffer; on failure the caller still frees w (free(NULL) is a no-op). */
+static sol_status sg_fit_work_alloc(int k_max, sg_fit_work *w)
+{
+    int np_max = LOBE_PARAMS * k_max;
+    memset(w, 0, sizeof *w);
+    w->k_max = k_max;
+    w->params = calloc((size_t)np_max * 5, sizeof(double));
+    w->scratch = malloc((size_t)k_max * sizeof *w->scratch);
+    w->out = malloc((size_t)(k_max * (k_max + 1) / 2) * sizeof(sol_sg));
+    w->errs = malloc((size_t)k_max * sizeof *w->errs);
+    w->sums = calloc((size_t)k_max, sizeof *w->sums);
+    if (!w->params || !w->scratch || !w->out || !w->errs || !w->sums)
+        return SOL_ERR_NO_MEMORY;
+    w->lower = w->params + np_max;
+    w->upper = w->lower + np_max;
+    w->trial = w->upper + np_max;
+    w->best = w->trial + np_max;
+    return SOL_OK;
+}
+
+/* Start sharpness and parameter bounds, which depend on the roughness only. */
+static void sg_fit_work_limits(double ax, double ay, sg_fit_work *w)
+{
+    /* Lobes sharper than 4x the target's sharpest curvature would fall between fit nodes. */
+    double amin = ax < ay ? ax : ay;
+    w->log_lambda_cap = log(8.0 / (amin * amin));
+    for (int j = 0; j < w->k_max; ++j) {
+        double *lo = w->lower + LOBE_PARAMS * j, *hi = w->upper + LOBE_PARAMS * j;
+        lo[0] = 0.0, hi[0] = 0.5 * M_PI;
+        lo[1] = -1e3, hi[1] = 1e3;
+        lo[2] = LOG_SHARPNESS_MIN, hi[2] = LOG_SHARPNESS_MAX;
+        lo[3] = 0.0, hi[3] = AMPLITUDE_MAX;
+        if (hi[2] > w->log_lambda_cap)
+            hi[2] = w->log_lambda_cap;
+    }
+    /* Curvature of the NDF at its peak, averaged over azimuth: exp(-lambda th^2 / 2) matches
+     * exp(-th^2 (1/ax^2 + 1/ay^2) / 2). */
+    double lambda0 = 1.0 / (ax * ax) + 1.0 / (ay * ay);
+    if (lambda0 > 1e6)
+        lambda0 = 1e6;
+    if (log(lambda0) > w->log_lambda_cap)
+        lambda0 = exp(w->log_lambda_cap);
+    w->lambda0 = lambda0;
+}
+
+/* Writes start c of the k-lobe fit into w->trial: the k-1 fit plus a lobe at the largest residual
+ * at width factor c (c < 3), or the k-1 fit with its widest lobe split (c == 3). */
+static void make_start(const fit_setup *s, sg_fit_work *w, int k, int c)
+{
+    static const double width_factor[3] = {0.25, 1.0, 4.0};
+    int np = LOBE_PARAMS * k;
+    memcpy(w->trial, w->params, (size_t)(np - LOBE_PARAMS) * sizeof(double));
+    double lam = k == 1 || c == 3 ? w->lambda0 : w->lambda0 * width_factor[c];
+    if (log(lam) > w->log_lambda_cap)
+        lam = exp(w->log_lambda_cap);
+    if (k == 1) {
+        w->trial[0] = 0.0, w->trial[1] = 0.0, w->trial[2] = log(lam), w->trial[3] = 1.0;
+    } else if (c == 3) {
+        split_lobe(w->trial, k - 1, w->log_lambda_cap);
+    } else {
+        seed_lobe(s, w->params, k - 1, lam, w->trial + np - LOBE_PARAMS);
+    }
+}
+
+/* Solves the k-lobe fit from w->trial in place; *rel_l2 is its error on the (finer) evaluation
+ * nodes, which ranks the starts. */
+static sol_status solve_start(const fit_setup *s, sg_fit_work *w, int k, sol_lsq_summary *sum, double *rel_l2)
+{
+    sg_fit_ctx ctx = {&s->fit, s->sqrt_w, k};
+    sol_lsq_problem prob = {LOBE_PARAMS * k, s->fit.n, sg_residuals, &ctx, w->lower, w->upper, s->o.max_iterations};
+    sol_status st = sol_lsq_solve(&prob, w->trial, sum);
+    if (st != SOL_OK)
+        return st;
+    for (int j = 0; j < k; ++j)
+        lobe_from_params(w->trial + LOBE_PARAMS * j, &w->scratch[j]);
+    sol_sg_fit_error e;
+    nodes_error(&s->eval, w->scratch, k, &e);
+    *rel_l2 = e.rel_l2;
+    return SOL_OK;
+}
+
+/* Greedy step to k lobes: every start is solved and the best by evaluation error wins; the k-1 fit
+ * padded with a zero lobe is kept when no start beats it (*prev_l2), so the error never rises with
+ * k. The summary of step k reports the winner but the time and iterations of all starts. */
+static sol_status fit_k_lobes(const fit_setup *s, sg_fit_work *w, int k, double *prev_l2)
+{
+    int np = LOBE_PARAMS * k, n_cand = k == 1 ? 1 : 4, have_best = 0;
+    double best_l2 = *prev_l2, total_seconds = 0.0;
+    int total_iterations = 0;
+    sol_lsq_summary best_sum = {0};
+    for (int c = 0; c < n_cand; ++c) {
+        make_start(s, w, k, c);
+        sol_lsq_summary sum;
+        double l2;
+        sol_status st = solve_start(s, w, k, &sum, &l2);
+        if (st != SOL_OK)
+            return st;
+        if (l2 < best_l2) {
+            best_l2 = l2;
+            best_sum = sum;
+            memcpy(w->best, w->trial, (size_t)np * sizeof(double));
+            have_best = 1;
+        }
+        total_seconds += sum.solve_seconds;
+        total_iterations += sum.iterations;
+    }
+    sol_lsq_summary *sum_k = &w->sums[k - 1];
+    if (have_best) {
+        memcpy(w->params, w->best, (size_t)np * sizeof(double));
+        *prev_l2 = best_l2;
+        *sum_k = best_sum;
+    } else { /* keep fit k-1 and give the new lobe zero amplitude */
+        double *fresh = w->params + np - LOBE_PARAMS;
+        fresh[0] = 0.0, fresh[1] = 0.0, fresh[2] = log(w->lambda0), fresh[3] = 0.0;
+        *sum_k = k > 1 ? w->sums[k - 2] : best_sum;
+    }
+    sum_k->solve_seconds = total_seconds;
+    sum_k->iterations = total_iterations;
+    return SOL_OK;
+}
+
+/* Stores the current k-lobe fit into its slot of w->out with its evaluation error, converting the
+ * amplitudes from target units (pi ax ay D) to NDF units. */
+static void store_fit(const fit_setup *s, sg_fit_work *w, int k, double ax, double ay)
+{
+    sol_sg *fit = w->out + k * (k - 1) / 2;
+    for (int j = 0; j < k; ++j)
+        lobe_from_params(w->params + LOBE_PARAMS * j, &fit[j]);
+    nodes_error(&s->eval, fit, k, &w->errs[k - 1]);
+    for (int j = 0; j < k; ++j)
+        fit[j].amplitude /= M_PI * ax * ay;
+}
 
 sol_status sol_ward_sg_fit(double alpha_x, double alpha_y, int k_max, const sol_sg_fit_options *opts, sol_sg *lobes,
                            sol_sg_fit_error *errors, sol_lsq_summary *summaries)
@@ -256,118 +410,21 @@ sol_status sol_ward_sg_fit(double alpha_x, double alpha_y, int k_max, const sol_
     fit_setup s;
     if ((st = fit_setup_init(alpha_x, alpha_y, opts, &s)) != SOL_OK)
         return st;
-    int np_max = LOBE_PARAMS * k_max;
-    double *params = calloc((size_t)np_max * 5, sizeof(double));
-    sol_sg *out = malloc((size_t)(k_max * (k_max + 1) / 2) * sizeof(sol_sg));
-    sol_sg_fit_error *errs = malloc((size_t)k_max * sizeof *errs);
-    sol_lsq_summary *sums = calloc((size_t)k_max, sizeof *sums);
-    if (!params || !out || !errs || !sums) {
-        st = SOL_ERR_NO_MEMORY;
-        goto done;
+    sg_fit_work w;
+    if ((st = sg_fit_work_alloc(k_max, &w)) == SOL_OK) {
+        sg_fit_work_limits(alpha_x, alpha_y, &w);
+        double prev_l2 = INFINITY;
+        for (int k = 1; k <= k_max && st == SOL_OK; ++k)
+            if ((st = fit_k_lobes(&s, &w, k, &prev_l2)) == SOL_OK)
+                store_fit(&s, &w, k, alpha_x, alpha_y);
     }
-    double *lower = params + np_max, *upper = lower + np_max, *trial = upper + np_max;
-    for (int j = 0; j < k_max; ++j) {
-        double *lo = lower + LOBE_PARAMS * j, *hi = upper + LOBE_PARAMS * j;
-        lo[0] = 0.0, hi[0] = 0.5 * M_PI;
-        lo[1] = -1e3, hi[1] = 1e3;
-        lo[2] = LOG_SHARPNESS_MIN, hi[2] = LOG_SHARPNESS_MAX;
-        lo[3] = 0.0, hi[3] = AMPLITUDE_MAX;
+    if (st == SOL_OK) { /* outputs are written only on success */
+        memcpy(lobes, w.out, (size_t)(k_max * (k_max + 1) / 2) * sizeof(sol_sg));
+        memcpy(errors, w.errs, (size_t)k_max * sizeof *w.errs);
+        if (summaries)
+            memcpy(summaries, w.sums, (size_t)k_max * sizeof *w.sums);
     }
-    /* Curvature of the NDF at its peak, averaged over azimuth: exp(-lambda th^2 / 2) matches
-     * exp(-th^2 (1/ax^2 + 1/ay^2) / 2). */
-    double lambda0 = 1.0 / (alpha_x * alpha_x) + 1.0 / (alpha_y * alpha_y);
-    if (lambda0 > 1e6)
-        lambda0 = 1e6;
-    /* Lobes sharper than 4x the target's sharpest curvature would fall between fit nodes. */
-    double amin = alpha_x < alpha_y ? alpha_x : alpha_y;
-    double log_lambda_cap = log(8.0 / (amin * amin));
-    for (int j = 0; j < k_max; ++j)
-        if (upper[LOBE_PARAMS * j + 2] > log_lambda_cap)
-            upper[LOBE_PARAMS * j + 2] = log_lambda_cap;
-    if (log(lambda0) > log_lambda_cap)
-        lambda0 = exp(log_lambda_cap);
-    double prev_l2 = INFINITY;
-    sol_sg *scratch = malloc((size_t)k_max * sizeof *scratch);
-    if (!scratch) {
-        st = SOL_ERR_NO_MEMORY;
-        goto done;
-    }
-    for (int k = 1; k <= k_max; ++k) {
-        int np = LOBE_PARAMS * k;
-        /* Greedy starts: fit k-1 plus a lobe at the largest residual, tried at three widths, and
-         * fit k-1 with its widest lobe split; the best by the (finer) evaluation quadrature wins,
-         * and fit k-1 padded with a zero lobe is kept when no start beats it, so the error never
-         * rises with k. */
-        static const double width_factor[3] = {0.25, 1.0, 4.0};
-        int n_cand = k == 1 ? 1 : 4;
-        double best_l2 = prev_l2;
-        sol_lsq_summary best_sum = {0};
-        double *best = trial + np_max;
-        int have_best = 0;
-        for (int c = 0; c < n_cand; ++c) {
-            memcpy(trial, params, (size_t)(np - LOBE_PARAMS) * sizeof(double));
-            double lam = k == 1 || c == 3 ? lambda0 : lambda0 * width_factor[c];
-            if (log(lam) > log_lambda_cap)
-                lam = exp(log_lambda_cap);
-            if (k == 1) {
-                trial[0] = 0.0, trial[1] = 0.0, trial[2] = log(lam), trial[3] = 1.0;
-            } else if (c == 3) {
-                split_lobe(trial, k - 1, log_lambda_cap);
-            } else {
-                seed_lobe(&s, params, k - 1, lam, trial + np - LOBE_PARAMS);
-            }
-            sg_fit_ctx ctx = {&s.fit, s.sqrt_w, k};
-            sol_lsq_problem prob = {np, s.fit.n, sg_residuals, &ctx, lower, upper, s.o.max_iterations};
-            sol_lsq_summary sum;
-            if ((st = sol_lsq_solve(&prob, trial, &sum)) != SOL_OK) {
-                free(scratch);
-                goto done;
-            }
-            for (int j = 0; j < k; ++j)
-                lobe_from_params(trial + LOBE_PARAMS * j, &scratch[j]);
-            sol_sg_fit_error e;
-            nodes_error(&s.eval, scratch, k, &e);
-            if (e.rel_l2 < best_l2) {
-                best_l2 = e.rel_l2;
-                best_sum = sum;
-                memcpy(best, trial, (size_t)np * sizeof(double));
-                have_best = 1;
-            }
-            sums[k - 1].solve_seconds += sum.solve_seconds;
-            sums[k - 1].iterations += sum.iterations;
-        }
-        double total_seconds = sums[k - 1].solve_seconds;
-        int total_iterations = sums[k - 1].iterations;
-        if (have_best) {
-            memcpy(params, best, (size_t)np * sizeof(double));
-            prev_l2 = best_l2;
-            sums[k - 1] = best_sum;
-        } else { /* keep fit k-1 and give the new lobe zero amplitude */
-            params[np - 4] = 0.0;
-            params[np - 3] = 0.0;
-            params[np - 2] = log(lambda0);
-            params[np - 1] = 0.0;
-            sums[k - 1] = k > 1 ? sums[k - 2] : best_sum;
-        }
-        sums[k - 1].solve_seconds = total_seconds;
-        sums[k - 1].iterations = total_iterations;
-        sol_sg *fit = out + k * (k - 1) / 2;
-        for (int j = 0; j < k; ++j)
-            lobe_from_params(params + LOBE_PARAMS * j, &fit[j]);
-        nodes_error(&s.eval, fit, k, &errs[k - 1]);
-        for (int j = 0; j < k; ++j) /* target units -> NDF units */
-            fit[j].amplitude /= M_PI * alpha_x * alpha_y;
-    }
-    free(scratch);
-    memcpy(lobes, out, (size_t)(k_max * (k_max + 1) / 2) * sizeof(sol_sg));
-    memcpy(errors, errs, (size_t)k_max * sizeof *errs);
-    if (summaries)
-        memcpy(summaries, sums, (size_t)k_max * sizeof *sums);
-done:
-    free(params);
-    free(out);
-    free(errs);
-    free(sums);
+    sg_fit_work_free(&w);
     fit_setup_free(&s);
     return st;
 }

@@ -213,6 +213,116 @@ static int least_squares(int n, const double *rows, const double *targets, size_
     return 1;
 }
 
+/* Samples must be finite with gloss and n.v in [0, 1]. */
+static sol_status check_refit_samples(const double *gloss, const double *n_dot_v, const double *scale,
+                                      const double *bias, size_t count)
+{
+    for (size_t k = 0; k < count; ++k) {
+        if (!isfinite(gloss[k]) || !isfinite(n_dot_v[k]) || !isfinite(scale[k]) || !isfinite(bias[k]))
+            return SOL_ERR_NONFINITE;
+        if (!in_unit_interval(gloss[k]) || !in_unit_interval(n_dot_v[k]))
+            return SOL_ERR_INVALID_ARG;
+    }
+    return SOL_OK;
+}
+
+/* Design rows (7 terms) and targets scale + bias of the points whose delta prediction is not
+ * saturated: only they carry gradient. Returns their count. */
+static size_t gather_delta_rows(const double *delta, const double *gloss, const double *n_dot_v,
+                                const double *scale, const double *bias, size_t count, double *rows,
+                                double *targets)
+{
+    size_t active = 0;
+    for (size_t k = 0; k < count; ++k) {
+        double t[7], pred = 0.0;
+        delta_terms(gloss[k], n_dot_v[k], t);
+        for (int i = 0; i < 7; ++i)
+            pred += delta[i] * t[i];
+        if (pred <= 0.0 || pred >= 1.0)
+            continue;
+        for (int i = 0; i < 7; ++i)
+            rows[7 * active + i] = t[i];
+        targets[active++] = scale[k] + bias[k];
+    }
+    return active;
+}
+
+/* Gauss-Newton for the saturated model: a point whose prediction is saturated has a zero gradient,
+ * so each step is the least-squares fit over the unsaturated points (delta is linear in its 7
+ * constants); iterate until that set stops changing. Fails only if the first step cannot be made. */
+static sol_status refit_delta(const double *gloss, const double *n_dot_v, const double *scale, const double *bias,
+                              size_t count, double *rows, double *targets, double delta[7])
+{
+    for (int iteration = 0; iteration < 50; ++iteration) {
+        size_t active = gather_delta_rows(delta, gloss, n_dot_v, scale, bias, count, rows, targets);
+        double d[7];
+        if (active < 7 || !least_squares(7, rows, targets, active, d))
+            return iteration ? SOL_OK : SOL_ERR_NO_CONVERGENCE;
+        double change = 0.0;
+        for (int i = 0; i < 7; ++i) {
+            change += fabs(d[i] - delta[i]);
+            delta[i] = d[i];
+        }
+        if (change < 1e-12)
+            break;
+    }
+    return SOL_OK;
+}
+
+/* Rows of the unsaturated points, each assigned to the branch of the bias model that is the smaller
+ * one there: branch 0 (gloss, 2 terms) first, then branch 1 (n.v, 4 terms) right after them. */
+static void gather_bias_rows(const double *b, const double *gloss, const double *n_dot_v, const double *bias,
+                             size_t count, double *rows, double *targets, size_t *nx, size_t *ny)
+{
+    *nx = *ny = 0;
+    for (int branch = 0; branch < 2; ++branch)
+        for (size_t k = 0; k < count; ++k) {
+            double bx = bias_in_gloss(b, gloss[k]), by = bias_in_nv(b, n_dot_v[k]);
+            double pred = fmin(bx, by), y = n_dot_v[k];
+            if (pred <= 0.0 || pred >= 1.0 || (branch == 0) != (bx <= by))
+                continue;
+            if (branch == 0) {
+                rows[2 * *nx] = gloss[k];
+                rows[2 * *nx + 1] = gloss[k] * gloss[k];
+                targets[(*nx)++] = bias[k];
+            } else {
+                double *row = rows + 2 * *nx + 4 * *ny; /* after all of branch 0's rows */
+                row[0] = 1.0;
+                row[1] = y;
+                row[2] = y * y;
+                row[3] = y * y * y;
+                targets[*nx + (*ny)++] = bias[k];
+            }
+        }
+}
+
+/* bias = saturate(min(branch in gloss, branch in n.v)): the same steps as refit_delta, with each
+ * unsaturated point assigned to the branch that is the smaller one (k-planes style alternation).
+ * A step that cannot be made keeps the last good branches. */
+static void refit_bias(const double *gloss, const double *n_dot_v, const double *bias, size_t count, double *rows,
+                       double *targets, double b[6])
+{
+    for (int iteration = 0; iteration < 50; ++iteration) {
+        double gx[2], gy[4];
+        size_t nx, ny;
+        gather_bias_rows(b, gloss, n_dot_v, bias, count, rows, targets, &nx, &ny);
+        /* rows/targets of branch 1 start after branch 0's: fit each from its own offset. */
+        int ok_x = nx >= 2 && least_squares(2, rows, targets, nx, gx);
+        int ok_y = ny >= 4 && least_squares(4, rows + 2 * nx, targets + nx, ny, gy);
+        if (!ok_x || !ok_y)
+            break;
+        double change = fabs(gx[0] - b[0]) + fabs(gx[1] - b[1]);
+        for (int i = 0; i < 4; ++i)
+            change += fabs(gy[i] - b[2 + i]);
+        b[0] = gx[0];
+        b[1] = gx[1];
+        for (int i = 0; i < 4; ++i)
+            b[2 + i] = gy[i];
+        if (change < 1e-12)
+            break;
+    }
+}
+
 sol_status sol_dfg_refit_polynomial(const double *gloss, const double *n_dot_v, const double *scale, const double *bias,
                                     size_t count, sol_dfg_polynomial *out)
 {
@@ -220,12 +330,9 @@ sol_status sol_dfg_refit_polynomial(const double *gloss, const double *n_dot_v, 
         return SOL_ERR_NULL_ARG;
     if (count < 16)
         return SOL_ERR_INVALID_ARG;
-    for (size_t k = 0; k < count; ++k) {
-        if (!isfinite(gloss[k]) || !isfinite(n_dot_v[k]) || !isfinite(scale[k]) || !isfinite(bias[k]))
-            return SOL_ERR_NONFINITE;
-        if (!in_unit_interval(gloss[k]) || !in_unit_interval(n_dot_v[k]))
-            return SOL_ERR_INVALID_ARG;
-    }
+    sol_status st = check_refit_samples(gloss, n_dot_v, scale, bias, count);
+    if (st != SOL_OK)
+        return st;
     double *rows = malloc(sizeof *rows * 7 * count), *targets = malloc(sizeof *targets * count);
     if (!rows || !targets) {
         free(rows);
@@ -233,75 +340,9 @@ sol_status sol_dfg_refit_polynomial(const double *gloss, const double *n_dot_v, 
         return SOL_ERR_NO_MEMORY;
     }
     sol_dfg_polynomial p = sol_dfg_polynomial_narkowicz;
-    sol_status st = SOL_OK;
-    /* Gauss-Newton for the saturated model: a point whose prediction is saturated has a zero
-     * gradient, so each step is the least-squares fit over the unsaturated points (delta is linear
-     * in its 7 constants); iterate until that set stops changing. */
-    for (int iteration = 0; st == SOL_OK && iteration < 50; ++iteration) {
-        size_t active = 0;
-        for (size_t k = 0; k < count; ++k) {
-            double t[7], pred = 0.0;
-            delta_terms(gloss[k], n_dot_v[k], t);
-            for (int i = 0; i < 7; ++i)
-                pred += p.delta[i] * t[i];
-            if (pred <= 0.0 || pred >= 1.0)
-                continue;
-            for (int i = 0; i < 7; ++i)
-                rows[7 * active + i] = t[i];
-            targets[active++] = scale[k] + bias[k];
-        }
-        double d[7];
-        if (active < 7 || !least_squares(7, rows, targets, active, d)) {
-            st = iteration ? SOL_OK : SOL_ERR_NO_CONVERGENCE;
-            break;
-        }
-        double change = 0.0;
-        for (int i = 0; i < 7; ++i) {
-            change += fabs(d[i] - p.delta[i]);
-            p.delta[i] = d[i];
-        }
-        if (change < 1e-12)
-            break;
-    }
-    /* bias = saturate(min(branch in gloss, branch in n.v)): the same steps, with each unsaturated
-     * point assigned to the branch that is the smaller one (k-planes style alternation). */
-    for (int iteration = 0; st == SOL_OK && iteration < 50; ++iteration) {
-        double gx[2], gy[4];
-        size_t nx = 0, ny = 0;
-        for (int branch = 0; branch < 2; ++branch)
-            for (size_t k = 0; k < count; ++k) {
-                double bx = bias_in_gloss(p.bias, gloss[k]), by = bias_in_nv(p.bias, n_dot_v[k]);
-                double pred = fmin(bx, by), y = n_dot_v[k];
-                if (pred <= 0.0 || pred >= 1.0 || (branch == 0) != (bx <= by))
-                    continue;
-                if (branch == 0) {
-                    rows[2 * nx] = gloss[k];
-                    rows[2 * nx + 1] = gloss[k] * gloss[k];
-                    targets[nx++] = bias[k];
-                } else {
-                    double *row = rows + 2 * nx + 4 * ny; /* after all of branch 0's rows */
-                    row[0] = 1.0;
-                    row[1] = y;
-                    row[2] = y * y;
-                    row[3] = y * y * y;
-                    targets[nx + ny++] = bias[k];
-                }
-            }
-        /* rows/targets of branch 1 start after branch 0's: fit each from its own offset. */
-        int ok_x = nx >= 2 && least_squares(2, rows, targets, nx, gx);
-        int ok_y = ny >= 4 && least_squares(4, rows + 2 * nx, targets + nx, ny, gy);
-        if (!ok_x || !ok_y)
-            break; /* keep the last good branches */
-        double change = fabs(gx[0] - p.bias[0]) + fabs(gx[1] - p.bias[1]);
-        for (int i = 0; i < 4; ++i)
-            change += fabs(gy[i] - p.bias[2 + i]);
-        p.bias[0] = gx[0];
-        p.bias[1] = gx[1];
-        for (int i = 0; i < 4; ++i)
-            p.bias[2 + i] = gy[i];
-        if (change < 1e-12)
-            break;
-    }
+    st = refit_delta(gloss, n_dot_v, scale, bias, count, rows, targets, p.delta);
+    if (st == SOL_OK)
+        refit_bias(gloss, n_dot_v, bias, count, rows, targets, p.bias);
     free(rows);
     free(targets);
     if (st == SOL_OK)
