@@ -229,6 +229,109 @@ static void write_map(const sol_exp *exp, const char *file, const grid *ref, con
     fclose(f);
 }
 
+/* LUT rows of the approximation table, and error_vs_time.csv (the LUT size is the accuracy knob). */
+static void lut_rows(const sol_exp *exp, timing_ctx *c, const grid *ref, int lut_samples, sol_table *t)
+{
+    FILE *pts = sol_exp_open(exp, "error_vs_time.csv");
+    fprintf(pts, "lut_size,max_f004,mean_f004,ns\n");
+    static const int lut_sizes[] = {8, 16, 32, 64, 128};
+    for (size_t k = 0; k < sizeof lut_sizes / sizeof *lut_sizes; ++k) {
+        if (exp->quick && lut_sizes[k] > 32)
+            break;
+        sol_dfg_lut lut = {0};
+        sol_exp_check(sol_dfg_lut_build(lut_sizes[k], lut_samples, &lut), "building a DFG LUT");
+        error_stats e = grid_errors(ref, NULL, &lut, NULL, 0.0);
+        c->fit = NULL;
+        c->lut = &lut;
+        double ns = sol_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
+        char name[64];
+        snprintf(name, sizeof name, "LUT %dx%d", lut_sizes[k], lut_sizes[k]);
+        error_row(t, name, &e, ns);
+        fprintf(pts, "%d,%.6e,%.6e,%.3f\n", lut_sizes[k], e.max_f004, e.mean_f004, ns);
+        sol_dfg_lut_free(&lut);
+    }
+    fclose(pts);
+}
+
+/* Errors and costs of the analytic fits (S4's polynomial, the Lazarov refit, our own refit). */
+typedef struct fit_results {
+    error_stats poly, laz, own, poly_away, laz_away; /* *_away: n.v >= 0.1 only */
+    double ns_poly, ns_laz;
+    double *map_poly, *map_laz; /* signed F0=0.04 error per grid point, for the maps */
+} fit_results;
+
+static void fit_rows(const sol_exp *exp, timing_ctx *c, const grid *ref, sol_table *t, fit_results *f)
+{
+    size_t n = (size_t)ref->n * ref->n;
+    f->map_poly = malloc(sizeof(double) * n);
+    f->map_laz = malloc(sizeof(double) * n);
+    if (!f->map_poly || !f->map_laz)
+        sol_exp_die("out of memory");
+    f->poly = grid_errors(ref, sol_dfg_fit_polynomial, NULL, f->map_poly, 0.0);
+    f->laz = grid_errors(ref, sol_dfg_fit_lazarov, NULL, f->map_laz, 0.0);
+    refit(exp, ref);
+    f->own = grid_errors(ref, refit_polynomial, NULL, NULL, 0.0);
+    /* The largest errors sit at grazing n.v: the same statistics away from it. */
+    f->poly_away = grid_errors(ref, sol_dfg_fit_polynomial, NULL, NULL, 0.1);
+    f->laz_away = grid_errors(ref, sol_dfg_fit_lazarov, NULL, NULL, 0.1);
+    c->lut = NULL;
+    c->fit = sol_dfg_fit_polynomial;
+    f->ns_poly = sol_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
+    c->fit = sol_dfg_fit_lazarov;
+    f->ns_laz = sol_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
+    error_row(t, "Narkowicz polynomial", &f->poly, f->ns_poly);
+    error_row(t, "Narkowicz-Lazarov (GGX refit)", &f->laz, f->ns_laz);
+    error_row(t, "polynomial form, sol refit (least squares)", &f->own, f->ns_poly);
+    error_row(t, "Narkowicz polynomial, n.v >= 0.1", &f->poly_away, f->ns_poly);
+    error_row(t, "Narkowicz-Lazarov, n.v >= 0.1", &f->laz_away, f->ns_laz);
+}
+
+/* Error maps of both fits, LUT error vs size against the fits' levels, quadrature convergence. */
+static void plots(const sol_exp *exp, const grid *ref, const fit_results *f)
+{
+    write_map(exp, "error_map_polynomial.dat", ref, f->map_poly);
+    write_map(exp, "error_map_lazarov.dat", ref, f->map_laz);
+    sol_plot(exp, "error_maps",
+             "set multiplot layout 1,2\n"
+             "set xlabel 'gloss'\nset ylabel 'n.v'\nset cblabel 'error of F0*scale+bias, F0=0.04'\n"
+             "set palette defined (-1 'blue', 0 'white', 1 'red')\nset cbrange [-%g:%g]\n"
+             "set size ratio 1\nset xrange [0:1]\nset yrange [0:1]\n"
+             "set title 'polynomial fit'\nplot 'error_map_polynomial.dat' using 1:2:3 with image notitle\n"
+             "set title 'Lazarov form, GGX refit'\nplot 'error_map_lazarov.dat' using 1:2:3 with image notitle\n"
+             "unset multiplot\n",
+             fmax(f->poly.max_f004, f->laz.max_f004), fmax(f->poly.max_f004, f->laz.max_f004));
+    sol_plot(exp, "error_vs_time",
+             "set datafile separator comma\nset logscale xy\nset key outside right\nset grid\n"
+             "set xlabel 'LUT texels per side (ns per lookup: see the table)'\n"
+             "set ylabel 'abs error of F0*scale+bias, F0=0.04'\nset xrange [6:160]\n"
+             "plot 'error_vs_time.csv' every ::1 using 1:2 with linespoints pt 7 title 'LUT, max', "
+             "'' every ::1 using 1:3 with linespoints pt 6 title 'LUT, mean', "
+             "%g with lines dt 2 lc rgb 'red' title 'polynomial, max', %g with lines dt 3 lc rgb 'red' title 'polynomial, mean', "
+             "%g with lines dt 2 lc rgb 'blue' title 'Lazarov refit, max', %g with lines dt 3 lc rgb 'blue' title 'Lazarov refit, mean'\n",
+             f->poly.max_f004, f->poly.mean_f004, f->laz.max_f004, f->laz.mean_f004);
+    sol_plot(exp, "convergence",
+             "set datafile separator comma\nset logscale xy\nset xlabel 'quadrature samples per axis'\n"
+             "set ylabel 'max abs error vs the finest grid'\nset grid\n"
+             "plot 'convergence_points.csv' every ::1 using 1:2 with linespoints pt 7 title 'scale/bias'\n");
+}
+
+/* S4: the polynomial is 'hard to distinguish from reference' if F0*scale+bias is within 0.02. */
+static void claim_s4(const sol_exp *exp, const fit_results *f, int ref_n, int ref_samples)
+{
+    char sol_fig[256];
+    snprintf(sol_fig, sizeof sol_fig, "max |err| F0=0.04: poly %.4f, Lazarov %.4f; mean %.4f, %.4f",
+             f->poly.max_f004, f->laz.max_f004, f->poly.mean_f004, f->laz.mean_f004);
+    int ok = f->poly.max_f004 <= 0.02 && f->poly.max_f1 <= 0.02;
+    sol_claim(exp, "S4", "polynomial fit 'hard to distinguish from reference'", sol_fig,
+              "max abs error of F0*scale+bias <= 0.02 for F0 = 0.04 and 1", ok ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+              "%dx%d gloss x n.v grid, reference by %dx%d-sample quadrature; polynomial max error F0=1 %.4f "
+              "(worst F0=0.04 point at gloss %.3f, n.v %.3f; for n.v >= 0.1 max %.4f); Lazarov refit max F0=1 %.4f; "
+              "mean errors ~%.0f/255; cost %.1f vs %.1f ns; the same form refitted here: max %.4f (F0=0.04)",
+              ref_n, ref_n, ref_samples, ref_samples, f->poly.max_f1, f->poly.worst_gloss, f->poly.worst_nv,
+              fmax(f->poly_away.max_f004, f->poly_away.max_f1), f->laz.max_f1, 255.0 * f->poly.mean_f004, f->ns_poly,
+              f->ns_laz, f->own.max_f004);
+}
+
 int main(int argc, char **argv)
 {
     sol_exp exp;
@@ -251,88 +354,17 @@ int main(int argc, char **argv)
     sol_table *t = sol_table_new(
         "DFG approximations vs the reference (abs errors over the gloss x n.v grid)",
         "method,max scale,mean scale,max bias,mean bias,max F0=0.04,mean F0=0.04,max F0=1,mean F0=1,ns per eval");
-    FILE *pts = sol_exp_open(&exp, "error_vs_time.csv");
-    fprintf(pts, "lut_size,max_f004,mean_f004,ns\n");
-    static const int lut_sizes[] = {8, 16, 32, 64, 128};
-    for (size_t k = 0; k < sizeof lut_sizes / sizeof *lut_sizes; ++k) {
-        if (exp.quick && lut_sizes[k] > 32)
-            break;
-        sol_dfg_lut lut = {0};
-        sol_exp_check(sol_dfg_lut_build(lut_sizes[k], lut_samples, &lut), "building a DFG LUT");
-        error_stats e = grid_errors(&ref, NULL, &lut, NULL, 0.0);
-        c->fit = NULL;
-        c->lut = &lut;
-        double ns = sol_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
-        char name[64];
-        snprintf(name, sizeof name, "LUT %dx%d", lut_sizes[k], lut_sizes[k]);
-        error_row(t, name, &e, ns);
-        fprintf(pts, "%d,%.6e,%.6e,%.3f\n", lut_sizes[k], e.max_f004, e.mean_f004, ns);
-        sol_dfg_lut_free(&lut);
-    }
-    double *map_poly = malloc(sizeof(double) * ref_n * ref_n), *map_laz = malloc(sizeof(double) * ref_n * ref_n);
-    if (!map_poly || !map_laz)
-        sol_exp_die("out of memory");
-    error_stats poly = grid_errors(&ref, sol_dfg_fit_polynomial, NULL, map_poly, 0.0);
-    error_stats laz = grid_errors(&ref, sol_dfg_fit_lazarov, NULL, map_laz, 0.0);
-    refit(&exp, &ref);
-    error_stats own = grid_errors(&ref, refit_polynomial, NULL, NULL, 0.0);
-    /* The largest errors sit at grazing n.v: the same statistics away from it. */
-    error_stats poly_away = grid_errors(&ref, sol_dfg_fit_polynomial, NULL, NULL, 0.1);
-    error_stats laz_away = grid_errors(&ref, sol_dfg_fit_lazarov, NULL, NULL, 0.1);
-    c->lut = NULL;
-    c->fit = sol_dfg_fit_polynomial;
-    double ns_poly = sol_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
-    c->fit = sol_dfg_fit_lazarov;
-    double ns_laz = sol_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
-    error_row(t, "Narkowicz polynomial", &poly, ns_poly);
-    error_row(t, "Narkowicz-Lazarov (GGX refit)", &laz, ns_laz);
-    error_row(t, "polynomial form, sol refit (least squares)", &own, ns_poly);
-    error_row(t, "Narkowicz polynomial, n.v >= 0.1", &poly_away, ns_poly);
-    error_row(t, "Narkowicz-Lazarov, n.v >= 0.1", &laz_away, ns_laz);
-    fclose(pts);
+    lut_rows(&exp, c, &ref, lut_samples, t);
+    fit_results fits;
+    fit_rows(&exp, c, &ref, t, &fits);
     sol_table_write(t, &exp, "approximation_errors");
 
     if (!exp.bench) {
-        write_map(&exp, "error_map_polynomial.dat", &ref, map_poly);
-        write_map(&exp, "error_map_lazarov.dat", &ref, map_laz);
-        sol_plot(&exp, "error_maps",
-                 "set multiplot layout 1,2\n"
-                 "set xlabel 'gloss'\nset ylabel 'n.v'\nset cblabel 'error of F0*scale+bias, F0=0.04'\n"
-                 "set palette defined (-1 'blue', 0 'white', 1 'red')\nset cbrange [-%g:%g]\n"
-                 "set size ratio 1\nset xrange [0:1]\nset yrange [0:1]\n"
-                 "set title 'polynomial fit'\nplot 'error_map_polynomial.dat' using 1:2:3 with image notitle\n"
-                 "set title 'Lazarov form, GGX refit'\nplot 'error_map_lazarov.dat' using 1:2:3 with image notitle\n"
-                 "unset multiplot\n",
-                 fmax(poly.max_f004, laz.max_f004), fmax(poly.max_f004, laz.max_f004));
-        sol_plot(&exp, "error_vs_time",
-                 "set datafile separator comma\nset logscale xy\nset key outside right\nset grid\n"
-                 "set xlabel 'LUT texels per side (ns per lookup: see the table)'\n"
-                 "set ylabel 'abs error of F0*scale+bias, F0=0.04'\nset xrange [6:160]\n"
-                 "plot 'error_vs_time.csv' every ::1 using 1:2 with linespoints pt 7 title 'LUT, max', "
-                 "'' every ::1 using 1:3 with linespoints pt 6 title 'LUT, mean', "
-                 "%g with lines dt 2 lc rgb 'red' title 'polynomial, max', %g with lines dt 3 lc rgb 'red' title 'polynomial, mean', "
-                 "%g with lines dt 2 lc rgb 'blue' title 'Lazarov refit, max', %g with lines dt 3 lc rgb 'blue' title 'Lazarov refit, mean'\n",
-                 poly.max_f004, poly.mean_f004, laz.max_f004, laz.mean_f004);
-        sol_plot(&exp, "convergence",
-                 "set datafile separator comma\nset logscale xy\nset xlabel 'quadrature samples per axis'\n"
-                 "set ylabel 'max abs error vs the finest grid'\nset grid\n"
-                 "plot 'convergence_points.csv' every ::1 using 1:2 with linespoints pt 7 title 'scale/bias'\n");
-
-        char sol_fig[256];
-        snprintf(sol_fig, sizeof sol_fig, "max |err| F0=0.04: poly %.4f, Lazarov %.4f; mean %.4f, %.4f",
-                 poly.max_f004, laz.max_f004, poly.mean_f004, laz.mean_f004);
-        int ok = poly.max_f004 <= 0.02 && poly.max_f1 <= 0.02;
-        sol_claim(&exp, "S4", "polynomial fit 'hard to distinguish from reference'", sol_fig,
-                  "max abs error of F0*scale+bias <= 0.02 for F0 = 0.04 and 1",
-                  ok ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
-                  "%dx%d gloss x n.v grid, reference by %dx%d-sample quadrature; polynomial max error F0=1 %.4f "
-                  "(worst F0=0.04 point at gloss %.3f, n.v %.3f; for n.v >= 0.1 max %.4f); Lazarov refit max F0=1 %.4f; "
-                  "mean errors ~%.0f/255; cost %.1f vs %.1f ns; the same form refitted here: max %.4f (F0=0.04)",
-                  ref_n, ref_n, ref_samples, ref_samples, poly.max_f1, poly.worst_gloss, poly.worst_nv,
-                  fmax(poly_away.max_f004, poly_away.max_f1), laz.max_f1, 255.0 * poly.mean_f004, ns_poly, ns_laz, own.max_f004);
+        plots(&exp, &ref, &fits);
+        claim_s4(&exp, &fits, ref_n, ref_samples);
     }
-    free(map_poly);
-    free(map_laz);
+    free(fits.map_poly);
+    free(fits.map_laz);
     free(c);
     grid_free(&ref);
     return 0;
