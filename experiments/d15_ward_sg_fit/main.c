@@ -106,18 +106,11 @@ static void bench_tables(const sol_exp *exp)
     sol_table_write(q, exp, "nodes_vs_error");
 }
 
-int main(int argc, char **argv)
+/* Roughness grid: log-spaced from 0.04 (a sharp metal) to 0.8 (past 0.71 the Ward NDF's maximum
+ * leaves the normal and forms a ring). Only alpha_x <= alpha_y is fitted: the swapped cell is the
+ * same NDF rotated by 90 degrees about the normal. Fits every cell; returns the cells. */
+static cell *fit_grid(int n_alpha, int *n_cells_out)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d15_ward_sg_fit", argc, argv);
-    bench_tables(&exp);
-    if (exp.bench)
-        return 0;
-
-    /* Roughness grid: log-spaced from 0.04 (a sharp metal) to 0.8 (past 0.71 the Ward NDF's
-     * maximum leaves the normal and forms a ring). Only alpha_x <= alpha_y is fitted: the
-     * swapped cell is the same NDF rotated by 90 degrees about the normal. */
-    const int n_alpha = exp.quick ? 3 : 8;
     double alphas[8];
     for (int i = 0; i < n_alpha; ++i)
         alphas[i] = 0.04 * pow(0.8 / 0.04, (double)i / (n_alpha - 1));
@@ -143,8 +136,13 @@ int main(int argc, char **argv)
     sol_progress_done("fitting cells");
     for (int c = 0; c < n_cells; ++c)
         sol_exp_check(cells[c].status, "fitting cell (%.3f, %.3f)", cells[c].ax, cells[c].ay);
+    *n_cells_out = n_cells;
+    return cells;
+}
 
-    /* Per cell: errors at a few K, smallest K per level, the ASG. */
+/* Per cell: errors at a few K, smallest K per level, the ASG. */
+static void grid_table(const sol_exp *exp, const cell *cells, int n_cells)
+{
     sol_table *g = sol_table_new("Ward NDF to K isotropic SGs: relative L2 error per cell and the smallest K "
                                  "reaching each level (13 = not reached with 12)",
                                  "ax,ay,ay/ax,K=1,K=3,K=5,K=7,K=12,K@1%,K@2%,K@5%,K@10%,1 ASG");
@@ -155,11 +153,14 @@ int main(int argc, char **argv)
                       smallest_k(x, LEVELS[0]), smallest_k(x, LEVELS[1]), smallest_k(x, LEVELS[2]),
                       smallest_k(x, LEVELS[3]), x->asg.rel_l2);
     }
-    sol_table_write(g, &exp, "grid");
+    sol_table_write(g, exp, "grid");
+}
 
-    /* Share of the full (ax, ay) grid: off-diagonal cells count twice (both orientations). */
+/* Share of the full (ax, ay) grid where K <= 7 reaches each level (into share[]): off-diagonal
+ * cells count twice (both orientations). */
+static void share_table(const sol_exp *exp, const cell *cells, int n_cells, int n_alpha, double share[N_LEVELS])
+{
     int total = n_alpha * n_alpha;
-    double share[N_LEVELS];
     sol_table *s = sol_table_new("Share of the (ax, ay) grid where K <= 7 isotropic SGs reach the error level",
                                  "rel L2 level,share K<=7,median K,share of isotropic cells K<=7");
     for (int l = 0; l < N_LEVELS; ++l) {
@@ -178,9 +179,12 @@ int main(int argc, char **argv)
                       100.0 * iso_ok / n_alpha);
         free(ks);
     }
-    sol_table_write(s, &exp, "share");
+    sol_table_write(s, exp, "share");
+}
 
-    /* Medians over the grid per K, and the mean Ceres time per cell. */
+/* Medians over the grid per K, and the mean Ceres time per cell. */
+static void error_vs_k_table(const sol_exp *exp, const cell *cells, int n_cells)
+{
     sol_table *m = sol_table_new("Median over the grid per K: errors and Ceres solve time (all start candidates)",
                                  "K,median rel L2,median max err,median |energy err|,mean solve ms");
     for (int k = 0; k < K_MAX; ++k) {
@@ -195,10 +199,13 @@ int main(int argc, char **argv)
                       median(a + 2 * n_cells, n_cells), 1e3 * secs / n_cells);
         free(a);
     }
-    sol_table_write(m, &exp, "error_vs_k");
+    sol_table_write(m, exp, "error_vs_k");
+}
 
-    /* Error vs K curves for a few cells, for the plot. */
-    FILE *f = sol_exp_open(&exp, "curves.dat");
+/* Error vs K curves for a few cells (corners and middle of the grid), and the time vs K plot. */
+static void curves_plots(const sol_exp *exp, const cell *cells, int n_cells, int n_alpha)
+{
+    FILE *f = sol_exp_open(exp, "curves.dat");
     fprintf(f, "# K then rel L2 for cells:");
     int picks[4] = {0, n_alpha - 1, n_cells / 2, n_cells - 1};
     for (int p = 0; p < 4; ++p)
@@ -214,20 +221,23 @@ int main(int argc, char **argv)
     char titles[4][64];
     for (int p = 0; p < 4; ++p)
         snprintf(titles[p], sizeof titles[p], "ax %.2f, ay %.2f", cells[picks[p]].ax, cells[picks[p]].ay);
-    sol_plot(&exp, "error_vs_k",
+    sol_plot(exp, "error_vs_k",
              "set logscale y; set xlabel 'SG lobes K'; set ylabel 'relative L2 error of the NDF';"
              "set key bottom left; set grid;"
              "plot 'curves.dat' u 1:2 w lp t '%s', '' u 1:3 w lp t '%s', '' u 1:4 w lp t '%s', '' u 1:5 w lp t '%s',"
              " 0.02 w l dt 2 lc rgb 'black' t '2%% level'",
              titles[0], titles[1], titles[2], titles[3]);
-    sol_plot(&exp, "time_vs_k",
+    sol_plot(exp, "time_vs_k",
              "set datafile separator comma; set xlabel 'SG lobes K'; set ylabel 'ms';"
              "set logscale y; set grid; set key top left;"
              "plot 'error_vs_k.csv' u 1:5 skip 1 w lp t 'mean Ceres time per cell for the K-th fit',"
              " 'time_vs_k.csv' u 1:5 skip 1 w lp t 'greedy chain 1..K, reference cell'");
+}
 
-    /* Which part of the grid does "~7 lobes" describe? The largest anisotropy ratio up to which every
-     * cell reaches the primary level with K <= 7. */
+/* Which part of the grid does "~7 lobes" describe? The largest anisotropy ratio up to which every
+ * cell (alpha <= 0.35) reaches the primary level with K <= 7. */
+static double largest_ratio_within_7(const cell *cells, int n_cells)
+{
     double ratio_ok = 1.0;
     for (;;) {
         double next = INFINITY;
@@ -247,19 +257,43 @@ int main(int argc, char **argv)
             break;
         ratio_ok = next;
     }
-    /* Verdict: the claim holds at the primary level if K <= 7 covers at least 80% of the grid
-     * ("vast majority"); otherwise the grid table shows which range of roughness and anisotropy
-     * gives the talk's figure. */
+    return ratio_ok;
+}
+
+/* Verdict: the claim holds at the primary level if K <= 7 covers at least 80% of the grid ("vast
+ * majority"); otherwise the grid table shows which range of roughness and anisotropy gives the
+ * talk's figure. */
+static void claim_d15(const sol_exp *exp, const double share[N_LEVELS], double ratio_ok)
+{
     char sol_fig[256];
     snprintf(sol_fig, sizeof sol_fig,
              "K<=7 reaches %.0f%% rel. L2 on %.0f%% of the grid (%.0f%% at 5%%, %.0f%% at 10%%); on all cells with "
              "ay/ax <= %.1f and alpha <= 0.35",
              100 * LEVELS[PRIMARY_LEVEL], 100 * share[PRIMARY_LEVEL], 100 * share[2], 100 * share[3], ratio_ok);
     sol_verdict v = share[PRIMARY_LEVEL] >= 0.8 ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED;
-    sol_claim(&exp, "D15", "~7 lobes in the vast majority of cases", sol_fig, "share >= 80% at rel. L2 <= 2%", v,
+    sol_claim(exp, "D15", "~7 lobes in the vast majority of cases", sol_fig, "share >= 80% at rel. L2 <= 2%", v,
               "alpha grid 0.04..0.8 log-spaced (8x8): the lobe count is set by the anisotropy ratio (isotropic cells need "
               "1-5 lobes, ratios above ~3 more than 12) and by the ring-shaped NDF past alpha 0.5; one ASG fits the "
               "anisotropic cells (grid table)");
+}
+
+int main(int argc, char **argv)
+{
+    sol_exp exp;
+    sol_exp_init(&exp, "d15_ward_sg_fit", argc, argv);
+    bench_tables(&exp);
+    if (exp.bench)
+        return 0;
+
+    const int n_alpha = exp.quick ? 3 : 8;
+    int n_cells;
+    cell *cells = fit_grid(n_alpha, &n_cells);
+    grid_table(&exp, cells, n_cells);
+    double share[N_LEVELS];
+    share_table(&exp, cells, n_cells, n_alpha, share);
+    error_vs_k_table(&exp, cells, n_cells);
+    curves_plots(&exp, cells, n_cells, n_alpha);
+    claim_d15(&exp, share, largest_ratio_within_7(cells, n_cells));
     free(cells);
     return 0;
 }
