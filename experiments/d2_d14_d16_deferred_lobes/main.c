@@ -384,58 +384,84 @@ static void d16_timing(const sol_exp *exp, const sol_sg *ndf, const environment 
              coef[0], coef[1], coef[2]);
 }
 
-static void d16(const sol_exp *exp)
+/* Per-pixel D16 results, indexed [env][k or cut][pixel]. */
+typedef struct d16_results {
+    int n_pix;
+    pixel *px;
+    double *i_ref, *e_ref;          /* reference radiance per [env][pixel]; reference lit energy per pixel */
+    extraction_result *res_k;       /* 3 environments x N_K lobe counts, all lighting lobes */
+    extraction_result *res_cut;     /* N_CUT hemisphere cuts of the SG environment, n = 7 */
+    extraction_result *res_base;    /* 3 environments, 7 lobes reduced without the lighting */
+} d16_results;
+
+static void d16_results_alloc(int n_pix, d16_results *d)
 {
-    const double ax = 0.1, ay = 0.3;
-    sol_sg ndf[K_MAX * (K_MAX + 1) / 2];
-    sol_sg_fit_error fit_err[K_MAX];
-    sol_exp_check(sol_ward_sg_fit(ax, ay, K_MAX, NULL, ndf, fit_err, NULL), "fitting the Ward NDF");
-    environment env[3];
-    double env_fit;
-    make_environments(env, &env_fit);
-
-    double r2, per_pair;
-    d16_timing(exp, ndf, &env[2], &r2, &per_pair);
-    if (exp->bench)
-        return;
-
-    const int n_pix = exp->quick ? 8 : 48;
-    pixel *px = malloc((size_t)n_pix * sizeof *px);
-    double *i_ref = malloc(3 * (size_t)n_pix * sizeof *i_ref), *e_ref = malloc((size_t)n_pix * sizeof *e_ref);
-    /* results[env][k or cut][pixel] */
-    extraction_result *res_k = malloc(3 * N_K * (size_t)n_pix * sizeof *res_k);
-    extraction_result *res_cut = malloc(N_CUT * (size_t)n_pix * sizeof *res_cut);
-    extraction_result *res_base = malloc(3 * (size_t)n_pix * sizeof *res_base);
-    if (!px || !i_ref || !e_ref || !res_k || !res_cut || !res_base)
+    d->n_pix = n_pix;
+    d->px = malloc((size_t)n_pix * sizeof *d->px);
+    d->i_ref = malloc(3 * (size_t)n_pix * sizeof *d->i_ref);
+    d->e_ref = malloc((size_t)n_pix * sizeof *d->e_ref);
+    d->res_k = malloc(3 * N_K * (size_t)n_pix * sizeof *d->res_k);
+    d->res_cut = malloc(N_CUT * (size_t)n_pix * sizeof *d->res_cut);
+    d->res_base = malloc(3 * (size_t)n_pix * sizeof *d->res_base);
+    if (!d->px || !d->i_ref || !d->e_ref || !d->res_k || !d->res_cut || !d->res_base)
         sol_exp_die("out of memory");
+}
+
+static void d16_results_free(d16_results *d)
+{
+    free(d->px);
+    free(d->i_ref);
+    free(d->e_ref);
+    free(d->res_k);
+    free(d->res_cut);
+    free(d->res_base);
+}
+
+/* Pixel p: references, every lobe count in each environment, the light-independent lobe, and the
+ * hemisphere cuts of the SG environment (the last cut keeps all lobes and gives the reference normal). */
+static void d16_pixel(int p, double ax, double ay, const sol_sg *ndf, const environment *env, d16_results *d)
+{
+    int n_pix = d->n_pix;
+    pixel *x = &d->px[p];
+    make_pixel(p, x);
+    double r_geo[3];
+    sol_reflect(x->v, x->n, r_geo);
+    ward_ctx w = {x, ax, ay, NULL};
+    d->e_ref[p] = integrate(ward_lit, &w, r_geo, 1e-6);
+    const sol_sg *ndf7 = ndf + 7 * 6 / 2;
+    for (int e = 0; e < 3; ++e) {
+        double i_ref = d->i_ref[e * n_pix + p] = ward_radiance(x, ax, ay, &env[e]);
+        for (int k = 0; k < N_K; ++k)
+            extract_and_render(x, ax, ay, ndf + K_LIST[k] * (K_LIST[k] - 1) / 2, K_LIST[k], &env[e], MAX_LIGHTS,
+                               i_ref, d->e_ref[p], NULL, &d->res_k[(e * N_K + k) * n_pix + p], NULL);
+        extract_and_render(x, ax, ay, ndf7, 7, &env[e], 0, i_ref, d->e_ref[p], NULL, &d->res_base[e * n_pix + p],
+                           NULL);
+    }
+    double full_normal[3];
+    extract_and_render(x, ax, ay, ndf7, 7, &env[2], MAX_LIGHTS, d->i_ref[2 * n_pix + p], d->e_ref[p], NULL,
+                       &d->res_cut[(N_CUT - 1) * n_pix + p], full_normal);
+    for (int c = 0; c < N_CUT; ++c)
+        extract_and_render(x, ax, ay, ndf7, 7, &env[2], CUT_LIST[c], d->i_ref[2 * n_pix + p], d->e_ref[p], full_normal,
+                           &d->res_cut[c * n_pix + p], NULL);
+}
+
+static void d16_render(double ax, double ay, const sol_sg *ndf, const environment *env, d16_results *d)
+{
     int done = 0;
 #pragma omp parallel for schedule(dynamic, 1)
-    for (int p = 0; p < n_pix; ++p) {
-        make_pixel(p, &px[p]);
-        double r_geo[3];
-        sol_reflect(px[p].v, px[p].n, r_geo);
-        ward_ctx w = {&px[p], ax, ay, NULL};
-        e_ref[p] = integrate(ward_lit, &w, r_geo, 1e-6);
-        for (int e = 0; e < 3; ++e) {
-            i_ref[e * n_pix + p] = ward_radiance(&px[p], ax, ay, &env[e]);
-            for (int k = 0; k < N_K; ++k)
-                extract_and_render(&px[p], ax, ay, ndf + K_LIST[k] * (K_LIST[k] - 1) / 2, K_LIST[k], &env[e], MAX_LIGHTS,
-                                   i_ref[e * n_pix + p], e_ref[p], NULL, &res_k[(e * N_K + k) * n_pix + p], NULL);
-            extract_and_render(&px[p], ax, ay, ndf + 7 * 6 / 2, 7, &env[e], 0, i_ref[e * n_pix + p], e_ref[p], NULL,
-                               &res_base[e * n_pix + p], NULL);
-        }
-        double full_normal[3];
-        const sol_sg *ndf7 = ndf + 7 * 6 / 2;
-        extract_and_render(&px[p], ax, ay, ndf7, 7, &env[2], MAX_LIGHTS, i_ref[2 * n_pix + p], e_ref[p], NULL,
-                           &res_cut[(N_CUT - 1) * n_pix + p], full_normal);
-        for (int c = 0; c < N_CUT; ++c)
-            extract_and_render(&px[p], ax, ay, ndf7, 7, &env[2], CUT_LIST[c], i_ref[2 * n_pix + p], e_ref[p],
-                               full_normal, &res_cut[c * n_pix + p], NULL);
+    for (int p = 0; p < d->n_pix; ++p) {
+        d16_pixel(p, ax, ay, ndf, env, d);
 #pragma omp critical(progress)
-        sol_progress("D16 pixels", (size_t)++done, (size_t)n_pix);
+        sol_progress("D16 pixels", (size_t)++done, (size_t)d->n_pix);
     }
     sol_progress_done("D16 pixels");
+}
 
+/* Error vs BRDF lobes n per environment (table and plot); image errors go to l2_k. */
+static void d16_error_vs_n(const sol_exp *exp, const d16_results *d, const environment *env,
+                           const sol_sg_fit_error *fit_err, double l2_k[3][N_K])
+{
+    int n_pix = d->n_pix;
     sol_table *t = sol_table_new("Extracted Phong lobe vs full anisotropic Ward (ax 0.1, ay 0.3) over pixels, by BRDF "
                                  "lobes n (all lighting lobes): image relative L2 error, worst pixel's relative error, "
                                  "highlight shift; 'fixed' = the same 7-lobe NDF reduced to one lobe without the lighting",
@@ -443,10 +469,9 @@ static void d16(const sol_exp *exp)
                                  "max shift deg");
     FILE *f = sol_exp_open(exp, "error_vs_n.dat");
     fprintf(f, "# n then image relative L2 error for the three environments\n");
-    double l2_k[3][N_K];
     for (int e = 0; e < 3; ++e) {
         for (int k = 0; k < N_K + 1; ++k) {
-            const extraction_result *r = k < N_K ? &res_k[(e * N_K + k) * n_pix] : &res_base[e * n_pix];
+            const extraction_result *r = k < N_K ? &d->res_k[(e * N_K + k) * n_pix] : &d->res_base[e * n_pix];
             double mx = 0, sh = 0, shmax = 0;
             for (int p = 0; p < n_pix; ++p) {
                 mx = fmax(mx, r[p].rel_error);
@@ -471,19 +496,26 @@ static void d16(const sol_exp *exp)
     sol_plot(exp, "d16_error_vs_n",
              "set xlabel 'BRDF SG lobes n'; set ylabel 'image relative L2 error'; set grid; set key top right;"
              "plot 'error_vs_n.dat' u 1:2 w lp t 'sun + sky', '' u 1:3 w lp t '6 lights', '' u 1:4 w lp t '32-lobe SG env'");
+}
 
+static void d16_environments_table(const sol_exp *exp, const environment *env, double env_fit)
+{
     sol_table *en = sol_table_new("Lighting environments of D14/D16", "environment,SG lobes,fit rel RMS error");
     sol_table_row(en, "%s|%d|-", env[0].name, env[0].n);
     sol_table_row(en, "%s|%d|-", env[1].name, env[1].n);
     sol_table_row(en, "%s|%d|%.4f", env[2].name, env[2].n, env_fit);
     sol_table_write(en, exp, "d16_environments");
+}
 
+/* Hemisphere cut of the SG environment to m lobes (table); image errors go to rms_cut. */
+static void d16_cut_table(const sol_exp *exp, const d16_results *d, double rms_cut[N_CUT])
+{
+    int n_pix = d->n_pix;
     sol_table *c = sol_table_new("Hemisphere cut of the 32-lobe SG environment to m lobes for the extraction (n = 7; the "
                                  "deferred pass still sees every lobe)",
                                  "m kept,image rel L2,max pixel rel error,mean shift deg,mean normal change vs all lobes deg");
-    double rms_cut[N_CUT];
     for (int k = 0; k < N_CUT; ++k) {
-        const extraction_result *r = &res_cut[k * n_pix];
+        const extraction_result *r = &d->res_cut[k * n_pix];
         double mx = 0, sh = 0, ns = 0;
         for (int p = 0; p < n_pix; ++p) {
             mx = fmax(mx, r[p].rel_error);
@@ -494,12 +526,18 @@ static void d16(const sol_exp *exp)
         sol_table_row(c, "%d|%.4f|%.4f|%.2f|%.3f", CUT_LIST[k], rms_cut[k], mx, sh / n_pix, ns / n_pix);
     }
     sol_table_write(c, exp, "d16_cut");
+}
 
+/* D16: O(n*m) cost (timing fit), the cut to ~7 lobes, and the light-weighted lobe at n = 7. */
+static void d16_claim(const sol_exp *exp, const d16_results *d, double l2_k[3][N_K], const double rms_cut[N_CUT],
+                      double r2, double per_pair)
+{
+    int n_pix = d->n_pix;
     double mean_shift = 0;
     for (int p = 0; p < n_pix; ++p)
-        mean_shift += res_k[(2 * N_K + 4) * n_pix + p].shift_deg;
+        mean_shift += d->res_k[(2 * N_K + 4) * n_pix + p].shift_deg;
     mean_shift /= n_pix;
-    double weighted = l2_k[2][4], fixed = image_rel_l2(&res_base[2 * n_pix], n_pix);
+    double weighted = l2_k[2][4], fixed = image_rel_l2(&d->res_base[2 * n_pix], n_pix);
     char fig[320];
     snprintf(fig, sizeof fig,
              "time fits c0 + c1 n + c2 n*m (R^2 %.3f, %.1f ns per lobe pair); cut to 7 lobes: image error %.3f vs %.3f with all 32; "
@@ -510,12 +548,32 @@ static void d16(const sol_exp *exp)
               "cost and cut reproduce; the light-weighted normal leans towards the lights (a shift of several degrees, "
               "32-lobe environment figures here) and renders worse than the lobe extracted without lighting in all three "
               "test scenes (d16_error_vs_n table)");
-    free(px);
-    free(i_ref);
-    free(e_ref);
-    free(res_k);
-    free(res_cut);
-    free(res_base);
+}
+
+static void d16(const sol_exp *exp)
+{
+    const double ax = 0.1, ay = 0.3;
+    sol_sg ndf[K_MAX * (K_MAX + 1) / 2];
+    sol_sg_fit_error fit_err[K_MAX];
+    sol_exp_check(sol_ward_sg_fit(ax, ay, K_MAX, NULL, ndf, fit_err, NULL), "fitting the Ward NDF");
+    environment env[3];
+    double env_fit;
+    make_environments(env, &env_fit);
+
+    double r2, per_pair;
+    d16_timing(exp, ndf, &env[2], &r2, &per_pair);
+    if (exp->bench)
+        return;
+
+    d16_results d;
+    d16_results_alloc(exp->quick ? 8 : 48, &d);
+    d16_render(ax, ay, ndf, env, &d);
+    double l2_k[3][N_K], rms_cut[N_CUT];
+    d16_error_vs_n(exp, &d, env, fit_err, l2_k);
+    d16_environments_table(exp, env, env_fit);
+    d16_cut_table(exp, &d, rms_cut);
+    d16_claim(exp, &d, l2_k, rms_cut, r2, per_pair);
+    d16_results_free(&d);
 }
 
 /* ======================= D14 ======================= */
