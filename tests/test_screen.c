@@ -9,20 +9,15 @@
 
 static const sol_camera test_camera = {.width = 64, .height = 32, .focal = 32.0, .znear = 0.1, .zfar = 100.0};
 
-static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
-static double rng_uniform(double lo, double hi)
-{
-    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
-    return lo + (hi - lo) * (double)(rng_state >> 11) * 0x1.0p-53;
-}
+static uint64_t rng_state = 1; /* one deterministic core SplitMix64 stream for all tests */
 
 static sol_box random_box(double zlo, double zhi, double size)
 {
     sol_box b;
-    double z = rng_uniform(zlo, zhi);
-    double c[3] = {rng_uniform(-z, z), rng_uniform(-0.5 * z, 0.5 * z), z};
+    double z = sol_rng_uniform(&rng_state, zlo, zhi);
+    double c[3] = {sol_rng_uniform(&rng_state, -z, z), sol_rng_uniform(&rng_state, -0.5 * z, 0.5 * z), z};
     for (int i = 0; i < 3; ++i) {
-        double h = rng_uniform(0.05, size);
+        double h = sol_rng_uniform(&rng_state, 0.05, size);
         if (i == 2)
             h = fmin(h, 0.5 * z); /* stay in front of the near plane */
         b.min[i] = c[i] - h;
@@ -225,7 +220,7 @@ Test(screen, d17_fetched_deviation_never_exceeds_the_talks_d)
     sol_image img;
     cr_assert_eq(sol_image_alloc(&img, 9, 7, 3), SOL_OK);
     for (int i = 0; i < 9 * 7 * 3; ++i)
-        img.data[i] = (float)rng_uniform(0.0, 1.0);
+        img.data[i] = (float)sol_rng_uniform(&rng_state, 0.0, 1.0);
     for (int y = 0; y < 7; ++y)
         for (int x = 0; x < 9; ++x) {
             float m4[3], m8[3], d4, d8;
