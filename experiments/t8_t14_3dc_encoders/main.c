@@ -164,6 +164,15 @@ static void make_maps(maps *m, int size)
     }
 }
 
+static void free_maps(maps *m)
+{
+    for (int k = 0; k < INPUT_COUNT; ++k) {
+        sol_image_free(&m->exact[k]);
+        sol_image_free(&m->q16[k]);
+        sol_image_free(&m->q8[k]);
+    }
+}
+
 /* ---- Pareto: every encoder, error vs time (also what --bench prints) ---- */
 typedef struct results {
     uint8_t *blocks[N_ENC][INPUT_COUNT];
@@ -171,6 +180,13 @@ typedef struct results {
     double ns_map[N_ENC][INPUT_COUNT]; /* core-ns per block on each map */
     err_stats err[N_ENC];
 } results;
+
+static void free_results(results *r)
+{
+    for (int e = 0; e < N_ENC; ++e)
+        for (int k = 0; k < INPUT_COUNT; ++k)
+            free(r->blocks[e][k]);
+}
 
 /* Core-nanoseconds per block: sol's encoders run once on all threads (wall x threads; blocks are
  * independent, so this is their per-core cost); the single-threaded peers are timed with
@@ -711,13 +727,15 @@ int main(int argc, char **argv)
     make_maps(&m, exp.quick ? 32 : 128);
     results r;
     pareto(&exp, &m, &r);
-    if (exp.bench)
-        return 0;
-    t8(&exp, &m);
-    t9(&exp, &m, &r);
-    t10_t12(&exp, &m, &r);
-    t11(&exp, &m, &r);
-    t13(&exp, &m);
-    t14(&exp);
+    if (!exp.bench) {
+        t8(&exp, &m);
+        t9(&exp, &m, &r);
+        t10_t12(&exp, &m, &r);
+        t11(&exp, &m, &r);
+        t13(&exp, &m);
+        t14(&exp);
+    }
+    free_results(&r);
+    free_maps(&m);
     return 0;
 }
