@@ -60,7 +60,20 @@ static sol_status check_pair(const sol_renorm *range, const sol_image *image)
     return SOL_OK;
 }
 
-sol_status sol_renorm_apply(const sol_renorm *range, sol_image *image)
+/* Stretch [lo, hi] to [0, 1] (clamped; a flat channel stores 0) or map stored [0, 1] back. */
+static float apply_value(float v, float lo, float hi)
+{
+    float span = hi - lo;
+    float t = span > 0.0f ? (v - lo) / span : 0.0f;
+    return fminf(1.0f, fmaxf(0.0f, t));
+}
+
+static float undo_value(float v, float lo, float hi)
+{
+    return lo + v * (hi - lo);
+}
+
+static sol_status map_values(const sol_renorm *range, sol_image *image, float (*map)(float, float, float))
 {
     sol_status st = check_pair(range, image);
     if (st)
@@ -68,22 +81,17 @@ sol_status sol_renorm_apply(const sol_renorm *range, sol_image *image)
     size_t n = value_count(image);
     for (size_t i = 0; i < n; ++i) {
         int c = (int)(i % (size_t)image->channels);
-        float span = range->hi[c] - range->lo[c];
-        float v = span > 0.0f ? (image->data[i] - range->lo[c]) / span : 0.0f;
-        image->data[i] = fminf(1.0f, fmaxf(0.0f, v));
+        image->data[i] = map(image->data[i], range->lo[c], range->hi[c]);
     }
     return SOL_OK;
 }
 
+sol_status sol_renorm_apply(const sol_renorm *range, sol_image *image)
+{
+    return map_values(range, image, apply_value);
+}
+
 sol_status sol_renorm_undo(const sol_renorm *range, sol_image *image)
 {
-    sol_status st = check_pair(range, image);
-    if (st)
-        return st;
-    size_t n = value_count(image);
-    for (size_t i = 0; i < n; ++i) {
-        int c = (int)(i % (size_t)image->channels);
-        image->data[i] = range->lo[c] + image->data[i] * (range->hi[c] - range->lo[c]);
-    }
-    return SOL_OK;
+    return map_values(range, image, undo_value);
 }
