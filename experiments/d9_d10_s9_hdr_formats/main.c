@@ -527,7 +527,7 @@ static void claim_s9_rgb10(const sol_exp *exp, const format_stats *st)
     snprintf(fig, sizeof fig,
              "RGB10 0..2 step %.5f vs RGB8 %.5f; mean code error c/l %.3f vs %.3f, window %.3f vs %.3f; "
              "R11G11B10F c/l %.3f",
-             2.0 / 1023.0, 1.0 / 255.0, st->mean_mean[RGB10_0_2][RANGE_AVERAGE], st->mean_mean[RGB8][RANGE_AVERAGE],
+             sol_rgb10_scaled_decode(1) - sol_rgb10_scaled_decode(0), sol_unorm_decode(1, 8), st->mean_mean[RGB10_0_2][RANGE_AVERAGE], st->mean_mean[RGB8][RANGE_AVERAGE],
              st->mean_mean[RGB10_0_2][RANGE_WINDOW], st->mean_mean[RGB8][RANGE_WINDOW],
              st->mean_mean[R11G11B10F][RANGE_AVERAGE]);
     int rgb10_better = st->mean_mean[RGB10_0_2][RANGE_WINDOW] < st->mean_mean[RGB8][RANGE_WINDOW] &&
