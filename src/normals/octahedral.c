@@ -6,16 +6,21 @@
 
 #define OCT_MAX 2047.0
 
+/* The lower half's fold across the diagonals (its own inverse): (x, y) -> ((1-|y|) sgn x, (1-|x|) sgn y). */
+static void oct_fold(double *x, double *y)
+{
+    double fx = (1.0 - fabs(*y)) * sol_normals_sign(*x), fy = (1.0 - fabs(*x)) * sol_normals_sign(*y);
+    *x = fx;
+    *y = fy;
+}
+
 /* Projects a unit vector onto the octahedron |x|+|y|+|z| = 1 and unfolds it to [-1,1]^2. */
 static void oct_project(const double n[3], double p[2])
 {
     double s = fabs(n[0]) + fabs(n[1]) + fabs(n[2]);
     double x = n[0] / s, y = n[1] / s;
-    if (n[2] < 0.0) { /* lower half: fold across the diagonals */
-        double fx = (1.0 - fabs(y)) * sol_normals_sign(x), fy = (1.0 - fabs(x)) * sol_normals_sign(y);
-        x = fx;
-        y = fy;
-    }
+    if (n[2] < 0.0) /* lower half */
+        oct_fold(&x, &y);
     p[0] = x;
     p[1] = y;
 }
@@ -23,11 +28,8 @@ static void oct_project(const double n[3], double p[2])
 static void oct_unproject(double x, double y, double n[3])
 {
     double z = 1.0 - fabs(x) - fabs(y);
-    if (z < 0.0) {
-        double fx = (1.0 - fabs(y)) * sol_normals_sign(x), fy = (1.0 - fabs(x)) * sol_normals_sign(y);
-        x = fx;
-        y = fy;
-    }
+    if (z < 0.0)
+        oct_fold(&x, &y);
     double v[3] = {x, y, z};
     double len = sqrt(sol_dot3(v, v)); /* >= 1/sqrt(3) on the octahedron */
     for (int i = 0; i < 3; ++i)
