@@ -185,11 +185,6 @@ static inline double score_pair(const sol_nm_channel *ch, int pair, double budge
     return s;
 }
 
-double sol_nm_channel_score(const sol_nm_channel *ch, int pair)
-{
-    return score_pair(ch, pair, INFINITY);
-}
-
 /* ---- enumeration of the pairs that can score <= budget ----
  *
  * Tight terms: a pair can only score <= budget if the smallest and the largest target each lie

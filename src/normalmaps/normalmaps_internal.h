@@ -30,8 +30,6 @@ typedef struct sol_nm_channel {
 
 void sol_nm_channel_init(sol_nm_channel *ch, const double t[16], sol_bc4_precision precision, int use_max,
                          unsigned loose, uint8_t e0_lo, uint8_t e0_hi, uint8_t e1_lo, uint8_t e1_hi);
-/* Score of one pair, exact (no early exit). */
-double sol_nm_channel_score(const sol_nm_channel *ch, int pair);
 /* The pair of least score in the ranges (first in e0-major order on ties); *score receives it. */
 int sol_nm_channel_argmin(const sol_nm_channel *ch, double *score);
 /* Every pair in the ranges with score <= budget, in e0-major order; returns the count.
