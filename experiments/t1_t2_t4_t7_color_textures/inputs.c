@@ -15,13 +15,10 @@ static const char *game_files[] = {"desert4.png", "desert5.png", "dirty01.png", 
                                    "mars005.png", "mix01.png",   "moon103.png", "chili01.png"};
 enum { GAME_FILES = sizeof game_files / sizeof game_files[0] };
 
-double srgb_encode(double x) { return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055; }
-double srgb_decode(double e) { return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4); }
-
 double display255(double linear, double light)
 {
     double v = linear * light;
-    return 255.0 * srgb_encode(v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v));
+    return 255.0 * sol_srgb_encode(v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v));
 }
 
 static double hash01(uint32_t x, uint32_t y, uint32_t seed)
@@ -101,7 +98,7 @@ static int load_game(tex_input *t, const char *file, int size, double scale)
             for (int c = 0; c < 3; ++c) {
                 double sum = 0.0;
                 for (int k = 0; k < 4; ++k)
-                    sum += srgb_decode(sol_image_pixel(&src, 2 * x + (k & 1), 2 * y + (k >> 1))[c]);
+                    sum += sol_srgb_decode(sol_image_pixel(&src, 2 * x + (k & 1), 2 * y + (k >> 1))[c]);
                 sol_image_pixel(&t->linear, x, y)[c] = (float)(sum / 4.0 * scale);
             }
     sol_image_free(&src);

@@ -37,7 +37,7 @@ static sol_image stored_of(const sol_image *linear, int bits8)
 {
     sol_image s = image_like(linear);
     for (size_t i = 0; i < values(&s); ++i) {
-        double e = srgb_encode(s.data[i]);
+        double e = sol_srgb_encode(s.data[i]);
         s.data[i] = (float)sol_unorm_decode(sol_unorm_encode(e, bits8 ? 8 : 16), bits8 ? 8 : 16);
     }
     return s;
@@ -76,7 +76,7 @@ static lit_error lit_compare(const sol_image *stored, const sol_image *ref_store
     double sq = 0.0, lsq = 0.0;
     size_t n = values(stored);
     for (size_t i = 0; i < n; ++i) {
-        double lin = srgb_decode(stored->data[i]), ref = srgb_decode(ref_stored->data[i]);
+        double lin = sol_srgb_decode(stored->data[i]), ref = sol_srgb_decode(ref_stored->data[i]);
         double d = display255(lin, light) - display255(ref, light);
         double l = log2((lin + 1e-4) / (ref + 1e-4));
         sq += d * d;
@@ -128,7 +128,7 @@ static void write_figure(const sol_exp *exp, const char *file, const sol_image *
         for (int y = 0; y < size * scale; ++y)
             for (int x = 0; x < size * scale; ++x)
                 for (int c = 0; c < 3; ++c) {
-                    double lin = srgb_decode(sol_image_pixel(panels[p], x / scale, y / scale)[c]);
+                    double lin = sol_srgb_decode(sol_image_pixel(panels[p], x / scale, y / scale)[c]);
                     sol_image_pixel(&fig, p * size * scale + x, y)[c] = (float)(display255(lin, light) / 255.0);
                 }
     sol_exp_check(sol_png_write(sol_exp_path(exp, file), &fig, 8), "writing the figure");

@@ -187,7 +187,7 @@ static double gradient_value(int i, int width, double lo, double hi)
 /* Contrast exaggeration of the slide: [lo, hi] stretched to the whole display range. */
 static double contrasted255(double x, double lo, double hi)
 {
-    return 255.0 * srgb_encode(fmin(1.0, fmax(0.0, (x - lo) / (hi - lo))));
+    return 255.0 * sol_srgb_encode(fmin(1.0, fmax(0.0, (x - lo) / (hi - lo))));
 }
 
 /* Display values (0..1) of one storage across the gradient, and its banding statistics. */
@@ -227,7 +227,7 @@ void run_bright_gradient(const sol_exp *exp)
         sol_exp_die("out of memory");
     /* strip 0: the source as it is (not contrasted), as on the slide */
     for (int i = 0; i < width; ++i)
-        row[i] = (float)srgb_encode(gradient_value(i, width, lo, hi));
+        row[i] = (float)sol_srgb_encode(gradient_value(i, width, lo, hi));
     for (int y = 0; y < strip; ++y)
         for (int i = 0; i < width; ++i)
             sol_image_pixel(&fig, i, y)[0] = row[i];

@@ -34,8 +34,6 @@ void inputs_free(tex_input *set, int count);
 
 /* Display value (0..255) of a linear value lit by `light` and clamped: sRGB(min(1, light x)) * 255. */
 double display255(double linear, double light);
-double srgb_encode(double linear);
-double srgb_decode(double encoded);
 
 void run_storage_rule(const sol_exp *exp);   /* T4 */
 void run_bright_gradient(const sol_exp *exp); /* T7 */
