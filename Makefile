@@ -29,14 +29,15 @@ REPRODUCE_PKGS := $(TEST_PKGS) gnuplot-nox libsquish-dev libnvtt-dev colobot-com
 
 # All three can be narrowed on the command line while one module is being worked on, e.g.
 # make BUILD=build/normals MODULES="core normals" TEST_SRC=tests/test_normals.c run-tests
-MODULES ?= $(patsubst src/%/,%,$(wildcard src/*/))
+# src/cli is the `sol` program, not a library module.
+MODULES ?= $(filter-out cli,$(patsubst src/%/,%,$(wildcard src/*/)))
 EXPERIMENTS ?= $(filter-out common,$(patsubst experiments/%/,%,$(wildcard experiments/*/)))
 TEST_SRC ?= $(wildcard tests/*.c)
 
 # pkg-config is asked lazily (=, not :=), so `make test` on a fresh machine first installs it.
 EXR_CFLAGS = $(shell pkg-config --cflags OpenEXR 2>/dev/null)
 PNG_CFLAGS = $(shell pkg-config --cflags libpng 2>/dev/null)
-CPPFLAGS_ALL = $(addprefix -Isrc/,$(MODULES)) -Iexperiments/common $(EXR_CFLAGS) $(PNG_CFLAGS) \
+CPPFLAGS_ALL = $(addprefix -Isrc/,$(MODULES)) -Isrc/cli -Iexperiments/common $(EXR_CFLAGS) $(PNG_CFLAGS) \
                -I/usr/include/eigen3 -MMD -MP
 WARNINGS := -Wall -Wextra -Wshadow -Wpointer-arith -Wstrict-prototypes -Wmissing-prototypes
 C_STD := -std=c11 -D_DEFAULT_SOURCE -fopenmp  # _DEFAULT_SOURCE: M_PI, POSIX calls
@@ -49,11 +50,13 @@ LIB := $(BUILD)/libsol.a
 EXP_COMMON_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard experiments/common/*.c))
 TEST_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(TEST_SRC))
 TEST_BIN := $(BUILD)/tests/sol_tests
+SOL_BIN := $(BUILD)/sol
+SOL_BIN_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard src/cli/*.c))
 
 .PHONY: all lib experiments test run-tests reproduce run-experiments claims-table paper paper-section bench \
         sanitize deps-test deps-reproduce clean $(EXPERIMENTS:%=run-%)
 
-all: lib experiments
+all: lib experiments $(SOL_BIN)
 
 lib: $(LIB)
 
@@ -61,6 +64,10 @@ $(LIB): $(LIB_OBJ)
 	@mkdir -p $(@D)
 	rm -f $@
 	ar rcs $@ $^
+
+# The `sol` program: a thin front end over the library (src/cli/).
+$(SOL_BIN): $(SOL_BIN_OBJ) $(LIB)
+	$(CXX) -fopenmp $(LDFLAGS) $^ -o $@ $(LDLIBS_ALL)
 
 $(BUILD)/src/%.o: src/%.c
 	@mkdir -p $(@D)
@@ -128,7 +135,7 @@ deps-reproduce:
 test: deps-test
 	@$(MAKE) --no-print-directory run-tests
 
-run-tests: $(TEST_BIN)
+run-tests: $(TEST_BIN) $(SOL_BIN)
 	$(TEST_BIN)
 
 reproduce: deps-reproduce

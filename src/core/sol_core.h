@@ -31,6 +31,7 @@ typedef enum sol_status {
     SOL_ERR_UNSUPPORTED,    /* the request is valid but this build does not support it */
     SOL_ERR_NO_CONVERGENCE, /* an iterative method did not reach its tolerance */
     SOL_ERR_SOLVER,         /* an external solver (Ceres) reported failure */
+    SOL_ERR_LIMIT,          /* an input asks for more than the caller's (or default) work/size limit */
     SOL_STATUS_COUNT
 } sol_status;
 
@@ -56,6 +57,32 @@ static inline float *sol_image_pixel(const sol_image *image, int x, int y)
 {
     return image->data + ((size_t)y * (size_t)image->width + (size_t)x) * (size_t)image->channels;
 }
+
+/* ---- limits for untrusted input ----
+ * Every reader sizes its allocations from the file's header, so every reader first checks the
+ * header's sizes against a limit: a 99-byte PNG may claim 16.7 GB. A zero field means the default.
+ * Readers that refuse a file for its size return SOL_ERR_LIMIT and allocate nothing. */
+#define SOL_READ_MAX_PIXELS_DEFAULT ((uint64_t)1 << 27) /* 134M pixels: 16384 x 8192 */
+#define SOL_READ_MAX_BYTES_DEFAULT ((uint64_t)1 << 31)  /* 2 GiB of decoded data */
+typedef struct sol_read_limits {
+    uint64_t max_pixels; /* width * height (* depth); 0: SOL_READ_MAX_PIXELS_DEFAULT */
+    uint64_t max_bytes;  /* bytes the reader will allocate for the decoded data; 0: default */
+} sol_read_limits;
+
+/* Overflow-checked size arithmetic: *out = a * b; returns 0 (and leaves *out alone) on overflow. */
+static inline int sol_size_mul(size_t *out, size_t a, size_t b)
+{
+    if (a != 0 && b > SIZE_MAX / a)
+        return 0;
+    *out = a * b;
+    return 1;
+}
+
+/* Checks a decoded size against `limits` (NULL: the defaults): SOL_OK, SOL_ERR_INVALID_ARG for a
+ * non-positive dimension, SOL_ERR_LIMIT when pixels = width*height*depth or bytes =
+ * pixels*bytes_per_pixel exceeds its limit or overflows. */
+sol_status sol_read_limits_check(const sol_read_limits *limits, int64_t width, int64_t height, int64_t depth,
+                                 uint64_t bytes_per_pixel);
 
 /* PNG through libpng. Reading accepts gray, gray+alpha, RGB, RGBA and palette files of any bit
  * depth (expanded to 8 or 16 bits, then normalised). Writing quantises each value v in [0,1] to

@@ -16,6 +16,7 @@ const char *sol_status_string(sol_status status)
     case SOL_ERR_UNSUPPORTED: return "not supported by this build";
     case SOL_ERR_NO_CONVERGENCE: return "iteration did not converge";
     case SOL_ERR_SOLVER: return "solver failure";
+    case SOL_ERR_LIMIT: return "input exceeds the size or work limit";
     case SOL_STATUS_COUNT: break;
     }
     return "unknown status";
