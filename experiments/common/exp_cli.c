@@ -1,5 +1,5 @@
 /* exp_cli.c - driver command line, results folder, fatal-error reporting. */
-#include "sol_exp.h"
+#include "exp_harness.h"
 
 #include "sol_core.h"
 
@@ -9,7 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-void sol_exp_die(const char *fmt, ...)
+void exp_die(const char *fmt, ...)
 {
     va_list args;
     va_start(args, fmt);
@@ -20,7 +20,7 @@ void sol_exp_die(const char *fmt, ...)
     exit(1);
 }
 
-void sol_exp_check(int status, const char *what_fmt, ...)
+void exp_check(int status, const char *what_fmt, ...)
 {
     if (status == SOL_OK)
         return;
@@ -42,11 +42,11 @@ static void make_dirs(const char *path)
             continue;
         *p = '\0';
         if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-            sol_exp_die("cannot create %s: %s", buf, strerror(errno));
+            exp_die("cannot create %s: %s", buf, strerror(errno));
         *p = '/';
     }
     if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-        sol_exp_die("cannot create %s: %s", buf, strerror(errno));
+        exp_die("cannot create %s: %s", buf, strerror(errno));
 }
 
 static void usage(const char *prog)
@@ -60,7 +60,7 @@ static void usage(const char *prog)
     exit(2);
 }
 
-void sol_exp_init(sol_exp *exp, const char *name, int argc, char **argv)
+void exp_init(exp_run *exp, const char *name, int argc, char **argv)
 {
     memset(exp, 0, sizeof *exp);
     exp->name = name;
@@ -78,30 +78,33 @@ void sol_exp_init(sol_exp *exp, const char *name, int argc, char **argv)
             usage(argv[0]);
     }
     if ((size_t)snprintf(exp->dir, sizeof exp->dir, "%s/%s", root, name) >= sizeof exp->dir)
-        sol_exp_die("results path too long");
+        exp_die("results path too long");
     make_dirs(exp->dir);
-    if (!exp->bench) { /* a fresh claims file: rows are appended by sol_claim */
-        FILE *claims = sol_exp_open(exp, "claims.tsv");
+    if (!exp->bench) { /* a fresh claims file: rows are appended by exp_claim */
+        FILE *claims = exp_open(exp, "claims.tsv");
         fputs("id\ttalk\tsol\ttolerance\tverdict\texperiment\tnote\n", claims);
         fclose(claims);
+        FILE *numbers = exp_open(exp, "numbers.tex"); /* likewise for exp_number */
+        fprintf(numbers, "%% numbers quoted by the paper, written by %s\n", name);
+        fclose(numbers);
     }
 }
 
-const char *sol_exp_path(const sol_exp *exp, const char *file)
+const char *exp_path(const exp_run *exp, const char *file)
 {
     static char paths[8][4096];
     static int next;
     char *path = paths[next++ % 8];
     if ((size_t)snprintf(path, 4096, "%s/%s", exp->dir, file) >= 4096)
-        sol_exp_die("results path too long: %s", file);
+        exp_die("results path too long: %s", file);
     return path;
 }
 
-FILE *sol_exp_open(const sol_exp *exp, const char *file)
+FILE *exp_open(const exp_run *exp, const char *file)
 {
-    const char *path = sol_exp_path(exp, file);
+    const char *path = exp_path(exp, file);
     FILE *f = fopen(path, "w");
     if (!f)
-        sol_exp_die("cannot write %s: %s", path, strerror(errno));
+        exp_die("cannot write %s: %s", path, strerror(errno));
     return f;
 }

@@ -1,11 +1,11 @@
 /* exp_table.c - one table written as CSV (data), Markdown (reading) and LaTeX (paper). */
-#include "sol_exp.h"
+#include "exp_harness.h"
 
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
-struct sol_table {
+struct exp_table {
     char *title;
     char **cells; /* rows * cols strings, row 0 is the header */
     int rows, cols, capacity;
@@ -15,13 +15,13 @@ static char *dup_range(const char *s, size_t n)
 {
     char *copy = malloc(n + 1);
     if (!copy)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     memcpy(copy, s, n);
     copy[n] = '\0';
     return copy;
 }
 
-static int split_into(sol_table *t, const char *line, char sep)
+static int split_into(exp_table *t, const char *line, char sep)
 {
     int count = 0;
     for (const char *start = line;; ++count) {
@@ -29,7 +29,7 @@ static int split_into(sol_table *t, const char *line, char sep)
         size_t n = end ? (size_t)(end - start) : strlen(start);
         if (t) {
             if (count >= t->cols)
-                sol_exp_die("table '%s': row has more than %d cells: %s", t->title, t->cols, line);
+                exp_die("table '%s': row has more than %d cells: %s", t->title, t->cols, line);
             t->cells[t->rows * t->cols + count] = dup_range(start, n);
         }
         if (!end)
@@ -38,32 +38,32 @@ static int split_into(sol_table *t, const char *line, char sep)
     }
 }
 
-static void add_row(sol_table *t, const char *line, char sep)
+static void add_row(exp_table *t, const char *line, char sep)
 {
     if (t->rows == t->capacity) {
         t->capacity = t->capacity ? 2 * t->capacity : 16;
         t->cells = realloc(t->cells, sizeof *t->cells * (size_t)t->capacity * (size_t)t->cols);
         if (!t->cells)
-            sol_exp_die("out of memory");
+            exp_die("out of memory");
     }
     int n = split_into(t, line, sep);
     if (n != t->cols)
-        sol_exp_die("table '%s': row has %d cells, header has %d: %s", t->title, n, t->cols, line);
+        exp_die("table '%s': row has %d cells, header has %d: %s", t->title, n, t->cols, line);
     t->rows++;
 }
 
-sol_table *sol_table_new(const char *title, const char *columns)
+exp_table *exp_table_new(const char *title, const char *columns)
 {
-    sol_table *t = calloc(1, sizeof *t);
+    exp_table *t = calloc(1, sizeof *t);
     if (!t)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     t->title = dup_range(title, strlen(title));
     t->cols = split_into(NULL, columns, ',');
     add_row(t, columns, ',');
     return t;
 }
 
-void sol_table_row(sol_table *table, const char *cells_fmt, ...)
+void exp_table_row(exp_table *table, const char *cells_fmt, ...)
 {
     char line[8192];
     va_list args;
@@ -106,7 +106,7 @@ static void write_tex_cell(FILE *f, const char *s)
     }
 }
 
-static void write_markdown(const sol_table *t, FILE *f)
+static void write_markdown(const exp_table *t, FILE *f)
 {
     fprintf(f, "**%s**\n\n", t->title);
     for (int r = 0; r < t->rows; ++r) {
@@ -121,7 +121,7 @@ static void write_markdown(const sol_table *t, FILE *f)
     }
 }
 
-static void write_csv(const sol_table *t, FILE *f)
+static void write_csv(const exp_table *t, FILE *f)
 {
     for (int r = 0; r < t->rows; ++r)
         for (int c = 0; c < t->cols; ++c) {
@@ -130,7 +130,7 @@ static void write_csv(const sol_table *t, FILE *f)
         }
 }
 
-static void write_tex(const sol_table *t, FILE *f)
+static void write_tex(const exp_table *t, FILE *f)
 {
     fputs("\\begin{tabular}{l", f);
     for (int c = 1; c < t->cols; ++c)
@@ -147,17 +147,17 @@ static void write_tex(const sol_table *t, FILE *f)
     fputs("\\bottomrule\n\\end{tabular}\n", f);
 }
 
-void sol_table_write(sol_table *table, const sol_exp *exp, const char *name)
+void exp_table_write(exp_table *table, const exp_run *exp, const char *name)
 {
     static const char *exts[3] = {"csv", "md", "tex"};
-    void (*writers[3])(const sol_table *, FILE *) = {write_csv, write_markdown, write_tex};
+    void (*writers[3])(const exp_table *, FILE *) = {write_csv, write_markdown, write_tex};
     for (int i = 0; i < 3; ++i) {
         char file[512];
         snprintf(file, sizeof file, "%s.%s", name, exts[i]);
-        FILE *f = sol_exp_open(exp, file);
+        FILE *f = exp_open(exp, file);
         writers[i](table, f);
         if (fclose(f) != 0)
-            sol_exp_die("cannot write %s", sol_exp_path(exp, file));
+            exp_die("cannot write %s", exp_path(exp, file));
     }
     if (exp->bench) {
         write_markdown(table, stdout);

@@ -1,11 +1,11 @@
 /* exp_timing.c - median wall-clock time per item, and terminal-only progress. */
-#include "sol_exp.h"
+#include "exp_harness.h"
 
 #include <stdlib.h>
 #include <time.h>
 #include <unistd.h>
 
-double sol_now_ns(void)
+double exp_now_ns(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -18,18 +18,18 @@ static int compare_doubles(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-double sol_time_per_item_ns(void (*fn)(void *ctx), void *ctx, size_t items, int repeats)
+double exp_time_per_item_ns(void (*fn)(void *ctx), void *ctx, size_t items, int repeats)
 {
     if (repeats < 1)
         repeats = 1;
     double *times = malloc(sizeof *times * (size_t)repeats);
     if (!times)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     fn(ctx); /* warm caches and page in buffers */
     for (int i = 0; i < repeats; ++i) {
-        double start = sol_now_ns();
+        double start = exp_now_ns();
         fn(ctx);
-        times[i] = sol_now_ns() - start;
+        times[i] = exp_now_ns() - start;
     }
     qsort(times, (size_t)repeats, sizeof *times, compare_doubles);
     double median = repeats % 2 ? times[repeats / 2] : 0.5 * (times[repeats / 2 - 1] + times[repeats / 2]);
@@ -37,19 +37,19 @@ double sol_time_per_item_ns(void (*fn)(void *ctx), void *ctx, size_t items, int 
     return median / (double)(items ? items : 1);
 }
 
-void sol_progress(const char *label, size_t done, size_t total)
+void exp_progress(const char *label, size_t done, size_t total)
 {
     static double last;
     if (!isatty(STDERR_FILENO))
         return;
-    double now = sol_now_ns();
+    double now = exp_now_ns();
     if (done != total && now - last < 2e8) /* at most 5 updates a second */
         return;
     last = now;
     fprintf(stderr, "\r%s: %zu/%zu (%.0f%%)  ", label, done, total, total ? 100.0 * (double)done / (double)total : 100.0);
 }
 
-void sol_progress_done(const char *label)
+void exp_progress_done(const char *label)
 {
     if (isatty(STDERR_FILENO))
         fprintf(stderr, "\r%s: done%30s\n", label, "");

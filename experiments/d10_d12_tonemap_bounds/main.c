@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_hdr.h"
 
 static const double ldr_threshold = 0.5 / 255.0;
@@ -30,32 +30,32 @@ static int linear_code(double y) { return (int)sol_unorm_encode(y, 8); }
 
 /* Writes the table, fills bounds[] (linear output) and srgb_bounds[] (sRGB-encoded output), and returns
  * whether every c_min is the code-0/code-1 edge (the D10 check). */
-static int lower_bound_table(const sol_exp *exp, double bounds[SOL_TONEMAP_COUNT], double srgb_bounds[SOL_TONEMAP_COUNT])
+static int lower_bound_table(const exp_run *exp, double bounds[SOL_TONEMAP_COUNT], double srgb_bounds[SOL_TONEMAP_COUNT])
 {
     int all_edges = 1;
-    sol_table *t = sol_table_new("HDR lower bound c_min / l for the LDR threshold 1/510",
+    exp_table *t = exp_table_new("HDR lower bound c_min / l for the LDR threshold 1/510",
                                  "tone map,formula,c_min/l (linear output),code below/at,"
                                  "c_min/l (sRGB-encoded output),ratio to exponential");
     double srgb_threshold = sol_srgb_decode(ldr_threshold); /* 0.5/255 in the encoded output */
     for (int op = 0; op < SOL_TONEMAP_COUNT; ++op) {
         double c, c_srgb;
-        sol_exp_check(sol_tonemap_lower_bound((sol_tonemap)op, ldr_threshold, &c), "lower bound");
-        sol_exp_check(sol_tonemap_lower_bound((sol_tonemap)op, srgb_threshold, &c_srgb), "lower bound (sRGB)");
+        exp_check(sol_tonemap_lower_bound((sol_tonemap)op, ldr_threshold, &c), "lower bound");
+        exp_check(sol_tonemap_lower_bound((sol_tonemap)op, srgb_threshold, &c_srgb), "lower bound (sRGB)");
         bounds[op] = c;
         srgb_bounds[op] = c_srgb;
         double below = sol_tonemap_apply((sol_tonemap)op, c * (1.0 - 1e-9)), at = sol_tonemap_apply((sol_tonemap)op, c * (1.0 + 1e-9));
         all_edges &= linear_code(below) == 0 && linear_code(at) == 1;
-        sol_table_row(t, "%s|%s|%.9f|%d/%d|%.9f|%.3f", sol_tonemap_name((sol_tonemap)op), curve_formula((sol_tonemap)op),
+        exp_table_row(t, "%s|%s|%.9f|%d/%d|%.9f|%.3f", sol_tonemap_name((sol_tonemap)op), curve_formula((sol_tonemap)op),
                       c, linear_code(below), linear_code(at), c_srgb, c / bounds[0]);
     }
-    sol_table_write(t, exp, "lower_bounds");
+    exp_table_write(t, exp, "lower_bounds");
     return all_edges;
 }
 
 /* The curves near black, with the threshold: where each crosses 1/510 is its c_min. */
-static void curves_plot(const sol_exp *exp)
+static void curves_plot(const exp_run *exp)
 {
-    FILE *f = sol_exp_open(exp, "curves.csv");
+    FILE *f = exp_open(exp, "curves.csv");
     fputs("x", f);
     for (int op = 0; op < SOL_TONEMAP_COUNT; ++op)
         fprintf(f, ",%s", sol_tonemap_name((sol_tonemap)op));
@@ -68,7 +68,7 @@ static void curves_plot(const sol_exp *exp)
         fputc('\n', f);
     }
     fclose(f);
-    sol_plot(exp, "curves_near_black",
+    exp_plot(exp, "curves_near_black",
              "set datafile separator comma\nset logscale xy\nset format x '10^{%%L}'\nset format y '10^{%%L}'\n"
              "set xlabel 'x = c / l'\nset ylabel 'tone-mapped linear output'\nset key top left\nset grid\n"
              "set yrange [1e-5:1.2]\n"
@@ -106,13 +106,13 @@ static double worst_relative_error(const solve_job *job, const double *exact)
     return worst;
 }
 
-static void solver_sweep(const sol_exp *exp)
+static void solver_sweep(const exp_run *exp)
 {
-    sol_table *t = sol_table_new("Inverse tone map: accuracy vs time",
+    exp_table *t = exp_table_new("Inverse tone map: accuracy vs time",
                                  "tone map,solver,tolerance,max relative error,ns per inverse");
-    FILE *csv = sol_exp_open(exp, "solver_curves.csv");
+    FILE *csv = exp_open(exp, "solver_curves.csv");
     fputs("op,method,tolerance,max_rel_error,ns\n", csv);
-    FILE *closed = sol_exp_open(exp, "solver_closed_form.csv");
+    FILE *closed = exp_open(exp, "solver_closed_form.csv");
     fputs("op,ns\n", closed);
     const sol_tonemap ops[] = {SOL_TONEMAP_FILMIC_HBD, SOL_TONEMAP_ACES_FIT, SOL_TONEMAP_ACES_REF};
     const double tolerances[] = {1e-2, 1e-3, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14};
@@ -125,10 +125,10 @@ static void solver_sweep(const sol_exp *exp)
             job.y[i] = pow(10.0, -3.0 + 2.95 * (i + 0.5) / SOLVE_BATCH);
         if (ops[o] != SOL_TONEMAP_ACES_REF) {
             job.closed_form = 1;
-            double ns = sol_time_per_item_ns(run_solves, &job, SOLVE_BATCH, repeats);
+            double ns = exp_time_per_item_ns(run_solves, &job, SOLVE_BATCH, repeats);
             for (int i = 0; i < SOLVE_BATCH; ++i)
                 exact[i] = job.x[i];
-            sol_table_row(t, "%s|closed form|-|0|%.1f", sol_tonemap_name(ops[o]), ns);
+            exp_table_row(t, "%s|closed form|-|0|%.1f", sol_tonemap_name(ops[o]), ns);
             fprintf(closed, "%s,%.3f\n", sol_tonemap_name(ops[o]), ns);
         } else { /* reference: the tightest safeguarded Newton, then checked by the forward map */
             job.closed_form = 1;
@@ -140,10 +140,10 @@ static void solver_sweep(const sol_exp *exp)
         for (int m = 0; m < 2; ++m) {
             for (size_t k = 0; k < sizeof tolerances / sizeof tolerances[0]; ++k) {
                 job.options = (sol_root_options){(sol_root_method)m, tolerances[k], 400};
-                double ns = sol_time_per_item_ns(run_solves, &job, SOLVE_BATCH, repeats);
+                double ns = exp_time_per_item_ns(run_solves, &job, SOLVE_BATCH, repeats);
                 double err = worst_relative_error(&job, exact);
                 const char *name = m ? "safeguarded Newton" : "bisection";
-                sol_table_row(t, "%s|%s|%.0e|%.2e|%.1f", sol_tonemap_name(ops[o]), name, tolerances[k], err, ns);
+                exp_table_row(t, "%s|%s|%.0e|%.2e|%.1f", sol_tonemap_name(ops[o]), name, tolerances[k], err, ns);
                 fprintf(csv, "%s,%s,%.0e,%.6e,%.3f\n", sol_tonemap_name(ops[o]), m ? "newton" : "bisection",
                         tolerances[k], fmax(err, 1e-17), ns);
             }
@@ -152,9 +152,9 @@ static void solver_sweep(const sol_exp *exp)
     }
     fclose(csv);
     fclose(closed);
-    sol_table_write(t, exp, "solver_sweep");
+    exp_table_write(t, exp, "solver_sweep");
     if (!exp->bench)
-        sol_plot(exp, "solver_accuracy_vs_time",
+        exp_plot(exp, "solver_accuracy_vs_time",
                  "set datafile separator comma\nset logscale xy\nset xlabel 'ns per inverse (median)'\n"
                  "set ylabel 'max relative error of c'\nset grid\nset key outside right\nset format y '10^{%%L}'\nset yrange [1e-17:1e-1]\n"
                  "plot 'solver_curves.csv' index 0 using 5:4 with linespoints title 'filmic-hbd bisection', "
@@ -168,8 +168,8 @@ static void solver_sweep(const sol_exp *exp)
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d10_d12_tonemap_bounds", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "d10_d12_tonemap_bounds", argc, argv);
     solver_sweep(&exp);
     if (exp.bench)
         return 0;
@@ -180,21 +180,21 @@ int main(int argc, char **argv)
     char fig[256];
     snprintf(fig, sizeof fig, "0.5/255 = 1/510 = %.8f; c_min = T^-1(1/510) is exactly the edge of linear code 1",
              ldr_threshold);
-    sol_claim(&exp, "D10", "LDR threshold 0.5/255 = 1/510; c_min from the inverse tone map", fig, "exact",
-              all_edges ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(&exp, "D10", "LDR threshold 0.5/255 = 1/510; c_min from the inverse tone map", fig, "exact",
+              all_edges ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "for every tone map x slightly below c_min/l gives linear 8-bit code 0 and slightly above gives 1; "
               "if the threshold is taken in the sRGB-encoded output instead, c_min is ~%.0fx lower (table lower_bounds)",
               b[SOL_TONEMAP_EXPONENTIAL] / b_srgb[SOL_TONEMAP_EXPONENTIAL]);
     snprintf(fig, sizeof fig, "l ln(510/509) = %.9f l", b[SOL_TONEMAP_EXPONENTIAL]);
-    sol_claim(&exp, "D11", "c_min = -l ln(510/509) ~ 0.00196271 l", fig, "6 significant digits",
-              fabs(b[SOL_TONEMAP_EXPONENTIAL] - 0.00196271) < 5e-9 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(&exp, "D11", "c_min = -l ln(510/509) ~ 0.00196271 l", fig, "6 significant digits",
+              fabs(b[SOL_TONEMAP_EXPONENTIAL] - 0.00196271) < 5e-9 ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "1 - exp(-c/l) = 1/510 gives c = l ln(510/509) = -l ln(509/510): the slide's minus sign belongs to "
               "ln(509/510); the magnitude agrees to all printed digits");
     snprintf(fig, sizeof fig, "%.7f l (Hejl-Burgess-Dawson curve); %.7f l (slide's printed formula)",
              b[SOL_TONEMAP_FILMIC_HBD], b[SOL_TONEMAP_FILMIC_SLIDE]);
-    sol_claim(&exp, "D12", "c_min ~ 0.0119052 l; filmic much less sensitive to dark colours", fig,
+    exp_claim(&exp, "D12", "c_min ~ 0.0119052 l; filmic much less sensitive to dark colours", fig,
               "6 significant digits",
-              fabs(b[SOL_TONEMAP_FILMIC_HBD] - 0.0119052) < 5e-8 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+              fabs(b[SOL_TONEMAP_FILMIC_HBD] - 0.0119052) < 5e-8 ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the original curve x'=x-0.004, (x'(6.2x'+0.5)/(x'(6.2x'+1.7)+0.06))^2.2 gives the talk's digits; the "
               "denominator as printed, x'(6.2(x'+1.7)+0.06), cancels x' and gives %.4f; the filmic bound is %.2fx the "
               "exponential one",

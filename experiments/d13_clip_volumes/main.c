@@ -9,7 +9,7 @@
  * leak against the light's distance to the wall, the share of the light volume's pixels the
  * stencil rejects (work saved), and the same with a door in the wall, where the clip volume also
  * removes the light that really passes through the door. */
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_lighting.h"
 
 #include <stdlib.h>
@@ -23,20 +23,20 @@ typedef struct room_totals {
     double lit_pixels_unshadowed, rejected_by_clip;
 } room_totals;
 
-static room_totals measure(const sol_room_scene *scene, const sol_clip_box *clip, const sol_exp *exp,
+static room_totals measure(const sol_room_scene *scene, const sol_clip_box *clip, const exp_run *exp,
                            const char *image_prefix)
 {
     room_totals t = {{0, 0, 0}, {0, 0, 0}, 0, 0};
     sol_image img[3] = {{0}};
     if (image_prefix)
         for (int m = 0; m < 3; ++m)
-            sol_exp_check(sol_image_alloc(&img[m], WIDTH, HEIGHT, 1), "image");
+            exp_check(sol_image_alloc(&img[m], WIDTH, HEIGHT, 1), "image");
     for (int j = 0; j < HEIGHT; ++j)
         for (int i = 0; i < WIDTH; ++i) {
             double x = -6.0 + 12.0 * (i + 0.5) / WIDTH, y = -4.0 + 8.0 * (j + 0.5) / HEIGHT;
             for (int m = 0; m < 3; ++m) {
                 double e;
-                sol_exp_check(sol_room_irradiance(scene, clip, (sol_light_mode)m, x, y, &e), "irradiance");
+                exp_check(sol_room_irradiance(scene, clip, (sol_light_mode)m, x, y, &e), "irradiance");
                 if (x < 0)
                     t.a[m] += e * PIXEL_AREA;
                 else
@@ -60,25 +60,25 @@ static room_totals measure(const sol_room_scene *scene, const sol_clip_box *clip
         for (int m = 0; m < 3; ++m) {
             char file[256];
             snprintf(file, sizeof file, "%s_%s.png", image_prefix, names[m]);
-            sol_exp_check(sol_png_write(sol_exp_path(exp, file), &img[m], 8), "writing %s", file);
+            exp_check(sol_png_write(exp_path(exp, file), &img[m], 8), "writing %s", file);
             sol_image_free(&img[m]);
         }
     }
     return t;
 }
 
-static void scenario_rows(sol_table *tab, const char *name, const room_totals *t)
+static void scenario_rows(exp_table *tab, const char *name, const room_totals *t)
 {
     static const char *modes[3] = {"unshadowed", "unshadowed + clip volume", "ray-traced shadows (reference)"};
     for (int m = 0; m < 3; ++m)
-        sol_table_row(tab, "%s|%s|%.4f|%.4f|%+.1f%%|%+.1f%%", name, modes[m], t->a[m], t->b[m],
+        exp_table_row(tab, "%s|%s|%.4f|%.4f|%+.1f%%|%+.1f%%", name, modes[m], t->a[m], t->b[m],
                       100.0 * (t->a[m] - t->a[2]) / t->a[2], 100.0 * (t->b[m] - t->b[2]) / t->a[2]);
 }
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d13_clip_volumes", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "d13_clip_volumes", argc, argv);
     if (exp.bench)
         return 0; /* no accuracy knob */
 
@@ -87,18 +87,18 @@ int main(int argc, char **argv)
     const sol_clip_box room_a = {-6.0, -4.0, 0.0, 4.0};
     sol_room_scene scene = {solid, 1, 3.0, {-1.0, 0.5, 2.0}, 5.0};
 
-    sol_table *tab = sol_table_new("Light on the floor of each room (irradiance x area); errors relative to room A's reference light",
+    exp_table *tab = exp_table_new("Light on the floor of each room (irradiance x area); errors relative to room A's reference light",
                                    "wall,mode,room A,room B,room A error,room B error (leak)");
     room_totals solid_t = measure(&scene, &room_a, &exp, "solid_wall");
     scenario_rows(tab, "solid", &solid_t);
     scene.walls = door;
     room_totals door_t = measure(&scene, &room_a, &exp, "door");
     scenario_rows(tab, "1 m door", &door_t);
-    sol_table_write(tab, &exp, "room_light");
+    exp_table_write(tab, &exp, "room_light");
 
     /* Leak against the light's distance to the wall (solid wall). */
     scene.walls = solid;
-    FILE *f = sol_exp_open(&exp, "leak_vs_distance.csv");
+    FILE *f = exp_open(&exp, "leak_vs_distance.csv");
     fprintf(f, "distance_m,leak_unshadowed,leak_clipped,rejected_share\n");
     const int steps = exp.quick ? 5 : 20;
     for (int k = 0; k < steps; ++k) {
@@ -108,7 +108,7 @@ int main(int argc, char **argv)
         fprintf(f, "%.3f,%.6f,%.6f,%.4f\n", d, t.b[0] / t.a[2], t.b[1] / t.a[2], t.rejected_by_clip / t.lit_pixels_unshadowed);
     }
     fclose(f);
-    sol_plot(&exp, "leak_vs_distance",
+    exp_plot(&exp, "leak_vs_distance",
              "set datafile separator comma\nset xlabel 'distance of the light to the wall (m), radius 5 m'\n"
              "set ylabel 'light in the next room / light in its own room'\nset y2label 'light-volume pixels rejected by the clip volume'\n"
              "set y2tics\nset ytics nomirror\nset key top right\nset grid\n"
@@ -120,9 +120,9 @@ int main(int argc, char **argv)
     snprintf(fig, sizeof fig, "leak into the next room: %.1f%% of the room's own light unshadowed, %.1f%% clipped",
              100.0 * solid_t.b[0] / solid_t.a[2], 100.0 * solid_t.b[1] / solid_t.a[2]);
     int ok = solid_t.b[0] > 0.0 && solid_t.b[1] == 0.0 && fabs(solid_t.a[1] - solid_t.a[0]) < 1e-12;
-    sol_claim(&exp, "D13", "clip volumes stop unshadowed deferred lights bleeding through walls", fig,
+    exp_claim(&exp, "D13", "clip volumes stop unshadowed deferred lights bleeding through walls", fig,
               "leak > 0 without, exactly 0 with the clip volume, room A unchanged",
-              ok ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+              ok ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "light 1 m from a 3 m wall, radius 5 m; the stencil rejects %.0f%% of the light volume's pixels; with a 1 m "
               "door the box-shaped clip volume also removes the light that really passes the door (%.1f%% of room A's)",
               100.0 * solid_t.rejected_by_clip / solid_t.lit_pixels_unshadowed, 100.0 * door_t.b[2] / door_t.a[2]);

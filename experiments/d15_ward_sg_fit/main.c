@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "sol_brdf.h"
-#include "sol_exp.h"
+#include "exp_harness.h"
 
 enum { K_MAX = 12, N_LEVELS = 4 };
 /* Error levels on the relative L2 error of the NDF. The primary one (2%) is the Weber fraction of
@@ -74,36 +74,36 @@ static void run_chain(void *vctx)
     t->status = sol_ward_sg_fit(t->ax, t->ay, t->k, &t->opts, lobes, t->err, NULL);
 }
 
-static void bench_tables(const sol_exp *exp)
+static void bench_tables(const exp_run *exp)
 {
     const double ax = 0.1, ay = 0.2;
-    sol_table *t = sol_table_new("Ward NDF (ax 0.1, ay 0.2): SG fit error and time vs lobe count K "
+    exp_table *t = exp_table_new("Ward NDF (ax 0.1, ay 0.2): SG fit error and time vs lobe count K "
                                  "(time = whole greedy chain 1..K)",
                                  "K,rel L2,max err,energy err,fit ms");
     static const int ks[] = {1, 2, 3, 4, 5, 7, 9, 12};
     int nk = exp->quick ? 4 : (int)(sizeof ks / sizeof ks[0]);
     for (int i = 0; i < nk; ++i) {
         timing_ctx c = {.ax = ax, .ay = ay, .k = ks[i]};
-        double ns = sol_time_per_item_ns(run_chain, &c, 1, 1);
-        sol_exp_check(c.status, "fitting K=%d", ks[i]);
+        double ns = exp_time_per_item_ns(run_chain, &c, 1, 1);
+        exp_check(c.status, "fitting K=%d", ks[i]);
         const sol_sg_fit_error *e = &c.err[ks[i] - 1];
-        sol_table_row(t, "%d|%.4f|%.4f|%+.4f|%.1f", ks[i], e->rel_l2, e->max_rel, e->energy, ns * 1e-6);
+        exp_table_row(t, "%d|%.4f|%.4f|%+.4f|%.1f", ks[i], e->rel_l2, e->max_rel, e->energy, ns * 1e-6);
     }
-    sol_table_write(t, exp, "time_vs_k");
+    exp_table_write(t, exp, "time_vs_k");
 
     /* Fit nodes (radial x azimuthal) vs the error on the fixed evaluation quadrature, K = 7. */
-    sol_table *q = sol_table_new("Fit node count vs error and time, K = 7, same reference cell",
+    exp_table *q = exp_table_new("Fit node count vs error and time, K = 7, same reference cell",
                                  "radial,azimuthal,nodes,rel L2,max err,fit ms");
     static const int nodes[][2] = {{6, 8}, {10, 12}, {14, 16}, {20, 24}, {28, 36}};
     int nn = exp->quick ? 2 : 5;
     for (int i = 0; i < nn; ++i) {
         timing_ctx c = {.ax = ax, .ay = ay, .k = 7, .opts = {.radial_samples = nodes[i][0], .angular_samples = nodes[i][1]}};
-        double ns = sol_time_per_item_ns(run_chain, &c, 1, 1);
-        sol_exp_check(c.status, "fitting with %dx%d nodes", nodes[i][0], nodes[i][1]);
-        sol_table_row(q, "%d|%d|%d|%.4f|%.4f|%.1f", nodes[i][0], nodes[i][1], nodes[i][0] * nodes[i][1],
+        double ns = exp_time_per_item_ns(run_chain, &c, 1, 1);
+        exp_check(c.status, "fitting with %dx%d nodes", nodes[i][0], nodes[i][1]);
+        exp_table_row(q, "%d|%d|%d|%.4f|%.4f|%.1f", nodes[i][0], nodes[i][1], nodes[i][0] * nodes[i][1],
                       c.err[6].rel_l2, c.err[6].max_rel, ns * 1e-6);
     }
-    sol_table_write(q, exp, "nodes_vs_error");
+    exp_table_write(q, exp, "nodes_vs_error");
 }
 
 /* Roughness grid: log-spaced from 0.04 (a sharp metal) to 0.8 (past 0.71 the Ward NDF's maximum
@@ -117,7 +117,7 @@ static cell *fit_grid(int n_alpha, int *n_cells_out)
     int n_cells = n_alpha * (n_alpha + 1) / 2;
     cell *cells = calloc((size_t)n_cells, sizeof *cells);
     if (!cells)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (int i = 0, c = 0; i < n_alpha; ++i)
         for (int j = i; j < n_alpha; ++j, ++c)
             cells[c].ax = alphas[i], cells[c].ay = alphas[j];
@@ -129,39 +129,39 @@ static cell *fit_grid(int n_alpha, int *n_cells_out)
 #pragma omp critical(progress)
         {
             ++done;
-            /* sol_progress must be called from one thread: the critical section serialises it. */
-            sol_progress("fitting cells", (size_t)done, (size_t)n_cells);
+            /* exp_progress must be called from one thread: the critical section serialises it. */
+            exp_progress("fitting cells", (size_t)done, (size_t)n_cells);
         }
     }
-    sol_progress_done("fitting cells");
+    exp_progress_done("fitting cells");
     for (int c = 0; c < n_cells; ++c)
-        sol_exp_check(cells[c].status, "fitting cell (%.3f, %.3f)", cells[c].ax, cells[c].ay);
+        exp_check(cells[c].status, "fitting cell (%.3f, %.3f)", cells[c].ax, cells[c].ay);
     *n_cells_out = n_cells;
     return cells;
 }
 
 /* Per cell: errors at a few K, smallest K per level, the ASG. */
-static void grid_table(const sol_exp *exp, const cell *cells, int n_cells)
+static void grid_table(const exp_run *exp, const cell *cells, int n_cells)
 {
-    sol_table *g = sol_table_new("Ward NDF to K isotropic SGs: relative L2 error per cell and the smallest K "
+    exp_table *g = exp_table_new("Ward NDF to K isotropic SGs: relative L2 error per cell and the smallest K "
                                  "reaching each level (13 = not reached with 12)",
                                  "ax,ay,ay/ax,K=1,K=3,K=5,K=7,K=12,K@1%,K@2%,K@5%,K@10%,1 ASG");
     for (int c = 0; c < n_cells; ++c) {
         const cell *x = &cells[c];
-        sol_table_row(g, "%.3f|%.3f|%.1f|%.4f|%.4f|%.4f|%.4f|%.4f|%d|%d|%d|%d|%.4f", x->ax, x->ay, x->ay / x->ax,
+        exp_table_row(g, "%.3f|%.3f|%.1f|%.4f|%.4f|%.4f|%.4f|%.4f|%d|%d|%d|%d|%.4f", x->ax, x->ay, x->ay / x->ax,
                       x->err[0].rel_l2, x->err[2].rel_l2, x->err[4].rel_l2, x->err[6].rel_l2, x->err[11].rel_l2,
                       smallest_k(x, LEVELS[0]), smallest_k(x, LEVELS[1]), smallest_k(x, LEVELS[2]),
                       smallest_k(x, LEVELS[3]), x->asg.rel_l2);
     }
-    sol_table_write(g, exp, "grid");
+    exp_table_write(g, exp, "grid");
 }
 
 /* Share of the full (ax, ay) grid where K <= 7 reaches each level (into share[]): off-diagonal
  * cells count twice (both orientations). */
-static void share_table(const sol_exp *exp, const cell *cells, int n_cells, int n_alpha, double share[N_LEVELS])
+static void share_table(const exp_run *exp, const cell *cells, int n_cells, int n_alpha, double share[N_LEVELS])
 {
     int total = n_alpha * n_alpha;
-    sol_table *s = sol_table_new("Share of the (ax, ay) grid where K <= 7 isotropic SGs reach the error level",
+    exp_table *s = exp_table_new("Share of the (ax, ay) grid where K <= 7 isotropic SGs reach the error level",
                                  "rel L2 level,share K<=7,median K,share of isotropic cells K<=7");
     for (int l = 0; l < N_LEVELS; ++l) {
         int ok = 0, iso_ok = 0;
@@ -175,17 +175,17 @@ static void share_table(const sol_exp *exp, const cell *cells, int n_cells, int 
                 ks[nk++] = k;
         }
         share[l] = (double)ok / total;
-        sol_table_row(s, "%.0f%%|%.1f%%|%.1f|%.0f%%", 100 * LEVELS[l], 100 * share[l], median(ks, nk),
+        exp_table_row(s, "%.0f%%|%.1f%%|%.1f|%.0f%%", 100 * LEVELS[l], 100 * share[l], median(ks, nk),
                       100.0 * iso_ok / n_alpha);
         free(ks);
     }
-    sol_table_write(s, exp, "share");
+    exp_table_write(s, exp, "share");
 }
 
 /* Medians over the grid per K, and the mean Ceres time per cell. */
-static void error_vs_k_table(const sol_exp *exp, const cell *cells, int n_cells)
+static void error_vs_k_table(const exp_run *exp, const cell *cells, int n_cells)
 {
-    sol_table *m = sol_table_new("Median over the grid per K: errors and Ceres solve time (all start candidates)",
+    exp_table *m = exp_table_new("Median over the grid per K: errors and Ceres solve time (all start candidates)",
                                  "K,median rel L2,median max err,median |energy err|,mean solve ms");
     for (int k = 0; k < K_MAX; ++k) {
         double *a = malloc(3 * (size_t)n_cells * sizeof *a), secs = 0.0;
@@ -195,17 +195,17 @@ static void error_vs_k_table(const sol_exp *exp, const cell *cells, int n_cells)
             a[2 * n_cells + c] = fabs(cells[c].err[k].energy);
             secs += cells[c].seconds[k];
         }
-        sol_table_row(m, "%d|%.4f|%.4f|%.4f|%.2f", k + 1, median(a, n_cells), median(a + n_cells, n_cells),
+        exp_table_row(m, "%d|%.4f|%.4f|%.4f|%.2f", k + 1, median(a, n_cells), median(a + n_cells, n_cells),
                       median(a + 2 * n_cells, n_cells), 1e3 * secs / n_cells);
         free(a);
     }
-    sol_table_write(m, exp, "error_vs_k");
+    exp_table_write(m, exp, "error_vs_k");
 }
 
 /* Error vs K curves for a few cells (corners and middle of the grid), and the time vs K plot. */
-static void curves_plots(const sol_exp *exp, const cell *cells, int n_cells, int n_alpha)
+static void curves_plots(const exp_run *exp, const cell *cells, int n_cells, int n_alpha)
 {
-    FILE *f = sol_exp_open(exp, "curves.dat");
+    FILE *f = exp_open(exp, "curves.dat");
     fprintf(f, "# K then rel L2 for cells:");
     int picks[4] = {0, n_alpha - 1, n_cells / 2, n_cells - 1};
     for (int p = 0; p < 4; ++p)
@@ -221,13 +221,13 @@ static void curves_plots(const sol_exp *exp, const cell *cells, int n_cells, int
     char titles[4][64];
     for (int p = 0; p < 4; ++p)
         snprintf(titles[p], sizeof titles[p], "ax %.2f, ay %.2f", cells[picks[p]].ax, cells[picks[p]].ay);
-    sol_plot(exp, "error_vs_k",
+    exp_plot(exp, "error_vs_k",
              "set logscale y; set xlabel 'SG lobes K'; set ylabel 'relative L2 error of the NDF';"
              "set key bottom left; set grid;"
              "plot 'curves.dat' u 1:2 w lp t '%s', '' u 1:3 w lp t '%s', '' u 1:4 w lp t '%s', '' u 1:5 w lp t '%s',"
              " 0.02 w l dt 2 lc rgb 'black' t '2%% level'",
              titles[0], titles[1], titles[2], titles[3]);
-    sol_plot(exp, "time_vs_k",
+    exp_plot(exp, "time_vs_k",
              "set datafile separator comma; set xlabel 'SG lobes K'; set ylabel 'ms';"
              "set logscale y; set grid; set key top left;"
              "plot 'error_vs_k.csv' u 1:5 skip 1 w lp t 'mean Ceres time per cell for the K-th fit',"
@@ -287,7 +287,7 @@ static void note_figures(const cell *cells, int n_cells, int *iso_k_min, int *is
 /* Verdict: the claim holds at the primary level if K <= 7 covers at least 80% of the grid ("vast
  * majority"); otherwise the grid table shows which range of roughness and anisotropy gives the
  * talk's figure. */
-static void claim_d15(const sol_exp *exp, const cell *cells, int n_cells, int n_alpha, const double share[N_LEVELS])
+static void claim_d15(const exp_run *exp, const cell *cells, int n_cells, int n_alpha, const double share[N_LEVELS])
 {
     char sol_fig[256];
     snprintf(sol_fig, sizeof sol_fig,
@@ -301,8 +301,8 @@ static void claim_d15(const sol_exp *exp, const cell *cells, int n_cells, int n_
     char over[64] = "no ratio of the grid needs";
     if (ratio_over > 0.0)
         snprintf(over, sizeof over, "ratios from %.1f need", ratio_over);
-    sol_verdict v = share[PRIMARY_LEVEL] >= 0.8 ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED;
-    sol_claim(exp, "D15", "~7 lobes in the vast majority of cases", sol_fig, "share >= 80% at rel. L2 <= 2%", v,
+    exp_verdict v = share[PRIMARY_LEVEL] >= 0.8 ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED;
+    exp_claim(exp, "D15", "~7 lobes in the vast majority of cases", sol_fig, "share >= 80% at rel. L2 <= 2%", v,
               "alpha grid 0.04..0.8 log-spaced (%dx%d): the lobe count is set by the anisotropy ratio (isotropic cells "
               "up to alpha 0.35 need %d-%d lobes, %s more than %d) and by the ring-shaped NDF past alpha 0.5; one ASG "
               "fits the anisotropic cells (grid table)",
@@ -311,8 +311,8 @@ static void claim_d15(const sol_exp *exp, const cell *cells, int n_cells, int n_
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d15_ward_sg_fit", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "d15_ward_sg_fit", argc, argv);
     bench_tables(&exp);
     if (exp.bench)
         return 0;

@@ -5,7 +5,7 @@
  *  2. The fetched deviation against the talk's d = sum |s_i - s_0| on random and rendered images.
  *  3. Edge error of 1-sample-per-pixel renders of flat-shaded triangles before and after the
  *     filter, against a 16x16-supersampled reference; threshold sweep; error against time. */
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_screen.h"
 
 #include <math.h>
@@ -34,7 +34,7 @@ static scene make_scene(int count, int size)
 {
     scene s = {malloc(sizeof(triangle) * (size_t)count), count};
     if (!s.tris)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (int t = 0; t < count; ++t) {
         triangle *tr = &s.tris[t];
         double cx = rng_uniform(0, size), cy = rng_uniform(0, size), r = rng_uniform(0.08, 0.3) * size;
@@ -122,12 +122,12 @@ static const char *taps_name(sol_postaa_taps t)
 }
 
 /* Part 1: impulse responses. Returns the largest |kernel - intended| of the pinwheel placement. */
-static double kernel_table(const sol_exp *exp)
+static double kernel_table(const exp_run *exp)
 {
-    sol_table *t = sol_table_new("Effective 3x3 kernel of the neighbour mean (row-major, x right, y down)",
+    exp_table *t = exp_table_new("Effective 3x3 kernel of the neighbour mean (row-major, x right, y down)",
                                  "fetches,k00,k10,k20,k01,k11,k21,k02,k12,k22,max |k - 8-neighbour mean|");
     sol_image img;
-    sol_exp_check(sol_image_alloc(&img, 5, 5, 1), "allocating");
+    exp_check(sol_image_alloc(&img, 5, 5, 1), "allocating");
     double pinwheel_err = 0.0;
     for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
         double k[9], worst = 0.0;
@@ -135,17 +135,17 @@ static double kernel_table(const sol_exp *exp)
             memset(img.data, 0, 25 * sizeof(float));
             img.data[(1 + i / 3) * 5 + 1 + i % 3] = 1.0f;
             float mean, dev;
-            sol_exp_check(sol_postaa_neighbourhood(&img, 2, 2, (sol_postaa_taps)taps, &mean, &dev), "kernel");
+            exp_check(sol_postaa_neighbourhood(&img, 2, 2, (sol_postaa_taps)taps, &mean, &dev), "kernel");
             k[i] = mean;
             worst = fmax(worst, fabs(k[i] - (i == 4 ? 0.0 : 0.125)));
         }
         if (taps == SOL_POSTAA_PINWHEEL4)
             pinwheel_err = worst;
-        sol_table_row(t, "%s|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f", taps_name((sol_postaa_taps)taps), k[0],
+        exp_table_row(t, "%s|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f", taps_name((sol_postaa_taps)taps), k[0],
                       k[1], k[2], k[3], k[4], k[5], k[6], k[7], k[8], worst);
     }
     sol_image_free(&img);
-    sol_table_write(t, exp, "kernels");
+    exp_table_write(t, exp, "kernels");
     return pinwheel_err;
 }
 
@@ -162,8 +162,8 @@ static deviation_stats deviation_compare(const sol_image *img, sol_postaa_taps t
     for (int y = 0; y < img->height; ++y)
         for (int x = 0; x < img->width; ++x) {
             float m4[4], m8[4], d4, d8;
-            sol_exp_check(sol_postaa_neighbourhood(img, x, y, taps, m4, &d4), "neighbourhood");
-            sol_exp_check(sol_postaa_neighbourhood(img, x, y, SOL_POSTAA_DIRECT8, m8, &d8), "neighbourhood");
+            exp_check(sol_postaa_neighbourhood(img, x, y, taps, m4, &d4), "neighbourhood");
+            exp_check(sol_postaa_neighbourhood(img, x, y, SOL_POSTAA_DIRECT8, m8, &d8), "neighbourhood");
             for (int c = 0; c < img->channels; ++c)
                 st.max_mean_err = fmax(st.max_mean_err, fabs((double)m4[c] - m8[c]));
             if (d8 <= 1e-6f)
@@ -186,7 +186,7 @@ static void run_filter(void *ctx)
 {
     filter_job *job = ctx;
     sol_image out;
-    sol_exp_check(sol_postaa_filter(job->in, &job->opt, &out), "filtering");
+    exp_check(sol_postaa_filter(job->in, &job->opt, &out), "filtering");
     sol_image_free(&out);
 }
 
@@ -203,11 +203,11 @@ static void run_render(void *ctx)
 }
 
 /* Side-by-side crop (aliased | filtered | reference), enlarged 3x with nearest neighbour. */
-static void save_crops(const sol_exp *exp, const sol_image *a, const sol_image *f, const sol_image *r)
+static void save_crops(const exp_run *exp, const sol_image *a, const sol_image *f, const sol_image *r)
 {
     const int crop = 64, zoom = 3, x0 = a->width / 2 - crop / 2, y0 = a->height / 2 - crop / 2;
     sol_image out;
-    sol_exp_check(sol_image_alloc(&out, 3 * crop * zoom, crop * zoom, 3), "allocating");
+    exp_check(sol_image_alloc(&out, 3 * crop * zoom, crop * zoom, 3), "allocating");
     const sol_image *src[3] = {a, f, r};
     for (int y = 0; y < out.height; ++y)
         for (int x = 0; x < out.width; ++x) {
@@ -216,7 +216,7 @@ static void save_crops(const sol_exp *exp, const sol_image *a, const sol_image *
         }
     for (size_t i = 0; i < (size_t)out.width * out.height * 3; ++i)
         out.data[i] = fminf(1.0f, fmaxf(0.0f, out.data[i]));
-    sol_exp_check(sol_png_write(sol_exp_path(exp, "crops.png"), &out, 8), "writing crops.png");
+    exp_check(sol_png_write(exp_path(exp, "crops.png"), &out, 8), "writing crops.png");
     sol_image_free(&out);
 }
 
@@ -229,14 +229,14 @@ typedef struct test_images {
     double rms_alias_all, rms_alias_edge; /* error of the aliased render: the baseline */
 } test_images;
 
-static void images_init(test_images *im, const sol_exp *exp)
+static void images_init(test_images *im, const exp_run *exp)
 {
     const int size = exp->quick ? 128 : 256, ref_n = exp->quick ? 8 : 16;
     im->size = size;
     im->s = make_scene(exp->quick ? 12 : 24, size);
-    sol_exp_check(sol_image_alloc(&im->noise, size, size, 3), "allocating");
-    sol_exp_check(sol_image_alloc(&im->aliased, size, size, 3), "allocating");
-    sol_exp_check(sol_image_alloc(&im->reference, size, size, 3), "allocating");
+    exp_check(sol_image_alloc(&im->noise, size, size, 3), "allocating");
+    exp_check(sol_image_alloc(&im->aliased, size, size, 3), "allocating");
+    exp_check(sol_image_alloc(&im->reference, size, size, 3), "allocating");
     for (size_t i = 0; i < (size_t)size * size * 3; ++i)
         im->noise.data[i] = (float)rng_uniform(0, 1);
     render(&im->s, 1, &im->aliased);
@@ -254,10 +254,10 @@ static void images_free(test_images *im)
 
 /* Part 2: fetched neighbourhood vs the 8 point fetches on noise and on the render. Returns the
  * pinwheel's statistics on the render (the D17 deviation claim). */
-static deviation_stats deviation_table(const sol_exp *exp, const test_images *im)
+static deviation_stats deviation_table(const exp_run *exp, const test_images *im)
 {
     deviation_stats edge_pin = {0};
-    sol_table *t = sol_table_new("Fetched neighbourhood against the 8 point fetches",
+    exp_table *t = exp_table_new("Fetched neighbourhood against the 8 point fetches",
                                  "image,fetches,max |mean - 8-neighbour mean|,mean deviation ratio,min ratio,pixels");
     const sol_image *imgs[2] = {&im->noise, &im->aliased};
     const char *names[2] = {"uniform noise", "aliased triangles (d>0 pixels)"};
@@ -266,10 +266,10 @@ static deviation_stats deviation_table(const sol_exp *exp, const test_images *im
             deviation_stats st = deviation_compare(imgs[i], (sol_postaa_taps)taps);
             if (i == 1 && taps == SOL_POSTAA_PINWHEEL4)
                 edge_pin = st;
-            sol_table_row(t, "%s|%s|%.2e|%.4f|%.4f|%ld", names[i], taps_name((sol_postaa_taps)taps), st.max_mean_err,
+            exp_table_row(t, "%s|%s|%.2e|%.4f|%.4f|%ld", names[i], taps_name((sol_postaa_taps)taps), st.max_mean_err,
                           st.mean_ratio, st.min_ratio, st.pixels);
         }
-    sol_table_write(t, exp, "deviation");
+    exp_table_write(t, exp, "deviation");
     return edge_pin;
 }
 
@@ -281,16 +281,16 @@ typedef struct filter_results {
 } filter_results;
 
 /* Part 3a: threshold sweep (the filter's only knob) for each placement. */
-static void threshold_sweep(const sol_exp *exp, const test_images *im, filter_results *r)
+static void threshold_sweep(const exp_run *exp, const test_images *im, filter_results *r)
 {
-    FILE *csv = sol_exp_open(exp, "threshold_curves.csv");
+    FILE *csv = exp_open(exp, "threshold_curves.csv");
     fputs("taps,threshold,rms_all,rms_edge\n", csv);
     for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
         for (int i = 0; i <= 16; ++i) {
             double thr = 0.02 * pow(2.0, i * 0.5); /* 0.02 .. 5.12 */
             sol_postaa_options opt = {(sol_postaa_taps)taps, thr};
             sol_image out;
-            sol_exp_check(sol_postaa_filter(&im->aliased, &opt, &out), "filtering");
+            exp_check(sol_postaa_filter(&im->aliased, &opt, &out), "filtering");
             double a, e;
             errors(&out, &im->reference, &im->aliased, &a, &e);
             fprintf(csv, "%d,%.5f,%.6f,%.6f\n", taps, thr, a, e);
@@ -310,39 +310,39 @@ static void threshold_sweep(const sol_exp *exp, const test_images *im, filter_re
 }
 
 /* Part 3b, filters: error and time per pixel of each placement at the default threshold. */
-static void filter_cost_rows(const sol_exp *exp, const test_images *im, int repeats, sol_table *cost, FILE *csv,
+static void filter_cost_rows(const exp_run *exp, const test_images *im, int repeats, exp_table *cost, FILE *csv,
                              filter_results *r)
 {
     for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
         filter_job job = {&im->aliased, {(sol_postaa_taps)taps, 0.0}};
-        double ns = sol_time_per_item_ns(run_filter, &job, (size_t)im->size * im->size, repeats);
+        double ns = exp_time_per_item_ns(run_filter, &job, (size_t)im->size * im->size, repeats);
         sol_image out;
-        sol_exp_check(sol_postaa_filter(&im->aliased, &job.opt, &out), "filtering");
+        exp_check(sol_postaa_filter(&im->aliased, &job.opt, &out), "filtering");
         errors(&out, &im->reference, &im->aliased, &r->default_all[taps], &r->default_edge[taps]);
         if (taps == SOL_POSTAA_PINWHEEL4 && !exp->bench)
             save_crops(exp, &im->aliased, &out, &im->reference);
         sol_image_free(&out);
-        sol_table_row(cost, "filter, %s|%.5f|%.5f|%.1f|%.2f", taps_name((sol_postaa_taps)taps), r->default_all[taps],
+        exp_table_row(cost, "filter, %s|%.5f|%.5f|%.1f|%.2f", taps_name((sol_postaa_taps)taps), r->default_all[taps],
                       r->default_edge[taps], 100.0 * r->default_edge[taps] / im->rms_alias_edge, ns);
         fprintf(csv, "\"%s\",%.4f,%.6f\n", taps_name((sol_postaa_taps)taps), ns, r->default_edge[taps]);
     }
 }
 
 /* Part 3b, supersampling for scale: its cost is the render time beyond the 1-sample render. */
-static void supersampling_cost_rows(const test_images *im, int repeats, sol_table *cost, FILE *csv)
+static void supersampling_cost_rows(const test_images *im, int repeats, exp_table *cost, FILE *csv)
 {
     const size_t pixels = (size_t)im->size * im->size;
     for (int n = 2; n <= 4; n += 2) {
         sol_image ss;
-        sol_exp_check(sol_image_alloc(&ss, im->size, im->size, 3), "allocating");
+        exp_check(sol_image_alloc(&ss, im->size, im->size, 3), "allocating");
         render_job job = {&im->s, n, &ss};
-        double ns = sol_time_per_item_ns(run_render, &job, pixels, repeats);
+        double ns = exp_time_per_item_ns(run_render, &job, pixels, repeats);
         render_job one = {&im->s, 1, &ss};
-        double ns1 = sol_time_per_item_ns(run_render, &one, pixels, repeats);
+        double ns1 = exp_time_per_item_ns(run_render, &one, pixels, repeats);
         render(&im->s, n, &ss);
         double a, e;
         errors(&ss, &im->reference, &im->aliased, &a, &e);
-        sol_table_row(cost, "supersampling %dx%d (extra render cost)|%.5f|%.5f|%.1f|%.2f", n, n, a, e,
+        exp_table_row(cost, "supersampling %dx%d (extra render cost)|%.5f|%.5f|%.1f|%.2f", n, n, a, e,
                       100.0 * e / im->rms_alias_edge, ns - ns1);
         fprintf(csv, "\"supersampling %dx%d\",%.4f,%.6f\n", n, n, ns - ns1, e);
         sol_image_free(&ss);
@@ -350,23 +350,23 @@ static void supersampling_cost_rows(const test_images *im, int repeats, sol_tabl
 }
 
 /* Part 3b: error and time per pixel of each method (the table --bench prints). */
-static void edge_error_table(const sol_exp *exp, const test_images *im, filter_results *r)
+static void edge_error_table(const exp_run *exp, const test_images *im, filter_results *r)
 {
     const int repeats = exp->quick ? 3 : 7;
-    sol_table *cost = sol_table_new("Edge anti-aliasing: error against a 16x16 supersampled reference, and cost",
+    exp_table *cost = exp_table_new("Edge anti-aliasing: error against a 16x16 supersampled reference, and cost",
                                     "method,RMS error (all),RMS error (edge pixels),edge error vs aliased %,ns per pixel");
-    FILE *csv = sol_exp_open(exp, "error_vs_time.csv");
+    FILE *csv = exp_open(exp, "error_vs_time.csv");
     fputs("method,ns,rms_edge\n", csv);
-    sol_table_row(cost, "aliased (1 sample)|%.5f|%.5f|100.0|-", im->rms_alias_all, im->rms_alias_edge);
+    exp_table_row(cost, "aliased (1 sample)|%.5f|%.5f|100.0|-", im->rms_alias_all, im->rms_alias_edge);
     filter_cost_rows(exp, im, repeats, cost, csv, r);
     supersampling_cost_rows(im, repeats, cost, csv);
     fclose(csv);
-    sol_table_write(cost, exp, "edge_error");
+    exp_table_write(cost, exp, "edge_error");
 }
 
-static void plot_results(const sol_exp *exp, const test_images *im)
+static void plot_results(const exp_run *exp, const test_images *im)
 {
-    sol_plot(exp, "threshold_sweep",
+    exp_plot(exp, "threshold_sweep",
              "set datafile separator comma\nset logscale x\nset xlabel 'threshold (deviation of full blur)'\n"
              "set ylabel 'RMS error'\nset grid\nset key right center\n"
              "plot 'threshold_curves.csv' index 0 using 2:4 with linespoints lw 2 title 'pinwheel 4 bilinear', "
@@ -376,27 +376,27 @@ static void plot_results(const sol_exp *exp, const test_images *im)
              "'' index 0 using 2:3 with linespoints dt 3 title 'pinwheel, all pixels', "
              "%.6f with lines dt 3 lc rgb 'black' title 'aliased, all pixels'",
              im->rms_alias_edge, im->rms_alias_all);
-    sol_plot(exp, "error_vs_time",
+    exp_plot(exp, "error_vs_time",
              "set datafile separator comma\nset xlabel 'ns per pixel (median)'\nset ylabel 'RMS error on edge pixels'\n"
              "set grid\nset key off\nset logscale x\nset offsets graph 0.1, graph 0.3, graph 0.1, graph 0.1\n"
              "plot 'error_vs_time.csv' using 2:3 with points pt 7 ps 1.5, '' using 2:3:1 with labels left rotate by 20 offset 1,0.5");
 }
 
 /* D17 rows: the pinwheel's kernel, the fetched deviation against the talk's d, and the edge error. */
-static void write_claims(const sol_exp *exp, const test_images *im, double pinwheel_kernel_err,
+static void write_claims(const exp_run *exp, const test_images *im, double pinwheel_kernel_err,
                          deviation_stats edge_pin, const filter_results *r)
 {
     char fig[256];
     snprintf(fig, sizeof fig, "pinwheel taps (+1,+1/2) and rotations: kernel = 8-neighbour mean, max weight error %.1e",
              pinwheel_kernel_err);
-    sol_claim(exp, "D17", "4 bilinear taps cover all 8 neighbours", fig, "weights equal to 1/8 to 1e-6",
-              pinwheel_kernel_err < 1e-6 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "D17", "4 bilinear taps cover all 8 neighbours", fig, "weights equal to 1/8 to 1e-6",
+              pinwheel_kernel_err < 1e-6 ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the talk gives no tap positions; the diagonal placement (+-1/2,+-1/2) also reaches all 8 but applies the "
               "tent [1 2 1;2 4 2;1 2 1]/16 including the centre (kernels table)");
     snprintf(fig, sizeof fig, "fetched deviation / d: mean %.3f, min %.3f on edge pixels", edge_pin.mean_ratio,
              edge_pin.min_ratio);
-    sol_claim(exp, "D17", "d = sum |s_i - s_0| over the 8 neighbours, from the 4 taps", fig, "ratio 1",
-              SOL_DIFFERS_EXPLAINED,
+    exp_claim(exp, "D17", "d = sum |s_i - s_0| over the 8 neighbours, from the 4 taps", fig, "ratio 1",
+              EXP_DIFFERS_EXPLAINED,
               "a bilinear tap returns the average of two neighbours, so it sees |(s_a+s_b)/2 - s_0|: opposite differences "
               "cancel and the fetched deviation is a lower bound of d (equal when each pair differs with one sign)");
     snprintf(fig, sizeof fig,
@@ -404,16 +404,16 @@ static void write_claims(const sol_exp *exp, const test_images *im, double pinwh
              "%.4f at %.2f",
              im->rms_alias_edge, r->default_edge[0], 100.0 * r->default_edge[0] / im->rms_alias_edge, r->best_edge[0],
              r->best_thr[0], im->rms_alias_all, r->default_all[0], r->best_all, r->best_all_thr);
-    sol_claim(exp, "D17", "blur by deviation smooths edges (qualitative)", fig, "edge error reduced",
-              r->default_edge[0] < im->rms_alias_edge ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "D17", "blur by deviation smooths edges (qualitative)", fig, "edge error reduced",
+              r->default_edge[0] < im->rms_alias_edge ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "1-sample renders of shaded triangles vs 16x16 supersampling; the blur also spreads error onto the correct "
               "pixels beside an edge, so the all-pixel gain is smaller; 2x2 supersampling does better (edge_error table)");
 }
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d17_postaa", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "d17_postaa", argc, argv);
     /* --bench runs only the timed edge-error table (part 3b). */
     double pinwheel_kernel_err = exp.bench ? 0.0 : kernel_table(&exp);
     test_images im;

@@ -6,7 +6,7 @@
  * a view-dependent reflection on every face (the shading change reprojection cannot see). Every
  * frame is compared with its own 8x8-supersampled reference. Methods: the aliased centre sample,
  * the D17 post-process filter, and temporal accumulation with/without jitter and depth test. */
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_screen.h"
 
 #include <math.h>
@@ -55,7 +55,7 @@ static void shade(const sol_camera *cam, const frame_scene *s, double sx, double
 {
     static const double colors[N_BOXES][3] = {
         {0.55, 0.6, 0.7}, {0.8, 0.5, 0.3}, {0.3, 0.7, 0.4}, {0.9, 0.8, 0.3}, {0.7, 0.3, 0.8}};
-    sol_exp_check(sol_boxes_trace(cam, s->view, N_BOXES, sx, sy, depth, id), "tracing");
+    exp_check(sol_boxes_trace(cam, s->view, N_BOXES, sx, sy, depth, id), "tracing");
     if (*id < 0) {
         rgb[0] = rgb[1] = rgb[2] = 0.0;
         return;
@@ -125,7 +125,7 @@ typedef struct run_config {
     const sol_camera *cam;
     int frames, ref_n;
     double pan, specular;
-    const sol_exp *out; /* NULL: no files */
+    const exp_run *out; /* NULL: no files */
 } run_config;
 
 /* Per-frame images of one run, and the TAA histories (ping-pong pairs, in method order from M_TAA). */
@@ -147,10 +147,10 @@ static void buffers_alloc(sequence_buffers *b, const sol_camera *cam)
     b->ids = malloc(n * sizeof(long));
     b->moving_hist = calloc(n, sizeof(long));
     if (!b->ref || !b->center || !b->jittered || !b->jdepth || !b->cdepth || !b->ids || !b->moving_hist)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (int r = 0; r < N_TAA; ++r)
         for (int k = 0; k < 2; ++k)
-            sol_exp_check(sol_history_alloc(&b->hist[r][k], cam->width, cam->height, 3), "history");
+            exp_check(sol_history_alloc(&b->hist[r][k], cam->width, cam->height, 3), "history");
 }
 
 static void buffers_free(sequence_buffers *b)
@@ -191,7 +191,7 @@ static void accumulate_taa(const sol_camera *cam, sequence_buffers *b, int f, co
     for (int r = 0; r < N_TAA; ++r) {
         const int unjittered = M_TAA + r == M_TAA_NO_JITTER;
         const float *cur = unjittered ? b->center : b->jittered, *dep = unjittered ? b->cdepth : b->jdepth;
-        sol_exp_check(sol_temporal_accumulate(cam, dep, cur, motion, &taa_opts[r], &b->hist[r][f % 2], &b->hist[r][(f + 1) % 2]),
+        exp_check(sol_temporal_accumulate(cam, dep, cur, motion, &taa_opts[r], &b->hist[r][f % 2], &b->hist[r][(f + 1) % 2]),
                       "accumulating");
         outputs[M_TAA + r] = b->hist[r][(f + 1) % 2].values;
     }
@@ -222,9 +222,9 @@ static void frame_errors(sequence_buffers *b, size_t n, int f, const float *outp
     }
 }
 
-static FILE *open_frame_csv(const sol_exp *out)
+static FILE *open_frame_csv(const exp_run *out)
 {
-    FILE *csv = sol_exp_open(out, "error_per_frame.csv");
+    FILE *csv = exp_open(out, "error_per_frame.csv");
     fputs("frame,aliased,postaa,taa,taa_pixel_test,taa_no_depth_test,taa_no_jitter,ghost_taa,ghost_pixel_test,"
           "ghost_no_depth_test\n", csv);
     return csv;
@@ -247,10 +247,10 @@ static void write_frame_csv_row(FILE *csv, int f, size_t n, double frame_sum[N_M
 }
 
 /* Side by side: aliased | TAA | TAA without depth test. */
-static void save_last_frame(const sol_exp *out, const sol_camera *cam, const float *outputs[N_METHODS])
+static void save_last_frame(const exp_run *out, const sol_camera *cam, const float *outputs[N_METHODS])
 {
     sol_image img;
-    sol_exp_check(sol_image_alloc(&img, 3 * cam->width, cam->height, 3), "allocating");
+    exp_check(sol_image_alloc(&img, 3 * cam->width, cam->height, 3), "allocating");
     const float *panels[3] = {outputs[M_ALIASED], outputs[M_TAA], outputs[M_TAA_NO_DEPTH_TEST]};
     for (int y = 0; y < cam->height; ++y)
         for (int x = 0; x < 3 * cam->width; ++x)
@@ -258,7 +258,7 @@ static void save_last_frame(const sol_exp *out, const sol_camera *cam, const flo
                 size_t i = 3 * ((size_t)y * (size_t)cam->width + (size_t)(x % cam->width)) + (size_t)c;
                 sol_image_pixel(&img, x, y)[c] = fminf(1.0f, fmaxf(0.0f, panels[x / cam->width][i]));
             }
-    sol_exp_check(sol_png_write(sol_exp_path(out, "last_frame.png"), &img, 8), "writing last_frame.png");
+    exp_check(sol_png_write(exp_path(out, "last_frame.png"), &img, 8), "writing last_frame.png");
     sol_image_free(&img);
 }
 
@@ -282,7 +282,7 @@ static void run_sequence(const run_config *rc, double rms[N_METHODS][N_REGIONS])
                 motion[k] = s.eye[k] - prev_s.eye[k];
         render_frame(rc, &s, f, &b);
         sol_image aliased_img = {cam->width, cam->height, 3, b.center}, post;
-        sol_exp_check(sol_postaa_filter(&aliased_img, NULL, &post), "post-process AA");
+        exp_check(sol_postaa_filter(&aliased_img, NULL, &post), "post-process AA");
         const float *outputs[N_METHODS] = {b.center, post.data};
         accumulate_taa(cam, &b, f, motion, outputs);
         double frame_sum[N_METHODS][N_REGIONS] = {{0}};
@@ -301,9 +301,9 @@ static void run_sequence(const run_config *rc, double rms[N_METHODS][N_REGIONS])
             save_last_frame(rc->out, cam, outputs);
         sol_image_free(&post);
         prev_s = s;
-        sol_progress("d18 frames", (size_t)f + 1, (size_t)frames);
+        exp_progress("d18 frames", (size_t)f + 1, (size_t)frames);
     }
-    sol_progress_done("d18 frames");
+    exp_progress_done("d18 frames");
     if (csv)
         fclose(csv);
     for (int m = 0; m < N_METHODS; ++m)
@@ -312,17 +312,17 @@ static void run_sequence(const run_config *rc, double rms[N_METHODS][N_REGIONS])
     buffers_free(&b);
 }
 
-static void table_rows(sol_table *t, const char *camera, double rms[N_METHODS][N_REGIONS])
+static void table_rows(exp_table *t, const char *camera, double rms[N_METHODS][N_REGIONS])
 {
     for (int m = 0; m < N_METHODS; ++m)
-        sol_table_row(t, "%s|%s|%.4f|%.4f|%.4f|%.4f|%.4f", camera, method_names[m], rms[m][R_ALL], rms[m][R_NEAR],
+        exp_table_row(t, "%s|%s|%.4f|%.4f|%.4f|%.4f|%.4f", camera, method_names[m], rms[m][R_ALL], rms[m][R_NEAR],
                       rms[m][R_MID], rms[m][R_FAR], rms[m][R_GHOST]);
 }
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d18_taa", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "d18_taa", argc, argv);
     if (exp.bench) /* the knobs (history cap, tolerance) are not swept here: nothing to benchmark */
         return 0;
     const sol_camera cam = {.width = exp.quick ? 96 : 160, .height = exp.quick ? 64 : 104,
@@ -339,30 +339,30 @@ int main(int argc, char **argv)
     rc.out = NULL;
     run_sequence(&rc, plain);
 
-    sol_table *t = sol_table_new("RMS error vs the supersampled frame, averaged over the second half of the run",
+    exp_table *t = exp_table_new("RMS error vs the supersampled frame, averaged over the second half of the run",
                                  "camera,method,all,near box (z=3),mid boxes (z=9-12),far (z>=30),moving-box ghost region");
     table_rows(t, "still", still);
     table_rows(t, "panning", panning);
-    sol_table_write(t, &exp, "errors");
+    exp_table_write(t, &exp, "errors");
 
-    sol_table *h = sol_table_new("Hybrid split (panning camera): error by distance, with and without the reflection",
+    exp_table *h = exp_table_new("Hybrid split (panning camera): error by distance, with and without the reflection",
                                  "region,TAA,TAA without reflection,post-AA,post-AA without reflection,aliased");
     const int bands[3] = {R_NEAR, R_MID, R_FAR};
     for (int b = 0; b < 3; ++b) {
         int r = bands[b];
-        sol_table_row(h, "%s|%.4f|%.4f|%.4f|%.4f|%.4f", region_names[r], panning[M_TAA][r], plain[M_TAA][r],
+        exp_table_row(h, "%s|%.4f|%.4f|%.4f|%.4f|%.4f", region_names[r], panning[M_TAA][r], plain[M_TAA][r],
                       panning[M_POSTAA][r], plain[M_POSTAA][r], panning[M_ALIASED][r]);
     }
-    sol_table_write(h, &exp, "hybrid");
+    exp_table_write(h, &exp, "hybrid");
 
-    sol_plot(&exp, "error_vs_frames",
+    exp_plot(&exp, "error_vs_frames",
              "set datafile separator comma\nset xlabel 'frame (panning camera)'\nset ylabel 'RMS error vs supersampled frame'\n"
              "set grid\nset key top right\n"
              "plot 'error_per_frame.csv' using 1:2 with lines lw 2 title 'aliased', "
              "'' using 1:3 with lines title 'post-process AA', '' using 1:4 with lines lw 2 title 'TAA (jitter + 3x3 depth test)', "
              "'' using 1:5 with lines dt 4 title 'TAA, 1-pixel depth test', '' using 1:6 with lines dt 2 title 'TAA without depth test', "
              "'' using 1:7 with lines dt 3 title 'TAA without jitter'");
-    sol_plot(&exp, "ghosting",
+    exp_plot(&exp, "ghosting",
              "set datafile separator comma\nset xlabel 'frame (panning camera)'\n"
              "set ylabel 'RMS error where the moving box recently was'\nset grid\nset key top left\n"
              "plot 'error_per_frame.csv' using 1:8 with linespoints title 'TAA, 3x3 depth test', "
@@ -372,15 +372,15 @@ int main(int argc, char **argv)
     char fig[320];
     snprintf(fig, sizeof fig, "far-region RMS, still camera: aliased %.4f, TAA %.4f, TAA without jitter %.4f",
              still[M_ALIASED][R_FAR], still[M_TAA][R_FAR], still[M_TAA_NO_JITTER][R_FAR]);
-    sol_claim(&exp, "D18", "sub-pixel jitter + accumulation supersamples over time (still camera)", fig,
-              "TAA error below aliased", still[M_TAA][R_FAR] < still[M_ALIASED][R_FAR] ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(&exp, "D18", "sub-pixel jitter + accumulation supersamples over time (still camera)", fig,
+              "TAA error below aliased", still[M_TAA][R_FAR] < still[M_ALIASED][R_FAR] ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "1 jittered sample per frame, history cap 16, 3x3 depth-range test; without jitter the accumulation "
               "converges to the aliased image");
     const int pan_gain = panning[M_TAA][R_FAR] < panning[M_ALIASED][R_FAR];
     snprintf(fig, sizeof fig, "far-region RMS, panning camera: aliased %.4f, TAA %.4f (1-pixel depth test %.4f)",
              panning[M_ALIASED][R_FAR], panning[M_TAA][R_FAR], panning[M_TAA_PIXEL_TEST][R_FAR]);
-    sol_claim(&exp, "D18", "reprojection keeps the supersampling under camera motion", fig, "TAA error below aliased",
-              pan_gain ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+    exp_claim(&exp, "D18", "reprojection keeps the supersampling under camera motion", fig, "TAA error below aliased",
+              pan_gain ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "every frame the history is re-fetched bilinearly at a fractional offset, and the repeated resampling blurs "
               "texture detail below the pixel box filter of the reference; %s",
               pan_gain ? "here the supersampling gain outweighs that blur"
@@ -389,8 +389,8 @@ int main(int argc, char **argv)
              "ghost-region RMS (panning): 3x3 depth test %.4f, 1-pixel test %.4f, no test %.4f; aliased %.4f",
              panning[M_TAA][R_GHOST], panning[M_TAA_PIXEL_TEST][R_GHOST], panning[M_TAA_NO_DEPTH_TEST][R_GHOST],
              panning[M_ALIASED][R_GHOST]);
-    sol_claim(&exp, "D18", "depth-change cache miss prevents ghosting (qualitative)", fig, "lower with the test",
-              panning[M_TAA][R_GHOST] < panning[M_TAA_NO_DEPTH_TEST][R_GHOST] ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(&exp, "D18", "depth-change cache miss prevents ghosting (qualitative)", fig, "lower with the test",
+              panning[M_TAA][R_GHOST] < panning[M_TAA_NO_DEPTH_TEST][R_GHOST] ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "pixels the moving box covered in some of the last 8 frames; camera reprojection knows no object motion, "
               "the depth test drops the stale history where the depth changed; the 3x3 range test that keeps jittered "
               "silhouettes accumulating lets more ghosting through than the 1-pixel test");
@@ -400,8 +400,8 @@ int main(int argc, char **argv)
              "%.4f/%.4f",
              near_view, far_view, panning[M_TAA][R_NEAR], panning[M_POSTAA][R_NEAR], panning[M_TAA][R_FAR],
              panning[M_POSTAA][R_FAR]);
-    sol_claim(&exp, "D18", "hybrid split by distance: reprojection's view-dependent error is small for distant objects", fig,
-              "reflection error larger near than far", near_view > far_view ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(&exp, "D18", "hybrid split by distance: reprojection's view-dependent error is small for distant objects", fig,
+              "reflection error larger near than far", near_view > far_view ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the view vector of a surface point turns by about pan/z per frame, so reprojected history carries stale "
               "view-dependent shading on near objects (hybrid table); post-AA has no history and no such error");
     return 0;

@@ -1,7 +1,7 @@
 /* d1_gbuffer_sizes - claim D1: bits per pixel of the G-buffer layouts the talk compares,
  * computed from explicit per-target format tables (src/pipeline/gbuffer_layout.c), and what they
  * cost per frame at 1280x720 with and without 4x MSAA. */
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_pipeline.h"
 
 #include <stdio.h>
@@ -10,49 +10,49 @@
 static unsigned layout_bits(sol_gbuffer_kind kind, const sol_gbuffer_layout **layout)
 {
     unsigned bits = 0;
-    sol_exp_check(sol_gbuffer_layout_get(kind, layout), "layout %d", (int)kind);
-    sol_exp_check(sol_gbuffer_bits_per_pixel(*layout, &bits), "bits of %s", (*layout)->name);
+    exp_check(sol_gbuffer_layout_get(kind, layout), "layout %d", (int)kind);
+    exp_check(sol_gbuffer_bits_per_pixel(*layout, &bits), "bits of %s", (*layout)->name);
     return bits;
 }
 
 static double frame_mib(const sol_gbuffer_layout *layout, int samples)
 {
     uint64_t bytes = 0;
-    sol_exp_check(sol_gbuffer_bytes(layout, 1280, 720, samples, &bytes), "bytes of %s", layout->name);
+    exp_check(sol_gbuffer_bytes(layout, 1280, 720, samples, &bytes), "bytes of %s", layout->name);
     return (double)bytes / (1024.0 * 1024.0);
 }
 
-static void target_table(const sol_exp *exp)
+static void target_table(const exp_run *exp)
 {
-    sol_table *t = sol_table_new("G-buffer layouts, target by target (D1)", "layout,target,format,bits,contents");
+    exp_table *t = exp_table_new("G-buffer layouts, target by target (D1)", "layout,target,format,bits,contents");
     for (int k = 0; k < SOL_GBUFFER_KIND_COUNT; ++k) {
         const sol_gbuffer_layout *layout;
         layout_bits((sol_gbuffer_kind)k, &layout);
         for (int i = 0; i < layout->target_count; ++i)
-            sol_table_row(t, "%s|RT%d|%s|%u|%s", layout->name, i, sol_pixel_format_name(layout->targets[i].format),
+            exp_table_row(t, "%s|RT%d|%s|%u|%s", layout->name, i, sol_pixel_format_name(layout->targets[i].format),
                           sol_pixel_format_bits(layout->targets[i].format), layout->targets[i].contents);
     }
-    sol_table_write(t, exp, "targets");
+    exp_table_write(t, exp, "targets");
 }
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d1_gbuffer_sizes", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "d1_gbuffer_sizes", argc, argv);
     if (exp.bench) /* nothing here has an accuracy knob */
         return 0;
     target_table(&exp);
-    sol_table *t = sol_table_new("G-buffer size per layout (D1)",
+    exp_table *t = exp_table_new("G-buffer size per layout (D1)",
                                  "layout,bits per pixel,MiB per 1280x720 frame,MiB with 4x MSAA,source of the formats");
     unsigned bits[SOL_GBUFFER_KIND_COUNT];
     for (int k = 0; k < SOL_GBUFFER_KIND_COUNT; ++k) {
         const sol_gbuffer_layout *layout;
         bits[k] = layout_bits((sol_gbuffer_kind)k, &layout);
-        sol_table_row(t, "%s|%u|%.2f|%.2f|%s", layout->name, bits[k], frame_mib(layout, 1), frame_mib(layout, 4),
+        exp_table_row(t, "%s|%u|%.2f|%.2f|%s", layout->name, bits[k], frame_mib(layout, 1), frame_mib(layout, 4),
                       layout->source);
     }
-    sol_table_write(t, &exp, "sizes");
-    sol_plot(&exp, "sizes",
+    exp_table_write(t, &exp, "sizes");
+    exp_plot(&exp, "sizes",
              "set datafile separator comma\nset style fill solid 0.6\nset boxwidth 0.6\nset ylabel 'bits per pixel'\n"
              "set yrange [0:*]\nset xrange [-0.6:3.6]\nset xtics rotate by -15 font ',8'\nset grid ytics\n"
              "plot 'sizes.csv' using 0:2:xtic(1) with boxes notitle, '' using 0:($2+5):2 with labels notitle");
@@ -62,8 +62,8 @@ int main(int argc, char **argv)
              bits[SOL_GBUFFER_CLASSIC_WIDE], bits[SOL_GBUFFER_LIGHT_PREPASS], bits[SOL_GBUFFER_CRYENGINE3]);
     int agrees = bits[SOL_GBUFFER_CLASSIC_NARROW] == 112 && bits[SOL_GBUFFER_CLASSIC_WIDE] == 144 &&
                  bits[SOL_GBUFFER_LIGHT_PREPASS] == 96 && bits[SOL_GBUFFER_CRYENGINE3] == 64;
-    sol_claim(&exp, "D1", "112-144; 96 (best case); 64 bits/pixel", sol_figure, "exact",
-              agrees ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(&exp, "D1", "112-144; 96 (best case); 64 bits/pixel", sol_figure, "exact",
+              agrees ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "sums of the targets' format sizes; CryENGINE 3 and light pre-pass formats follow the talk, the "
               "classic layout's formats are assumed (the talk lists only its attributes): 8-bit vs half-float "
               "normals span the range");

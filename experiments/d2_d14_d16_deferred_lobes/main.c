@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "sol_brdf.h"
-#include "sol_exp.h"
+#include "exp_harness.h"
 
 #define DEG (M_PI / 180.0)
 enum { MAX_LIGHTS = 32, K_MAX = 12 };
@@ -116,7 +116,7 @@ static void make_environments(environment env[3], double *fit_rel_rms)
     env_fit_ctx ctx = {&env[2], dirs, target};
     sol_lsq_problem prob = {32, FIT_POINTS, env_residuals, &ctx, lower, NULL, 50};
     sol_lsq_summary sum;
-    sol_exp_check(sol_lsq_solve(&prob, amp, &sum), "fitting the SG environment");
+    exp_check(sol_lsq_solve(&prob, amp, &sum), "fitting the SG environment");
     for (int i = 0; i < 32; ++i)
         env[2].lobe[i].amplitude = amp[i];
     double norm = 0.0;
@@ -172,7 +172,7 @@ static double integrate(sol_sphere_fn f, void *ctx, const double pole[3], double
     double v, e;
     sol_status st = sol_sphere_integrate(f, ctx, pole, &o, &v, &e);
     if (st != SOL_OK && st != SOL_ERR_NO_CONVERGENCE) /* budget hit: the estimate is still good */
-        sol_exp_check(st, "integrating");
+        exp_check(st, "integrating");
     return v;
 }
 
@@ -259,10 +259,10 @@ static void extract_and_render(const pixel *px, double ax, double ay, const sol_
         kept[0] = (sol_sg){{0, 0, 1}, 0.0, 1.0};
         m = 1;
     } else {
-        sol_exp_check(sol_cull_light_lobes(env->lobe, env->n, px->n, keep, kept, &m), "culling lobes");
+        exp_check(sol_cull_light_lobes(env->lobe, env->n, px->n, keep, kept, &m), "culling lobes");
     }
     sol_phong_lobe lobe;
-    sol_exp_check(sol_extract_phong_lobe(brdf, k, kept, m, px->v, &lobe), "extracting the Phong lobe");
+    exp_check(sol_extract_phong_lobe(brdf, k, kept, m, px->v, &lobe), "extracting the Phong lobe");
     phong_ctx c = {.g = lobe.glossiness};
     memcpy(c.n, lobe.normal, sizeof c.n);
     sol_reflect(px->v, lobe.normal, c.r);
@@ -331,13 +331,13 @@ static void solve3(const double a[9], const double b[3], double x[3])
 
 /* Time per pixel of the extraction against n and m, and a least-squares fit of
  * t = c0 + c1 n + c2 n m (per pixel, per BRDF lobe (warp), per lobe pair (convolution)). */
-static void d16_timing(const sol_exp *exp, const sol_sg *ndf, const environment *env, double *r2_out,
+static void d16_timing(const exp_run *exp, const sol_sg *ndf, const environment *env, double *r2_out,
                        double *per_pair_ns)
 {
     static const int ns[] = {1, 3, 7, 12}, ms[] = {1, 2, 4, 8, 16, 32};
-    sol_table *t = sol_table_new("Principal Phong lobe extraction: time per pixel vs BRDF lobes n and lighting lobes m",
+    exp_table *t = exp_table_new("Principal Phong lobe extraction: time per pixel vs BRDF lobes n and lighting lobes m",
                                  "n,m,n*m,ns per pixel");
-    FILE *f = sol_exp_open(exp, "timing.dat");
+    FILE *f = exp_open(exp, "timing.dat");
     fprintf(f, "# n m n*m ns_per_pixel\n");
     double xs[24][3], ys[24];
     int cnt = 0;
@@ -352,14 +352,14 @@ static void d16_timing(const sol_exp *exp, const sol_sg *ndf, const environment 
             for (int j = 0; j < c.m; ++j)
                 c.light[j] = env->lobe[j % env->n];
             c.v[0] = 0.3, c.v[1] = 0.1, c.v[2] = sqrt(1 - 0.1);
-            double ns_pp = sol_time_per_item_ns(run_extraction, &c, (size_t)c.pixels, exp->quick ? 3 : 7);
-            sol_table_row(t, "%d|%d|%d|%.1f", c.n, c.m, c.n * c.m, ns_pp);
+            double ns_pp = exp_time_per_item_ns(run_extraction, &c, (size_t)c.pixels, exp->quick ? 3 : 7);
+            exp_table_row(t, "%d|%d|%d|%.1f", c.n, c.m, c.n * c.m, ns_pp);
             fprintf(f, "%d %d %d %.6g\n", c.n, c.m, c.n * c.m, ns_pp);
             xs[cnt][0] = 1.0, xs[cnt][1] = c.n, xs[cnt][2] = (double)(c.n * c.m);
             ys[cnt++] = ns_pp;
         }
     fclose(f);
-    sol_table_write(t, exp, "d16_timing");
+    exp_table_write(t, exp, "d16_timing");
     double ata[9] = {0}, atb[3] = {0}, coef[3], mean = 0, ss_tot = 0, ss_res = 0;
     for (int i = 0; i < cnt; ++i) {
         for (int r = 0; r < 3; ++r) {
@@ -377,7 +377,7 @@ static void d16_timing(const sol_exp *exp, const sol_sg *ndf, const environment 
     }
     *r2_out = 1.0 - ss_res / ss_tot;
     *per_pair_ns = coef[2];
-    sol_plot(exp, "d16_timing",
+    exp_plot(exp, "d16_timing",
              "set xlabel 'n*m (BRDF lobes x lighting lobes)'; set ylabel 'ns per pixel'; set grid; set key top left;"
              "plot for [n in '1 3 7 12'] 'timing.dat' u ($1==n+0?$3:1/0):4 w lp t 'n = '.n,"
              " for [n in '1 3 7 12'] %.6g + %.6g*n + %.6g*x w l dt 2 lc rgb 'gray' notitle",
@@ -404,7 +404,7 @@ static void d16_results_alloc(int n_pix, d16_results *d)
     d->res_cut = malloc(N_CUT * (size_t)n_pix * sizeof *d->res_cut);
     d->res_base = malloc(3 * (size_t)n_pix * sizeof *d->res_base);
     if (!d->px || !d->i_ref || !d->e_ref || !d->res_k || !d->res_cut || !d->res_base)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
 }
 
 static void d16_results_free(d16_results *d)
@@ -452,22 +452,22 @@ static void d16_render(double ax, double ay, const sol_sg *ndf, const environmen
     for (int p = 0; p < d->n_pix; ++p) {
         d16_pixel(p, ax, ay, ndf, env, d);
 #pragma omp critical(progress)
-        sol_progress("D16 pixels", (size_t)++done, (size_t)d->n_pix);
+        exp_progress("D16 pixels", (size_t)++done, (size_t)d->n_pix);
     }
-    sol_progress_done("D16 pixels");
+    exp_progress_done("D16 pixels");
 }
 
 /* Error vs BRDF lobes n per environment (table and plot); image errors go to l2_k. */
-static void d16_error_vs_n(const sol_exp *exp, const d16_results *d, const environment *env,
+static void d16_error_vs_n(const exp_run *exp, const d16_results *d, const environment *env,
                            const sol_sg_fit_error *fit_err, double l2_k[3][N_K])
 {
     int n_pix = d->n_pix;
-    sol_table *t = sol_table_new("Extracted Phong lobe vs full anisotropic Ward (ax 0.1, ay 0.3) over pixels, by BRDF "
+    exp_table *t = exp_table_new("Extracted Phong lobe vs full anisotropic Ward (ax 0.1, ay 0.3) over pixels, by BRDF "
                                  "lobes n (all lighting lobes): image relative L2 error, worst pixel's relative error, "
                                  "highlight shift; 'fixed' = the same 7-lobe NDF reduced to one lobe without the lighting",
                                  "environment,n,NDF fit rel L2,image rel L2,max pixel rel error,mean shift deg,"
                                  "max shift deg");
-    FILE *f = sol_exp_open(exp, "error_vs_n.dat");
+    FILE *f = exp_open(exp, "error_vs_n.dat");
     fprintf(f, "# n then image relative L2 error for the three environments\n");
     for (int e = 0; e < 3; ++e) {
         for (int k = 0; k < N_K + 1; ++k) {
@@ -481,10 +481,10 @@ static void d16_error_vs_n(const sol_exp *exp, const d16_results *d, const envir
             double l2 = image_rel_l2(r, n_pix);
             if (k < N_K) {
                 l2_k[e][k] = l2;
-                sol_table_row(t, "%s|%d|%.4f|%.4f|%.4f|%.2f|%.2f", env[e].name, K_LIST[k],
+                exp_table_row(t, "%s|%d|%.4f|%.4f|%.4f|%.2f|%.2f", env[e].name, K_LIST[k],
                               fit_err[K_LIST[k] - 1].rel_l2, l2, mx, sh / n_pix, shmax);
             } else {
-                sol_table_row(t, "%s|7 fixed|%.4f|%.4f|%.4f|%.2f|%.2f", env[e].name, fit_err[6].rel_l2, l2, mx,
+                exp_table_row(t, "%s|7 fixed|%.4f|%.4f|%.4f|%.2f|%.2f", env[e].name, fit_err[6].rel_l2, l2, mx,
                               sh / n_pix, shmax);
             }
         }
@@ -492,26 +492,26 @@ static void d16_error_vs_n(const sol_exp *exp, const d16_results *d, const envir
     for (int k = 0; k < N_K; ++k)
         fprintf(f, "%d %.6g %.6g %.6g\n", K_LIST[k], l2_k[0][k], l2_k[1][k], l2_k[2][k]);
     fclose(f);
-    sol_table_write(t, exp, "d16_error_vs_n");
-    sol_plot(exp, "d16_error_vs_n",
+    exp_table_write(t, exp, "d16_error_vs_n");
+    exp_plot(exp, "d16_error_vs_n",
              "set xlabel 'BRDF SG lobes n'; set ylabel 'image relative L2 error'; set grid; set key top right;"
              "plot 'error_vs_n.dat' u 1:2 w lp t 'sun + sky', '' u 1:3 w lp t '6 lights', '' u 1:4 w lp t '32-lobe SG env'");
 }
 
-static void d16_environments_table(const sol_exp *exp, const environment *env, double env_fit)
+static void d16_environments_table(const exp_run *exp, const environment *env, double env_fit)
 {
-    sol_table *en = sol_table_new("Lighting environments of D14/D16", "environment,SG lobes,fit rel RMS error");
-    sol_table_row(en, "%s|%d|-", env[0].name, env[0].n);
-    sol_table_row(en, "%s|%d|-", env[1].name, env[1].n);
-    sol_table_row(en, "%s|%d|%.4f", env[2].name, env[2].n, env_fit);
-    sol_table_write(en, exp, "d16_environments");
+    exp_table *en = exp_table_new("Lighting environments of D14/D16", "environment,SG lobes,fit rel RMS error");
+    exp_table_row(en, "%s|%d|-", env[0].name, env[0].n);
+    exp_table_row(en, "%s|%d|-", env[1].name, env[1].n);
+    exp_table_row(en, "%s|%d|%.4f", env[2].name, env[2].n, env_fit);
+    exp_table_write(en, exp, "d16_environments");
 }
 
 /* Hemisphere cut of the SG environment to m lobes (table); image errors go to rms_cut. */
-static void d16_cut_table(const sol_exp *exp, const d16_results *d, double rms_cut[N_CUT])
+static void d16_cut_table(const exp_run *exp, const d16_results *d, double rms_cut[N_CUT])
 {
     int n_pix = d->n_pix;
-    sol_table *c = sol_table_new("Hemisphere cut of the 32-lobe SG environment to m lobes for the extraction (n = 7; the "
+    exp_table *c = exp_table_new("Hemisphere cut of the 32-lobe SG environment to m lobes for the extraction (n = 7; the "
                                  "deferred pass still sees every lobe)",
                                  "m kept,image rel L2,max pixel rel error,mean shift deg,mean normal change vs all lobes deg");
     for (int k = 0; k < N_CUT; ++k) {
@@ -523,13 +523,13 @@ static void d16_cut_table(const sol_exp *exp, const d16_results *d, double rms_c
             ns += r[p].normal_shift_vs_full_deg;
         }
         rms_cut[k] = image_rel_l2(r, n_pix);
-        sol_table_row(c, "%d|%.4f|%.4f|%.2f|%.3f", CUT_LIST[k], rms_cut[k], mx, sh / n_pix, ns / n_pix);
+        exp_table_row(c, "%d|%.4f|%.4f|%.2f|%.3f", CUT_LIST[k], rms_cut[k], mx, sh / n_pix, ns / n_pix);
     }
-    sol_table_write(c, exp, "d16_cut");
+    exp_table_write(c, exp, "d16_cut");
 }
 
 /* D16: O(n*m) cost (timing fit), the cut to ~7 lobes, and the light-weighted lobe at n = 7. */
-static void d16_claim(const sol_exp *exp, const d16_results *d, double l2_k[3][N_K], const double rms_cut[N_CUT],
+static void d16_claim(const exp_run *exp, const d16_results *d, double l2_k[3][N_K], const double rms_cut[N_CUT],
                       double r2, double per_pair)
 {
     int n_pix = d->n_pix;
@@ -543,19 +543,19 @@ static void d16_claim(const sol_exp *exp, const d16_results *d, double l2_k[3][N
              "time fits c0 + c1 n + c2 n*m (R^2 %.3f, %.1f ns per lobe pair); cut to 7 lobes: image error %.3f vs %.3f with all 32; "
              "mean highlight shift %.1f deg; light-weighted lobe error %.3f vs %.3f light-independent (n = 7)",
              r2, per_pair, rms_cut[4], rms_cut[N_CUT - 1], mean_shift, weighted, fixed);
-    sol_verdict v = r2 >= 0.95 && rms_cut[4] <= 1.25 * rms_cut[N_CUT - 1] + 0.01 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED;
-    sol_claim(exp, "D16", "O(n*m), ~7", fig, "R^2 >= 0.95; cut-to-7 image error within 1.25x (+0.01) of all lobes", v,
+    exp_verdict v = r2 >= 0.95 && rms_cut[4] <= 1.25 * rms_cut[N_CUT - 1] + 0.01 ? EXP_REPRODUCED : EXP_NOT_REPRODUCED;
+    exp_claim(exp, "D16", "O(n*m), ~7", fig, "R^2 >= 0.95; cut-to-7 image error within 1.25x (+0.01) of all lobes", v,
               "cost and cut reproduce; the light-weighted normal leans towards the lights (a shift of several degrees, "
               "32-lobe environment figures here) and renders worse than the lobe extracted without lighting in all three "
               "test scenes (d16_error_vs_n table)");
 }
 
-static void d16(const sol_exp *exp)
+static void d16(const exp_run *exp)
 {
     const double ax = 0.1, ay = 0.3;
     sol_sg ndf[K_MAX * (K_MAX + 1) / 2];
     sol_sg_fit_error fit_err[K_MAX];
-    sol_exp_check(sol_ward_sg_fit(ax, ay, K_MAX, NULL, ndf, fit_err, NULL), "fitting the Ward NDF");
+    exp_check(sol_ward_sg_fit(ax, ay, K_MAX, NULL, ndf, fit_err, NULL), "fitting the Ward NDF");
     environment env[3];
     double env_fit;
     make_environments(env, &env_fit);
@@ -600,14 +600,14 @@ static double ct_lit(const double l[3], void *vctx)
     return c->light ? f * sol_sg_eval(c->light, l) : f;
 }
 
-static void d14(const sol_exp *exp)
+static void d14(const exp_run *exp)
 {
     static const double alphas[] = {0.05, 0.1, 0.2, 0.3, 0.5, 0.8};
     static const double views[] = {0, 30, 60, 75, 85};
     const double f0 = 0.04;
     environment env[3];
     make_environments(env, NULL);
-    sol_table *t = sol_table_new("Deferring Fresnel and geometry (GGX, Smith, Schlick f0 = 0.04): relative error of "
+    exp_table *t = exp_table_new("Deferring Fresnel and geometry (GGX, Smith, Schlick f0 = 0.04): relative error of "
                                  "[lighting with D only] x F(n.v) G1(n.v) G1(n.r) vs the full BRDF, uniform sky / sun + sky",
                                  "alpha,view 0,view 30,view 60,view 75,view 85,sun+sky 0,sun+sky 30,sun+sky 60,sun+sky 75,"
                                  "sun+sky 85");
@@ -637,7 +637,7 @@ static void d14(const sol_exp *exp)
             }
         }
     for (int a = 0; a < 6; ++a) {
-        sol_table_row(t, "%.2f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f", alphas[a], err[a][0][0], err[a][0][1],
+        exp_table_row(t, "%.2f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f", alphas[a], err[a][0][0], err[a][0][1],
                       err[a][0][2], err[a][0][3], err[a][0][4], err[a][1][0], err[a][1][1], err[a][1][2], err[a][1][3],
                       err[a][1][4]);
         for (int w = 0; w < 5; ++w)
@@ -649,14 +649,14 @@ static void d14(const sol_exp *exp)
                 }
             }
     }
-    sol_table_write(t, exp, "d14_deferred_fresnel_geometry");
+    exp_table_write(t, exp, "d14_deferred_fresnel_geometry");
     char fig[200];
     snprintf(fig, sizeof fig,
              "view <= 60 deg, alpha <= 0.3: max rel. error %.1f%% under a uniform sky, %.0f%% under sun + sky; up to %.0f%% "
              "at grazing",
              100 * worst_sky, 100 * worst_sun, 100 * worst_all);
-    sol_claim(exp, "D14", "qualitative: F and G deferrable", fig, "<= 10% for view <= 60 deg, alpha <= 0.3",
-              fmax(worst_sky, worst_sun) <= 0.10 ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+    exp_claim(exp, "D14", "qualitative: F and G deferrable", fig, "<= 10% for view <= 60 deg, alpha <= 0.3",
+              fmax(worst_sky, worst_sun) <= 0.10 ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "deferral is exact in the narrow-lobe limit and within a few percent for smooth lobes near the mirror "
               "direction; it fails for rough lobes, grazing views and bright lights in the lobe's tail, where F and G "
               "differ from their values at the lobe centre");
@@ -670,13 +670,13 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static void d2(const sol_exp *exp)
+static void d2(const exp_run *exp)
 {
     static const int lights[] = {1, 2, 4, 8};
     static const double gloss[] = {5, 20, 120, 250};
     const double g0 = 32.0; /* the fixed exponent of method A */
     const int trials = exp->quick ? 200 : 2000;
-    sol_table *t = sol_table_new(
+    exp_table *t = exp_table_new(
         "Accumulating specular without the per-pixel glossiness g: median (90th percentile) relative error over random "
         "light sets within 25 deg of r. A: lights accumulated with a fixed exponent 32, normalised for g afterwards. "
         "B: sum of I (r.l) and of I accumulated, the exponent g applied to their ratio afterwards",
@@ -705,7 +705,7 @@ static void d2(const sol_exp *exp)
             qsort(ea, (size_t)trials, sizeof *ea, cmp_double);
             qsort(eb, (size_t)trials, sizeof *eb, cmp_double);
             int p50 = trials / 2, p90 = trials * 9 / 10;
-            sol_table_row(t, "%d|%g|%.3g|%.3g|%.3g|%.3g", lights[li], g, ea[p50], ea[p90], eb[p50], eb[p90]);
+            exp_table_row(t, "%d|%g|%.3g|%.3g|%.3g|%.3g", lights[li], g, ea[p50], ea[p90], eb[p50], eb[p90]);
             if (lights[li] == 1)
                 b_single = fmax(b_single, eb[trials - 1]);
             if (lights[li] == 4)
@@ -713,23 +713,23 @@ static void d2(const sol_exp *exp)
         }
     free(ea);
     free(eb);
-    sol_table_write(t, exp, "d2_glossiness_deferral");
+    exp_table_write(t, exp, "d2_glossiness_deferral");
     char fig[200];
     snprintf(fig, sizeof fig,
              "exponent applied after accumulation: exact for 1 light; 4 lights: median error %.1f%%, %.0f%%, %.0f%%, %.0f%% "
              "at g = 5, 20, 120, 250",
              100 * b_four[0], 100 * b_four[1], 100 * b_four[2], 100 * b_four[3]);
-    sol_claim(exp, "D2", "qualitative: glossiness needed at accumulation", fig,
+    exp_claim(exp, "D2", "qualitative: glossiness needed at accumulation", fig,
               "exact for 1 light; median error > 10% for 4 lights at g >= 120",
-              b_single < 1e-12 && b_four[2] > 0.10 && b_four[3] > 0.10 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+              b_single < 1e-12 && b_four[2] > 0.10 && b_four[3] > 0.10 ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "a sum of I_k (r.l_k)^g over lights is a different function of g for every light set; only nearly linear "
               "lobes (g = 5, lights within 25 deg) survive a power applied after the sum");
 }
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d2_d14_d16_deferred_lobes", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "d2_d14_d16_deferred_lobes", argc, argv);
     d16(&exp);
     if (exp.bench)
         return 0;

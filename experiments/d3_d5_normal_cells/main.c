@@ -8,7 +8,7 @@
  *  - distinct directions: cells whose odd integer coordinates have gcd 1 (an upper bound for any
  *    method that never stores two codes of one direction).
  * Plus the image over the driver's 10^7 R2 directions, to show how a finite sample undercounts. */
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_normals.h"
 
 #include <math.h>
@@ -32,7 +32,7 @@ static uint64_t sampled_image(sol_normal_method method, uint64_t n)
     uint32_t *codes = malloc(sizeof *codes * n);
     uint8_t *seen = calloc(1u << 24, 1);
     if (!codes || !seen)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
 #pragma omp parallel for schedule(static)
     for (int64_t i = 0; i < (int64_t)n; ++i) {
         double u, v, d[3];
@@ -51,18 +51,18 @@ static uint64_t sampled_image(sol_normal_method method, uint64_t n)
 }
 
 /* Fixed cells over all 256 slices (or, with --quick, 16 slices scaled up: not for the claims). */
-static uint64_t fixed_cells(const sol_exp *exp, sol_normal_method method)
+static uint64_t fixed_cells(const exp_run *exp, sol_normal_method method)
 {
     uint64_t total = 0;
     int step = exp->quick ? 16 : 1;
     for (int r = 0; r < 256; r += step) {
         uint64_t slice;
-        sol_exp_check(sol_normal_cells_fixed(method, r, r + 1, &slice), "fixed cells of %s",
+        exp_check(sol_normal_cells_fixed(method, r, r + 1, &slice), "fixed cells of %s",
                       sol_normal_method_name(method));
         total += slice * (uint64_t)step;
-        sol_progress(sol_normal_method_name(method), (size_t)r + 1, 256);
+        exp_progress(sol_normal_method_name(method), (size_t)r + 1, 256);
     }
-    sol_progress_done(sol_normal_method_name(method));
+    exp_progress_done(sol_normal_method_name(method));
     return total;
 }
 
@@ -71,14 +71,14 @@ static const count_row *find(const count_row *rows, int n, const char *method, c
     for (int i = 0; i < n; ++i)
         if (!strcmp(rows[i].method, method) && !strcmp(rows[i].definition, definition))
             return &rows[i];
-    sol_exp_die("no row %s/%s", method, definition);
+    exp_die("no row %s/%s", method, definition);
     return NULL;
 }
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d3_d5_normal_cells", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "d3_d5_normal_cells", argc, argv);
     if (exp.bench) /* counts have no accuracy knob; timing lives in d6_d7_s1_s5_normal_encodings */
         return 0;
     uint64_t samples = exp.quick ? 1000000 : 10000000;
@@ -87,7 +87,7 @@ int main(int argc, char **argv)
     count_row rows[20];
     int n = 0;
     uint64_t c;
-    sol_exp_check(sol_normal_cells_on_sphere(256, &c), "sphere cells");
+    exp_check(sol_normal_cells_on_sphere(256, &c), "sphere cells");
     rows[n++] = (count_row){"D3", "normalized", "image (cells the sphere meets)", c};
     rows[n++] = (count_row){"D3", "normalized", "fixed (own centre encodes back)",
                             fixed_cells(&exp, SOL_NORMAL_XYZ_NORMALIZED)};
@@ -107,16 +107,16 @@ int main(int argc, char **argv)
                             fixed_cells(&exp, SOL_NORMAL_XYZ_BEST_FIT)};
     rows[n++] = (count_row){"D5", "best fit (float search)", "fixed (own centre encodes back)",
                             fixed_cells(&exp, SOL_NORMAL_XYZ_BEST_FIT_FLOAT)};
-    sol_exp_check(sol_normal_cells_distinct_directions(256, &c), "distinct directions");
+    exp_check(sol_normal_cells_distinct_directions(256, &c), "distinct directions");
     rows[n++] = (count_row){"D5", "any XYZ method", "distinct directions (gcd 1)", c};
     rows[n++] = (count_row){"D5", "best fit (double search)", sample_def, sampled_image(SOL_NORMAL_XYZ_BEST_FIT, samples)};
 
-    sol_table *t = sol_table_new("Cells of the 256^3 cube used per method (D3-D5)",
+    exp_table *t = exp_table_new("Cells of the 256^3 cube used per method (D3-D5)",
                                  "claim,method,definition,cells,percent of 2^24,log2 cells");
     for (int i = 0; i < n; ++i)
-        sol_table_row(t, "%s|%s|%s|%llu|%.3f|%.2f", rows[i].claim, rows[i].method, rows[i].definition,
+        exp_table_row(t, "%s|%s|%s|%llu|%.3f|%.2f", rows[i].claim, rows[i].method, rows[i].definition,
                       (unsigned long long)rows[i].cells, 100.0 * rows[i].cells / CUBE_CELLS, log2((double)rows[i].cells));
-    sol_table_write(t, &exp, "cells");
+    exp_table_write(t, &exp, "cells");
 
     const count_row *sphere = find(rows, n, "normalized", "image (cells the sphere meets)");
     const count_row *fixed3 = find(rows, n, "normalized", "fixed (own centre encodes back)");
@@ -133,15 +133,15 @@ int main(int argc, char **argv)
      * count can be made to match by the choice of sample size. */
     int d3_exact = llabs((long long)sphere->cells - TALK_D3_CELLS) <= 2899 || llabs((long long)fixed3->cells - TALK_D3_CELLS) <= 2899;
     int d3_sampled = llabs((long long)sampled3->cells - TALK_D3_CELLS) <= 2899;
-    sol_claim(&exp, "D3", "~289880 of 16777216 cells, ~1.73%", s, "1% of the count",
-              d3_exact ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+    exp_claim(&exp, "D3", "~289880 of 16777216 cells, ~1.73%", s, "1% of the count",
+              d3_exact ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "no sample-free definition gives the talk's figure: the sphere meets %llu cells (%.2f%%) and %llu cells "
               "map back to themselves; the distinct codes of %.0e uniform directions %s the talk's figure, a count "
               "that grows with the sample size (table), so the talk's number reads as a sampled count",
               (unsigned long long)sphere->cells, 100.0 * sphere->cells / CUBE_CELLS, (unsigned long long)fixed3->cells,
               (double)samples, d3_sampled ? "match" : "do not match");
     snprintf(s, sizeof s, "%llu (%.2f%%)", (unsigned long long)cube->cells, 100.0 * cube->cells / CUBE_CELLS);
-    sol_claim(&exp, "D4", "~390152 cells, ~2.33%", s, "exact", cube->cells == TALK_D4_CELLS ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(&exp, "D4", "~390152 cells, ~2.33%", s, "exact", cube->cells == TALK_D4_CELLS ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the boundary cells of the cube, 256^3 - 254^3, whether counted as image or as fixed cells");
     snprintf(s, sizeof s, "%llu (%.2f%%) double; %llu (%.2f%%) float; %.1f/%.1f bits vs %.1f/%.1f bits", 
              (unsigned long long)fit->cells, 100.0 * fit->cells / CUBE_CELLS, (unsigned long long)fitf->cells,
@@ -151,8 +151,8 @@ int main(int argc, char **argv)
      * rounding breaks the tie between a cell and its odd multiples (both quantize exactly), and the
      * two other parts of D5 ("two orders of magnitude more", "~17 bits") do not hold as stated. */
     double ratio_lo = (double)fit->cells / (double)cube->cells, ratio_hi = (double)fit->cells / (double)sampled3->cells;
-    sol_claim(&exp, "D5", "~16482364 cells, ~98.2%; two orders more; old methods ~17 bits", s, "1% of the count",
-              SOL_DIFFERS_EXPLAINED,
+    exp_claim(&exp, "D5", "~16482364 cells, ~98.2%; two orders more; old methods ~17 bits", s, "1% of the count",
+              EXP_DIFFERS_EXPLAINED,
               "the double search is within %.2f%% of the talk's count, but a cell ties exactly with its odd multiples "
               "on its own ray, so the count depends on rounding (the float search keeps exactly the %llu distinct "
               "directions, %.2f%%); best fit uses %.0f-%.0fx the old methods' cells (%.1f-%.1f orders, not two), and "

@@ -70,7 +70,7 @@ uint32_t encode_with(const encoder *e, const double n[3])
     sol_status st = e->table ? sol_normal_encode_bestfit_table(e->table, e->filter, n, &code)
                              : sol_normal_encode(e->method, n, &code);
     if (st != SOL_OK)
-        sol_exp_check(st, "encoding with %s", e->name);
+        exp_check(st, "encoding with %s", e->name);
     return code;
 }
 
@@ -78,7 +78,7 @@ void decode_with(const encoder *e, uint32_t code, double n[3])
 {
     sol_status st = sol_normal_decode(e->method, code, n);
     if (st != SOL_OK)
-        sol_exp_check(st, "decoding with %s", e->name);
+        exp_check(st, "decoding with %s", e->name);
 }
 
 void encoder_errors(const encoder *e, size_t n, float *err)

@@ -14,29 +14,29 @@ static sol_bestfit_table requantized(const sol_bestfit_table *src, int bits)
     size_t n = (size_t)src->size * (size_t)src->size;
     sol_bestfit_table t = {src->size, bits, malloc(sizeof(float) * n)};
     if (!t.scale)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (size_t i = 0; i < n; ++i)
         t.scale[i] = bits ? (float)sol_unorm_decode(sol_unorm_encode(src->scale[i], bits), bits) : src->scale[i];
     return t;
 }
 
-static void write_table_files(const sol_exp *exp)
+static void write_table_files(const exp_run *exp)
 {
     sol_bestfit_table t;
-    sol_exp_check(sol_bestfit_table_build(512, 0, &t), "512 table");
+    exp_check(sol_bestfit_table_build(512, 0, &t), "512 table");
     sol_image img = {0};
-    sol_exp_check(sol_image_alloc(&img, 512, 512, 1), "image");
+    exp_check(sol_image_alloc(&img, 512, 512, 1), "image");
     memcpy(img.data, t.scale, sizeof(float) * 512 * 512);
-    sol_exp_check(sol_png_write(sol_exp_path(exp, "best_fit_table_512.png"), &img, 16), "table PNG");
-    sol_exp_check(sol_exr_write(sol_exp_path(exp, "best_fit_table_512.exr"), &img, 0), "table EXR");
+    exp_check(sol_png_write(exp_path(exp, "best_fit_table_512.png"), &img, 16), "table PNG");
+    exp_check(sol_exr_write(exp_path(exp, "best_fit_table_512.exr"), &img, 0), "table EXR");
     /* One face (+z) of the cube map the talk bakes: the scale t at direction (x, y, 1). */
     for (int j = 0; j < 512; ++j)
         for (int i = 0; i < 512; ++i) {
             double d[3] = {(i + 0.5) / 256.0 - 1.0, 1.0 - (j + 0.5) / 256.0, 1.0}, s;
-            sol_exp_check(sol_bestfit_scale(d, &s), "face texel");
+            exp_check(sol_bestfit_scale(d, &s), "face texel");
             *sol_image_pixel(&img, i, j) = (float)s;
         }
-    sol_exp_check(sol_png_write(sol_exp_path(exp, "best_fit_cube_face.png"), &img, 16), "face PNG");
+    exp_check(sol_png_write(exp_path(exp, "best_fit_cube_face.png"), &img, 16), "face PNG");
     sol_image_free(&img);
     sol_bestfit_table_free(&t);
 }
@@ -87,13 +87,13 @@ typedef struct d6_data {
     double *dirs; /* tn directions, 3 doubles each, for the timings */
 } d6_data;
 
-static void d6_data_init(const sol_exp *exp, d6_data *d)
+static void d6_data_init(const exp_run *exp, d6_data *d)
 {
     d->n = exp->quick || exp->bench ? 200000 : 2000000;
     d->err = malloc(sizeof *d->err * d->n);
     d->exact = malloc(sizeof *d->exact * d->n);
     if (!d->err || !d->exact)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
 #pragma omp parallel for schedule(static)
     for (int64_t i = 0; i < (int64_t)d->n; ++i) {
         double dir[3];
@@ -106,7 +106,7 @@ static void d6_data_init(const sol_exp *exp, d6_data *d)
     d->tn = 4096;
     d->dirs = malloc(sizeof *d->dirs * 3 * d->tn);
     if (!d->dirs)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (size_t i = 0; i < d->tn; ++i) /* offset: directions the error sets do not use */
         r2_direction(5000011 + 3 * i, d->dirs + 3 * i);
 }
@@ -129,19 +129,19 @@ typedef struct sweep_rms {
 } sweep_rms;
 
 /* The accuracy knob: time per normal of the table path (nearest, 16-bit) at this size. */
-static void timing_row(sol_table *knob, const d6_data *d, const sol_bestfit_table *t, int size, error_stats st)
+static void timing_row(exp_table *knob, const d6_data *d, const sol_bestfit_table *t, int size, error_stats st)
 {
     table_timing c = {t, d->dirs, d->tn, 0};
     char name[64];
     snprintf(name, sizeof name, "table %dx%d", size, size);
-    sol_table_row(knob, "%s|%.1f|%.5f|%.5f", name, sol_time_per_item_ns(time_table, &c, d->tn, 5), st.rms, st.max);
+    exp_table_row(knob, "%s|%.1f|%.5f|%.5f", name, exp_time_per_item_ns(time_table, &c, d->tn, 5), st.rms, st.max);
 }
 
 /* One table size at every precision and filter (--bench: 16-bit nearest only, the timed one). */
-static void sweep_one_size(const sol_exp *exp, d6_data *d, size_t s, sol_table *sweep, sol_table *knob, sweep_rms *r)
+static void sweep_one_size(const exp_run *exp, d6_data *d, size_t s, exp_table *sweep, exp_table *knob, sweep_rms *r)
 {
     sol_bestfit_table base;
-    sol_exp_check(sol_bestfit_table_build(sizes[s], 0, &base), "table %d", sizes[s]);
+    exp_check(sol_bestfit_table_build(sizes[s], 0, &base), "table %d", sizes[s]);
     for (size_t b = 0; b < N_BITS; ++b) {
         sol_bestfit_table t = requantized(&base, precision_bits[b]);
         for (int f = 0; f < 2; ++f) {
@@ -154,7 +154,7 @@ static void sweep_one_size(const sol_exp *exp, d6_data *d, size_t s, sol_table *
                 r->rms16[s] = st.rms;
             if (f == SOL_TABLE_NEAREST && precision_bits[b] == 8)
                 r->rms8[s] = st.rms;
-            sol_table_row(sweep, "%d|%s|%s|%.5f|%.5f|%.5f|%.5f|%.2f", sizes[s],
+            exp_table_row(sweep, "%d|%s|%s|%.5f|%.5f|%.5f|%.5f|%.2f", sizes[s],
                           precision_bits[b] == 8 ? "8-bit" : precision_bits[b] == 16 ? "16-bit" : "float",
                           f ? "bilinear" : "nearest", st.mean, st.rms, st.p99, st.max, same);
             if (f == SOL_TABLE_NEAREST && precision_bits[b] == 16)
@@ -165,30 +165,30 @@ static void sweep_one_size(const sol_exp *exp, d6_data *d, size_t s, sol_table *
     sol_bestfit_table_free(&base);
 }
 
-static void size_sweep(const sol_exp *exp, d6_data *d, sweep_rms *r)
+static void size_sweep(const exp_run *exp, d6_data *d, sweep_rms *r)
 {
-    sol_table *sweep = sol_table_new("Best-fit table: size, stored precision, filter vs angular error (D6)",
+    exp_table *sweep = exp_table_new("Best-fit table: size, stored precision, filter vs angular error (D6)",
                                      "size,precision,filter,mean deg,rms deg,p99 deg,max deg,same cell as search %");
-    sol_table *knob = sol_table_new("Best-fit table size vs time per normal (D6; nearest, 16-bit)",
+    exp_table *knob = exp_table_new("Best-fit table size vs time per normal (D6; nearest, 16-bit)",
                                     "encoder,ns per normal,rms deg,max deg");
     for (size_t s = 0; s < N_SIZES; ++s) {
         sweep_one_size(exp, d, s, sweep, knob, r);
-        sol_progress("d6 sweep", s + 1, N_SIZES);
+        exp_progress("d6 sweep", s + 1, N_SIZES);
     }
-    sol_progress_done("d6 sweep");
-    sol_table_write(sweep, exp, "table_sweep");
-    sol_table_write(knob, exp, "table_timing");
+    exp_progress_done("d6 sweep");
+    exp_table_write(sweep, exp, "table_sweep");
+    exp_table_write(knob, exp, "table_timing");
 }
 
-static void plot_size_sweep(const sol_exp *exp, const sweep_rms *r, double exact_rms)
+static void plot_size_sweep(const exp_run *exp, const sweep_rms *r, double exact_rms)
 {
-    FILE *f = sol_exp_open(exp, "table_sweep_plot.csv"); /* one column per curve, for the figure */
+    FILE *f = exp_open(exp, "table_sweep_plot.csv"); /* one column per curve, for the figure */
     fprintf(f, "size,8-bit nearest,16-bit nearest,float nearest,16-bit bilinear\n");
     for (size_t s = 0; s < N_SIZES; ++s)
         fprintf(f, "%d,%.6f,%.6f,%.6f,%.6f\n", sizes[s], r->rms_all[s][0][0], r->rms_all[s][1][0], r->rms_all[s][2][0],
                 r->rms_all[s][1][1]);
     fclose(f);
-    sol_plot(exp, "table_sweep",
+    exp_plot(exp, "table_sweep",
              "set datafile separator comma\nset logscale x 2\nset logscale y\nset xlabel 'table size (texels per side)'\n"
              "set ylabel 'RMS angular error (deg)'\nset grid\nset key top right\n"
              "plot 'table_sweep_plot.csv' skip 1 using 1:2 with linespoints lw 3 title '8-bit, nearest', "
@@ -201,34 +201,34 @@ static void plot_size_sweep(const sol_exp *exp, const sweep_rms *r, double exact
 
 /* Mip levels of the 512 table (2x2 box, re-quantized to 16 bits) against tables baked at the same
  * size: what a sampler that picks a coarser level does to the fit. */
-static void mip_table(const sol_exp *exp, d6_data *d)
+static void mip_table(const exp_run *exp, d6_data *d)
 {
-    sol_table *mips = sol_table_new("Sampling a mip level of the 512x512 16-bit table (D6)",
+    exp_table *mips = exp_table_new("Sampling a mip level of the 512x512 16-bit table (D6)",
                                     "level,size,filter,mip rms deg,mip max deg,baked-at-size rms deg,same cell %");
     sol_bestfit_table level;
-    sol_exp_check(sol_bestfit_table_build(512, 16, &level), "mip 0");
+    exp_check(sol_bestfit_table_build(512, 16, &level), "mip 0");
     for (int l = 0; l <= 4; ++l) {
         sol_bestfit_table baked;
-        sol_exp_check(sol_bestfit_table_build(level.size, 16, &baked), "baked");
+        exp_check(sol_bestfit_table_build(level.size, 16, &baked), "baked");
         for (int f = 0; f < 2; ++f) {
             double same, same_b;
             error_stats st = table_errors(&level, (sol_table_filter)f, d->exact, d->n, d->err, &same);
             error_stats sb = table_errors(&baked, (sol_table_filter)f, d->exact, d->n, d->err, &same_b);
-            sol_table_row(mips, "%d|%d|%s|%.5f|%.5f|%.5f|%.2f", l, level.size, f ? "bilinear" : "nearest", st.rms,
+            exp_table_row(mips, "%d|%d|%s|%.5f|%.5f|%.5f|%.2f", l, level.size, f ? "bilinear" : "nearest", st.rms,
                           st.max, sb.rms, same);
         }
         sol_bestfit_table_free(&baked);
         sol_bestfit_table next;
-        sol_exp_check(sol_bestfit_table_downsample(&level, &next), "mip %d", l + 1);
+        exp_check(sol_bestfit_table_downsample(&level, &next), "mip %d", l + 1);
         sol_bestfit_table_free(&level);
         level = next;
     }
     sol_bestfit_table_free(&level);
-    sol_table_write(mips, exp, "mips");
+    exp_table_write(mips, exp, "mips");
 }
 
 /* The D6 row: indices 2, 3, 5 of `sizes` are 256, 512 and 2048. */
-static void write_claim(const sol_exp *exp, const sweep_rms *r, double exact_rms)
+static void write_claim(const exp_run *exp, const sweep_rms *r, double exact_rms)
 {
     char s[300];
     snprintf(s, sizeof s,
@@ -236,16 +236,16 @@ static void write_claim(const sol_exp *exp, const sweep_rms *r, double exact_rms
              r->rms16[2], r->rms16[3], r->rms16[5], r->rms8[3], exact_rms);
     int bigger_helps = r->rms16[3] < 0.9 * r->rms16[2];
     int eight_ok = r->rms8[3] < 1.1 * r->rms16[3];
-    sol_claim(exp, "D6", "face > 256x256; unique part 512x512 (y/x); 8 bits sufficient; mips essential", s,
+    exp_claim(exp, "D6", "face > 256x256; unique part 512x512 (y/x); 8 bits sufficient; mips essential", s,
               "8-bit within 10% of 16-bit; 512 at least 10% better than 256",
-              bigger_helps && eight_ok ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+              bigger_helps && eight_ok ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "nearest sampling; 8 bits are exact, not just sufficient: the search's scales t = (2s)/255 "
               "with 2s odd are 8-bit UNORM codes; bilinear filtering and coarser mip levels blend scales of different cells and "
               "lose the fit (mips table), so mips help the texture cache only, not accuracy; the performance "
               "claim is not measurable on a CPU");
 }
 
-void run_d6_table(const sol_exp *exp)
+void run_d6_table(const exp_run *exp)
 {
     d6_data d;
     d6_data_init(exp, &d);

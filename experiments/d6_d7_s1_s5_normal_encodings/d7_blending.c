@@ -43,13 +43,13 @@ static uint32_t blend_codes(uint32_t a, uint32_t b, double alpha)
     return out;
 }
 
-void run_d7_blending(const sol_exp *exp)
+void run_d7_blending(const exp_run *exp)
 {
     static const double angles_deg[] = {5, 30, 90};
     static const sol_normal_method methods[] = {SOL_NORMAL_XYZ_BEST_FIT, SOL_NORMAL_XYZ_NORMALIZED};
     enum { ALPHAS = 11 };
     int pairs = exp->quick ? 20000 : 200000;
-    sol_table *t = sol_table_new("Blending two encoded normals in an 8-bit target vs blending the originals (D7)",
+    exp_table *t = exp_table_new("Blending two encoded normals in an 8-bit target vs blending the originals (D7)",
                                  "angle deg,alpha,best fit mean deg,best fit max deg,normalized mean deg,"
                                  "normalized max deg,best fit unblended mean deg,best fit vs length-weighted mean deg");
     double curve[2][3][ALPHAS] = {{{0}}}; /* [method][angle][alpha] mean errors, for the figure */
@@ -86,7 +86,7 @@ void run_d7_blending(const sol_exp *exp)
             curve[1][a][k] = sum[1][k] / pairs;
         }
         for (int k = 0; k < ALPHAS; ++k)
-            sol_table_row(t, "%.0f|%.1f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f", angles_deg[a], k / (double)(ALPHAS - 1),
+            exp_table_row(t, "%.0f|%.1f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f", angles_deg[a], k / (double)(ALPHAS - 1),
                           sum[0][k] / pairs, worst[0][k], sum[1][k] / pairs, worst[1][k],
                           0.5 * (sum[0][0] + sum[0][ALPHAS - 1]) / pairs, weighted[k] / pairs);
         if (angles_deg[a] == 30) {
@@ -96,14 +96,14 @@ void run_d7_blending(const sol_exp *exp)
             mid_weighted = weighted[ALPHAS / 2] / pairs;
         }
     }
-    sol_table_write(t, exp, "blending");
-    FILE *f = sol_exp_open(exp, "blending_plot.csv"); /* one column per curve, for the figure */
+    exp_table_write(t, exp, "blending");
+    FILE *f = exp_open(exp, "blending_plot.csv"); /* one column per curve, for the figure */
     fprintf(f, "alpha,best fit 5,best fit 30,best fit 90,normalized 5,normalized 30,normalized 90\n");
     for (int k = 0; k < ALPHAS; ++k)
         fprintf(f, "%.1f,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f\n", k / (double)(ALPHAS - 1), curve[0][0][k], curve[0][1][k],
                 curve[0][2][k], curve[1][0][k], curve[1][1][k], curve[1][2][k]);
     fclose(f);
-    sol_plot(exp, "blending",
+    exp_plot(exp, "blending",
              "set datafile separator comma\nset xlabel 'alpha'\nset ylabel 'mean angular error (deg)'\nset logscale y\n"
              "set grid\nset key outside right\n"
              "plot for [c=2:4] 'blending_plot.csv' skip 1 using 1:c with linespoints lc c title 'best fit, '.word('5 30 90', c-1).' deg', "
@@ -115,9 +115,9 @@ void run_d7_blending(const sol_exp *exp)
              mid_fit, mid_norm, end_fit, mid_weighted);
     /* Decoding is the same normalization either way (backward compatible); whether the blend is
      * "approximately" right is judged against normalized normals in the same 8-bit target. */
-    sol_claim(exp, "D7", "blending works approximately; best fit lost by blending; one normalization decodes", s,
-              "best fit within 1.5x of normalized at alpha 0.5", mid_fit <= 1.5 * mid_norm ? SOL_REPRODUCED
-                                                                                        : SOL_DIFFERS_EXPLAINED,
+    exp_claim(exp, "D7", "blending works approximately; best fit lost by blending; one normalization decodes", s,
+              "best fit within 1.5x of normalized at alpha 0.5", mid_fit <= 1.5 * mid_norm ? EXP_REPRODUCED
+                                                                                        : EXP_DIFFERS_EXPLAINED,
               "the stored vectors blend linearly, but each weighs in with its best-fit length (1.5/127.5..1), so the "
               "decoded direction is an alpha blend with a skewed alpha: close to the length-weighted blend, far "
               "from the intended one; decoding stays one normalization, so it is backward compatible");

@@ -1,7 +1,7 @@
 /* encodings.h - what the files of the d6_d7_s1_s5_normal_encodings driver share. */
 #ifndef ENCODINGS_H
 #define ENCODINGS_H
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_normals.h"
 
 #define DEG (180.0 / M_PI)
@@ -30,6 +30,6 @@ void decode_with(const encoder *e, uint32_t code, double n[3]);
 /* Angular errors (degrees) of an encoder over R2 directions [0, n), in parallel. */
 void encoder_errors(const encoder *e, size_t n, float *err);
 
-void run_d6_table(const sol_exp *exp);
-void run_d7_blending(const sol_exp *exp);
+void run_d6_table(const exp_run *exp);
+void run_d7_blending(const exp_run *exp);
 #endif

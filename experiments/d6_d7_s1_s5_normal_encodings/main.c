@@ -36,21 +36,21 @@ static void time_batch(void *p)
 static double ns_per_normal(const encoder *e, const double *dirs, size_t n)
 {
     timing_ctx c = {e, dirs, n, 0};
-    return sol_time_per_item_ns(time_batch, &c, n, 5);
+    return exp_time_per_item_ns(time_batch, &c, n, 5);
 }
 
 static double *timing_directions(size_t n)
 {
     double *d = malloc(sizeof *d * 3 * n);
     if (!d)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (size_t i = 0; i < n; ++i)
         r2_direction(1000003 + 7 * i, d + 3 * i); /* not the error set's first points */
     return d;
 }
 
 /* ---- S1: Mittring's error as a function of the view-space z ---- */
-static void mittring_by_z(const sol_exp *exp, size_t n)
+static void mittring_by_z(const exp_run *exp, size_t n)
 {
     enum { BINS = 10 };
     const sol_normal_method methods[3] = {SOL_NORMAL_MITTRING_8, SOL_NORMAL_MITTRING_12, SOL_NORMAL_OCTAHEDRAL_12};
@@ -71,15 +71,15 @@ static void mittring_by_z(const sol_exp *exp, size_t n)
             worst[m][bin] = e > worst[m][bin] ? e : worst[m][bin];
         }
     }
-    sol_table *t = sol_table_new("Angular error by view-space z (S1)",
+    exp_table *t = exp_table_new("Angular error by view-space z (S1)",
                                  "z from,z to,mittring-8 mean deg,mittring-8 max deg,mittring-12 mean deg,"
                                  "mittring-12 max deg,octahedral-12 mean deg,octahedral-12 max deg");
     for (int b = 0; b < BINS; ++b)
-        sol_table_row(t, "%.1f|%.1f|%.4f|%.3f|%.5f|%.4f|%.5f|%.4f", -1.0 + 2.0 * b / BINS, -1.0 + 2.0 * (b + 1) / BINS,
+        exp_table_row(t, "%.1f|%.1f|%.4f|%.3f|%.5f|%.4f|%.5f|%.4f", -1.0 + 2.0 * b / BINS, -1.0 + 2.0 * (b + 1) / BINS,
                       sum[0][b] / count[b], worst[0][b], sum[1][b] / count[b], worst[1][b], sum[2][b] / count[b],
                       worst[2][b]);
-    sol_table_write(t, exp, "mittring_by_z");
-    sol_plot(exp, "mittring_by_z",
+    exp_table_write(t, exp, "mittring_by_z");
+    exp_plot(exp, "mittring_by_z",
              "set datafile separator comma\nset xlabel 'view-space z of the normal'\nset ylabel 'mean angular error (deg)'\n"
              "set logscale y\nset grid\nset key top right\n"
              "plot 'mittring_by_z.csv' skip 1 using (($1+$2)/2):3 with linespoints title 'Mittring 8:8', "
@@ -101,8 +101,8 @@ static void mittring_by_z(const sol_exp *exp, size_t n)
     /* |G| = cos(theta/2) for the angle theta to +z, so d theta = 2 d|G| / sin(theta/2): the radial code
      * step is finest at z = -1 and degenerates at z = +1. In D3D's left-handed view space (the camera
      * looks down +z) the normals the camera sees have z < 0: that is where the codes are finest. */
-    sol_claim(exp, "S1", "G = normalize(N.xy)*sqrt(N.z*0.5+0.5); more precision where it matters", s,
-              "qualitative", mean_back < mean_front ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "S1", "G = normalize(N.xy)*sqrt(N.z*0.5+0.5); more precision where it matters", s,
+              "qualitative", mean_back < mean_front ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "error per z band over R2 directions: finest for normals with z<0, i.e. facing the camera in D3D's "
               "left-handed view space (in a right-handed GL view space it would favour back-facing normals); the "
               "worst case (%.2f deg at 12:12) sits at z=+1, where |G|=cos(theta/2) is flat; |G|>1 codes are wasted",
@@ -111,11 +111,11 @@ static void mittring_by_z(const sol_exp *exp, size_t n)
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d6_d7_s1_s5_normal_encodings", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "d6_d7_s1_s5_normal_encodings", argc, argv);
     size_t n = exp.quick || exp.bench ? 1000000 : 10000000;
     sol_bestfit_table table;
-    sol_exp_check(sol_bestfit_table_build(512, 16, &table), "best-fit table");
+    exp_check(sol_bestfit_table_build(512, 16, &table), "best-fit table");
 
     method_result r[SOL_NORMAL_METHOD_COUNT + 2];
     int count = 0;
@@ -126,32 +126,32 @@ int main(int argc, char **argv)
 
     float *err = malloc(sizeof *err * n);
     if (!err)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     size_t timing_n = 1 << 14;
     double *dirs = timing_directions(timing_n);
     for (int k = 0; k < count; ++k) {
         encoder_errors(&r[k].enc, n, err);
         r[k].stats = stats_of(err, n);
         r[k].ns = ns_per_normal(&r[k].enc, dirs, timing_n);
-        sol_progress("encodings", (size_t)k + 1, (size_t)count);
+        exp_progress("encodings", (size_t)k + 1, (size_t)count);
     }
-    sol_progress_done("encodings");
+    exp_progress_done("encodings");
 
     if (!exp.bench) {
         char title[128];
         snprintf(title, sizeof title, "Angular error of 24-bit normal encodings over %.0e R2 directions", (double)n);
-        sol_table *t = sol_table_new(title, "method,bits,mean deg,rms deg,p99 deg,max deg,effective bits");
+        exp_table *t = exp_table_new(title, "method,bits,mean deg,rms deg,p99 deg,max deg,effective bits");
         for (int k = 0; k < count; ++k)
-            sol_table_row(t, "%s|%d|%.5f|%.5f|%.5f|%.5f|%.2f", r[k].enc.name, sol_normal_method_bits(r[k].enc.method),
+            exp_table_row(t, "%s|%d|%.5f|%.5f|%.5f|%.5f|%.2f", r[k].enc.name, sol_normal_method_bits(r[k].enc.method),
                           r[k].stats.mean, r[k].stats.rms, r[k].stats.p99, r[k].stats.max, effective_bits(r[k].stats.rms));
-        sol_table_write(t, &exp, "errors");
+        exp_table_write(t, &exp, "errors");
     }
-    sol_table *p = sol_table_new("Accuracy vs time per normal (encode + decode, one thread)",
+    exp_table *p = exp_table_new("Accuracy vs time per normal (encode + decode, one thread)",
                                  "method,ns per normal,rms deg,max deg");
     for (int k = 0; k < count; ++k)
-        sol_table_row(p, "%s|%.1f|%.5f|%.5f", r[k].enc.name, r[k].ns, r[k].stats.rms, r[k].stats.max);
-    sol_table_write(p, &exp, "pareto");
-    sol_plot(&exp, "pareto",
+        exp_table_row(p, "%s|%.1f|%.5f|%.5f", r[k].enc.name, r[k].ns, r[k].stats.rms, r[k].stats.max);
+    exp_table_write(p, &exp, "pareto");
+    exp_plot(&exp, "pareto",
              "set datafile separator comma\nset logscale xy\nset xlabel 'ns per normal (encode + decode)'\n"
              "set ylabel 'RMS angular error (deg)'\nset grid\nset key off\nset offsets graph 0.05, graph 0.3, 0, 0\n"
              "plot 'pareto.csv' skip 1 using 2:3 with points pt 7 ps 1.2, "
@@ -169,8 +169,8 @@ int main(int argc, char **argv)
                  fit->stats.rms, fit->stats.max);
         int better = oct->stats.rms < xyz->stats.rms && oct->stats.rms < sph->stats.rms &&
                      oct->stats.rms < sphz->stats.rms && fit->stats.rms < xyz->stats.rms / 3;
-        sol_claim(&exp, "S5", "octahedral beats XYZ and spherical; best fit very precise at 3 components", s,
-                  "qualitative", better ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+        exp_claim(&exp, "S5", "octahedral beats XYZ and spherical; best fit very precise at 3 components", s,
+                  "qualitative", better ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
                   "all 24-bit; octahedral has the lowest RMS error (max %.4f deg vs spherical %.4f deg); best fit's "
                   "RMS is %.1fx lower than normalized XYZ but its worst case stays %.3f deg near the axes, where the "
                   "talk's quantizer has no zero code",

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 
 #include "sol_brdf.h"
-#include "sol_exp.h"
+#include "exp_harness.h"
 
 static const double NORMAL[3] = {0.0, 0.0, 1.0};
 
@@ -59,19 +59,19 @@ static double integrate(sol_sphere_fn f, void *ctx, const double pole[3], double
 {
     sol_quad_options o = {.rel_tol = rel_tol, .abs_tol = 1e-14, .theta_max = theta_max, .max_intervals = 2000};
     double v, e;
-    sol_exp_check(sol_sphere_integrate(f, ctx, pole, &o, &v, &e), "integrating");
+    exp_check(sol_sphere_integrate(f, ctx, pole, &o, &v, &e), "integrating");
     return v;
 }
 
-static void albedo_table(const sol_exp *exp, double *worst_normal_dev)
+static void albedo_table(const exp_run *exp, double *worst_normal_dev)
 {
     static const double ns[] = {1, 2, 5, 10, 20, 50, 120, 250, 1000, 10000};
     static const double angles[] = {0, 15, 30, 45, 60, 75, 85, 90};
     const int n_n = 10, n_a = 8;
-    sol_table *t = sol_table_new("Albedo of the normalised Phong lobe (n+2)/(2 pi) (r.l)^n cos(theta_l) over the "
+    exp_table *t = exp_table_new("Albedo of the normalised Phong lobe (n+2)/(2 pi) (r.l)^n cos(theta_l) over the "
                                  "hemisphere, by exponent n and angle of r from the normal",
                                  "n,0 deg,15 deg,30 deg,45 deg,60 deg,75 deg,85 deg,90 deg");
-    FILE *f = sol_exp_open(exp, "albedo.dat");
+    FILE *f = exp_open(exp, "albedo.dat");
     fprintf(f, "# n then albedo at 0 15 30 45 60 75 85 90 degrees\n");
     *worst_normal_dev = 0.0;
     double vals[10][8];
@@ -85,7 +85,7 @@ static void albedo_table(const sol_exp *exp, double *worst_normal_dev)
     for (int i = 0; i < n_n; ++i) {
         double d = fabs(vals[i][0] - 1.0);
         *worst_normal_dev = d > *worst_normal_dev ? d : *worst_normal_dev;
-        sol_table_row(t, "%g|%.6f|%.6f|%.6f|%.6f|%.6f|%.6f|%.6f|%.6f", ns[i], vals[i][0], vals[i][1], vals[i][2],
+        exp_table_row(t, "%g|%.6f|%.6f|%.6f|%.6f|%.6f|%.6f|%.6f|%.6f", ns[i], vals[i][0], vals[i][1], vals[i][2],
                       vals[i][3], vals[i][4], vals[i][5], vals[i][6], vals[i][7]);
         fprintf(f, "%g", ns[i]);
         for (int j = 0; j < n_a; ++j)
@@ -93,17 +93,17 @@ static void albedo_table(const sol_exp *exp, double *worst_normal_dev)
         fprintf(f, "\n");
     }
     fclose(f);
-    sol_table_write(t, exp, "albedo");
-    sol_plot(exp, "albedo",
+    exp_table_write(t, exp, "albedo");
+    exp_plot(exp, "albedo",
              "set logscale x; set xlabel 'Phong exponent n'; set ylabel 'albedo (hemisphere integral)';"
              "set key bottom left; set grid; set yrange [0:1.1];"
              "plot for [c=2:9] 'albedo.dat' u 1:c w lp t sprintf('r at %%s deg', word('0 15 30 45 60 75 85 90', c-1))");
 }
 
-static void factors_table(const sol_exp *exp, double *worst_blinn_dev)
+static void factors_table(const exp_run *exp, double *worst_blinn_dev)
 {
     static const double ns[] = {0, 1, 5, 10, 20, 50, 120, 250, 1000, 10000};
-    sol_table *t = sol_table_new("Normalisation factors and the Blinn-Phong albedo at v = normal they give",
+    exp_table *t = exp_table_new("Normalisation factors and the Blinn-Phong albedo at v = normal they give",
                                  "n,Phong (n+2)/2pi,lobe (n+1)/2pi,Blinn exact,Blinn (n+8)/8pi,approx/exact,"
                                  "albedo exact,albedo approx");
     *worst_blinn_dev = 0.0;
@@ -115,22 +115,22 @@ static void factors_table(const sol_exp *exp, double *worst_blinn_dev)
         double a_ap = integrate(blinn_cos, &c, NORMAL, 0.5 * M_PI, 1e-10);
         double d = fabs(a_ex - 1.0);
         *worst_blinn_dev = d > *worst_blinn_dev ? d : *worst_blinn_dev;
-        sol_table_row(t, "%g|%.5g|%.5g|%.5g|%.5g|%.4f|%.6f|%.4f", n, sol_phong_norm_factor(n),
+        exp_table_row(t, "%g|%.5g|%.5g|%.5g|%.5g|%.4f|%.6f|%.4f", n, sol_phong_norm_factor(n),
                       sol_phong_lobe_norm_factor(n), ex, ap, ap / ex, a_ex, a_ap);
     }
-    sol_table_write(t, exp, "factors");
+    exp_table_write(t, exp, "factors");
 }
 
 /* Sun (disk of angular radius 0.2666 deg, normal irradiance 1) centred on the reflection direction
  * at 30 degrees from the normal, and a uniform sky of radiance 1: the analytic (point) sun, the
  * sun integrated over its disk, and the prefiltered environment lookup of the same sun. */
-static void consistency_table(const sol_exp *exp, double ratio_norm[4], double ratio_raw[4])
+static void consistency_table(const exp_run *exp, double ratio_norm[4], double ratio_raw[4])
 {
     static const double gloss[4] = {5, 20, 120, 250};
     const double rho = 0.2666 * M_PI / 180.0;
     const double omega = 2.0 * M_PI * -expm1(log(cos(rho)));  /* disk solid angle */
     const double radiance = 1.0 / omega;                        /* irradiance 1 at normal incidence */
-    sol_table *t = sol_table_new(
+    exp_table *t = exp_table_new(
         "Sun highlight vs environment lookup (r at 30 deg): analytic point sun, sun integrated over its disk, "
         "prefiltered environment (unit-integral Phong kernel) x cos; and a uniform sky's reflection",
         "glossiness,analytic norm.,disk norm.,env lookup,analytic/env norm.,analytic raw,analytic/env raw,"
@@ -150,10 +150,10 @@ static void consistency_table(const sol_exp *exp, double ratio_norm[4], double r
         double sky_raw = integrate(phong_cos, &sky, sky.r, 0.0, 1e-10);
         ratio_norm[i] = analytic_norm / env;
         ratio_raw[i] = analytic_raw / env;
-        sol_table_row(t, "%g|%.4f|%.4f|%.4f|%.3f|%.4f|%.3f|%.4f|%.4f", gloss[i], analytic_norm, disk_norm, env,
+        exp_table_row(t, "%g|%.4f|%.4f|%.4f|%.3f|%.4f|%.3f|%.4f|%.4f", gloss[i], analytic_norm, disk_norm, env,
                       ratio_norm[i], analytic_raw, ratio_raw[i], sky_norm, sky_raw);
     }
-    sol_table_write(t, exp, "consistency");
+    exp_table_write(t, exp, "consistency");
 }
 
 /* ---- accuracy vs time of the two sphere integrators on one lobe (n = 20, r at 45 deg) ---- */
@@ -170,41 +170,41 @@ static void run_quad(void *vctx)
     phong_ctx c = {.n = 20, .normalized = 1, .scale = 1.0};
     reflection_at(45.0, c.r);
     if (q->mc) {
-        sol_exp_check(sol_sphere_integrate_mc(phong_cos, &c, q->strata, 12345u, &q->value, NULL), "MC");
+        exp_check(sol_sphere_integrate_mc(phong_cos, &c, q->strata, 12345u, &q->value, NULL), "MC");
     } else {
         sol_quad_options o = {.rel_tol = q->tol, .abs_tol = 1e-15, .max_intervals = 2000};
         double e;
-        sol_exp_check(sol_sphere_integrate(phong_cos, &c, c.r, &o, &q->value, &e), "GK");
+        exp_check(sol_sphere_integrate(phong_cos, &c, c.r, &o, &q->value, &e), "GK");
     }
 }
 
-static void quadrature_table(const sol_exp *exp)
+static void quadrature_table(const exp_run *exp)
 {
     quad_timing ref = {0, 1e-13, 0, 0};
     run_quad(&ref);
-    sol_table *t = sol_table_new("Sphere quadrature accuracy vs time: normalised Phong n = 20, r at 45 deg",
+    exp_table *t = exp_table_new("Sphere quadrature accuracy vs time: normalised Phong n = 20, r at 45 deg",
                                  "method,knob,abs error,us per integral");
-    FILE *f = sol_exp_open(exp, "quadrature.dat");
+    FILE *f = exp_open(exp, "quadrature.dat");
     fprintf(f, "# method(0 GK, 1 MC) us abs_error\n");
     static const double tols[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
     for (int i = 0; i < 5; ++i) {
         quad_timing q = {0, tols[i], 0, 0};
-        double ns = sol_time_per_item_ns(run_quad, &q, 1, exp->quick ? 1 : 5);
+        double ns = exp_time_per_item_ns(run_quad, &q, 1, exp->quick ? 1 : 5);
         double err = fabs(q.value - ref.value);
-        sol_table_row(t, "adaptive GK|rel tol %.0e|%.3e|%.1f", tols[i], err, ns * 1e-3);
+        exp_table_row(t, "adaptive GK|rel tol %.0e|%.3e|%.1f", tols[i], err, ns * 1e-3);
         fprintf(f, "0 %.6g %.6g\n", ns * 1e-3, err > 1e-16 ? err : 1e-16);
     }
     static const int strata[] = {16, 64, 256, 1024};
     for (int i = 0; i < (exp->quick ? 3 : 4); ++i) {
         quad_timing q = {1, 0, strata[i], 0};
-        double ns = sol_time_per_item_ns(run_quad, &q, 1, exp->quick ? 1 : 3);
+        double ns = exp_time_per_item_ns(run_quad, &q, 1, exp->quick ? 1 : 3);
         double err = fabs(q.value - ref.value);
-        sol_table_row(t, "stratified MC|%dx%d|%.3e|%.1f", strata[i], strata[i], err, ns * 1e-3);
+        exp_table_row(t, "stratified MC|%dx%d|%.3e|%.1f", strata[i], strata[i], err, ns * 1e-3);
         fprintf(f, "1 %.6g %.6g\n", ns * 1e-3, err > 1e-16 ? err : 1e-16);
     }
     fclose(f);
-    sol_table_write(t, exp, "quadrature");
-    sol_plot(exp, "quadrature",
+    exp_table_write(t, exp, "quadrature");
+    exp_plot(exp, "quadrature",
              "set logscale xy; set xlabel 'microseconds per integral'; set ylabel 'absolute error';"
              "set grid; set key top right;"
              "plot 'quadrature.dat' u ($1==0?$2:1/0):3 w lp t 'adaptive Gauss-Kronrod',"
@@ -213,8 +213,8 @@ static void quadrature_table(const sol_exp *exp)
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d8_phong_normalization", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "d8_phong_normalization", argc, argv);
     quadrature_table(&exp);
     if (exp.bench)
         return 0;
@@ -233,9 +233,9 @@ int main(int argc, char **argv)
              "albedo at r = normal 1 +- %.1e for n = 1..1e4; sun/env ratio %.3f..%.3f normalised vs %.3f..%.3f raw "
              "(gloss 5..250)",
              dev_phong, rn_lo, rn_hi, rr_lo, rr_hi);
-    sol_verdict v = dev_phong < 1e-6 && rn_lo > 0.95 && rn_hi < 1.25 && rr_hi / rr_lo > 10.0 ? SOL_REPRODUCED
-                                                                                           : SOL_NOT_REPRODUCED;
-    sol_claim(&exp, "D8", "(n+2)/(2 pi)", fig, "albedo 1 within 1e-6; normalised ratio within 0.95..1.25", v,
+    exp_verdict v = dev_phong < 1e-6 && rn_lo > 0.95 && rn_hi < 1.25 && rr_hi / rr_lo > 10.0 ? EXP_REPRODUCED
+                                                                                           : EXP_NOT_REPRODUCED;
+    exp_claim(&exp, "D8", "(n+2)/(2 pi)", fig, "albedo 1 within 1e-6; normalised ratio within 0.95..1.25", v,
               "(n+2)/(2 pi) is exact at r = normal (albedo falls towards grazing as the lobe is clipped); "
               "normalised, the analytic sun matches the prefiltered environment up to (n+2)/(n+1), raw Phong drifts by "
               "2 pi/(n+1)");

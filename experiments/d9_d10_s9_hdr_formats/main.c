@@ -13,7 +13,7 @@
 #include <errno.h>
 #include <sys/stat.h>
 
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_hdr.h"
 
 enum { SCENE_W = 256, SCENE_H = 160 };
@@ -81,7 +81,7 @@ static void scene_pixel(scene_id id, int x, int y, double c[3])
 
 static void make_scene(scene_id id, sol_image *img)
 {
-    sol_exp_check(sol_image_alloc(img, SCENE_W, SCENE_H, 3), "scene");
+    exp_check(sol_image_alloc(img, SCENE_W, SCENE_H, 3), "scene");
     for (int y = 0; y < SCENE_H; ++y)
         for (int x = 0; x < SCENE_W; ++x) {
             double c[3];
@@ -97,19 +97,19 @@ static void make_scene(scene_id id, sol_image *img)
  * experiment's input is a file other tools can open. (Real HDR maps were considered: Debian's
  * blender-data ships CC0 environment maps, but they are DWAB-compressed, which OpenEXR 3.1's C core
  * API cannot decode.) */
-static void load_scenes(const sol_exp *exp, sol_image *out)
+static void load_scenes(const exp_run *exp, sol_image *out)
 {
     char path[4096], file[128];
-    if (mkdir(sol_exp_path(exp, "scenes"), 0777) != 0 && errno != EEXIST)
-        sol_exp_die("cannot create %s", sol_exp_path(exp, "scenes"));
+    if (mkdir(exp_path(exp, "scenes"), 0777) != 0 && errno != EEXIST)
+        exp_die("cannot create %s", exp_path(exp, "scenes"));
     for (int id = 0; id < SCENE_COUNT; ++id) {
         sol_image made;
         make_scene((scene_id)id, &made);
         snprintf(file, sizeof file, "scenes/%s.exr", scene_name[id]);
-        snprintf(path, sizeof path, "%s", sol_exp_path(exp, file));
-        sol_exp_check(sol_exr_write(path, &made, 0), "writing %s", path);
+        snprintf(path, sizeof path, "%s", exp_path(exp, file));
+        exp_check(sol_exr_write(path, &made, 0), "writing %s", path);
         sol_image_free(&made);
-        sol_exp_check(sol_exr_read(path, &out[id]), "reading %s", path);
+        exp_check(sol_exr_read(path, &out[id]), "reading %s", path);
     }
 }
 
@@ -146,8 +146,8 @@ static void store(format f, const float in[3], float out[3])
     case R11G11B10F: sol_r11g11b10f_unpack(sol_r11g11b10f_pack(in), out); break;
     case RGBM8: {
         uint8_t code[4];
-        sol_exp_check(sol_rgbm_encode(in, rgbm_range, code), "RGBM");
-        sol_exp_check(sol_rgbm_decode(code, rgbm_range, out), "RGBM");
+        exp_check(sol_rgbm_encode(in, rgbm_range, code), "RGBM");
+        exp_check(sol_rgbm_decode(code, rgbm_range, out), "RGBM");
         break;
     }
     case RGB10_0_2:
@@ -173,7 +173,7 @@ static double policy_scale(policy p, format f, double l)
     if (p == RANGE_AVERAGE)
         return 1.0 / l;
     double top;
-    sol_exp_check(sol_tonemap_inverse(display_curve, 1.0 - 1.0 / 510.0, &top), "window top");
+    exp_check(sol_tonemap_inverse(display_curve, 1.0 - 1.0 / 510.0, &top), "window top");
     return format_max[f] / (top * l);
 }
 
@@ -189,8 +189,8 @@ typedef struct store_error {
 static store_error measure_store(const sol_image *scene, format f, policy p, double l, sol_image *out_display)
 {
     double s = policy_scale(p, f, l), c_min, c_max;
-    sol_exp_check(sol_tonemap_lower_bound(display_curve, 1.0 / 510.0, &c_min), "lower bound");
-    sol_exp_check(sol_tonemap_inverse(display_curve, 1.0 - 1.0 / 510.0, &c_max), "upper bound");
+    exp_check(sol_tonemap_lower_bound(display_curve, 1.0 / 510.0, &c_min), "lower bound");
+    exp_check(sol_tonemap_inverse(display_curve, 1.0 - 1.0 / 510.0, &c_max), "upper bound");
     c_min *= l;
     c_max *= l;
     store_error e = {0, 0, 0, 0, 0};
@@ -249,20 +249,20 @@ static double accumulate_lights(const sol_image *scene, format f, policy p, doub
 }
 
 /* ---------------- parts of the experiment ---------------- */
-static void write_display(const sol_exp *exp, const char *name, const sol_image *img)
+static void write_display(const exp_run *exp, const char *name, const sol_image *img)
 {
-    sol_exp_check(sol_png_write(sol_exp_path(exp, name), img, 8), "writing %s", name);
+    exp_check(sol_png_write(exp_path(exp, name), img, 8), "writing %s", name);
 }
 
 /* The talk's "range scaling disabled / enabled" pair, for R11G11B10F, with amplified errors. */
-static void comparison_images(const sol_exp *exp, const sol_image *scene, const char *scene_label, double l)
+static void comparison_images(const exp_run *exp, const sol_image *scene, const char *scene_label, double l)
 {
     sol_image ref, off, on, diff;
     const int w = scene->width, h = scene->height;
-    sol_exp_check(sol_image_alloc(&ref, w, h, 3), "image");
-    sol_exp_check(sol_image_alloc(&off, w, h, 3), "image");
-    sol_exp_check(sol_image_alloc(&on, w, h, 3), "image");
-    sol_exp_check(sol_image_alloc(&diff, w * 2, h, 3), "image");
+    exp_check(sol_image_alloc(&ref, w, h, 3), "image");
+    exp_check(sol_image_alloc(&off, w, h, 3), "image");
+    exp_check(sol_image_alloc(&on, w, h, 3), "image");
+    exp_check(sol_image_alloc(&diff, w * 2, h, 3), "image");
     for (int k = 0; k < w * h * 3; ++k)
         ref.data[k] = (float)(display_code(scene->data[k], l) / 255.0);
     measure_store(scene, R11G11B10F, RANGE_NONE, l, &off);
@@ -304,9 +304,9 @@ static double relative_step(format f, double v)
     }
 }
 
-static void precision_plot(const sol_exp *exp)
+static void precision_plot(const exp_run *exp)
 {
-    FILE *f = sol_exp_open(exp, "relative_step.csv");
+    FILE *f = exp_open(exp, "relative_step.csv");
     fputs("value", f);
     for (int k = 0; k < FORMAT_COUNT; ++k)
         fprintf(f, ",%s", format_name[k]);
@@ -319,27 +319,27 @@ static void precision_plot(const sol_exp *exp)
         fputc('\n', f);
     }
     fclose(f);
-    sol_plot(exp, "relative_step",
+    exp_plot(exp, "relative_step",
              "set datafile separator comma\nset logscale xy\nset grid\nset format x '10^{%%L}'\nset format y '10^{%%L}'\n"
              "set xlabel 'stored value'\nset ylabel 'quantisation step / value'\nset yrange [1e-4:10]\n"
              "set key bottom left\nplot for [i=2:6] 'relative_step.csv' using 1:i with lines lw 2 title columnheader(i)");
 }
 
 /* Mean display-code error of each format and policy as the scene's absolute level changes. */
-static void level_sweep(const sol_exp *exp, const sol_image *base, double *r11_none_worst, double *r11_avg_worst)
+static void level_sweep(const exp_run *exp, const sol_image *base, double *r11_none_worst, double *r11_avg_worst)
 {
     const int steps = exp->quick ? 9 : 33;
-    FILE *f = sol_exp_open(exp, "level_sweep.csv");
+    FILE *f = exp_open(exp, "level_sweep.csv");
     fputs("level", f);
     for (int k = 0; k < FORMAT_COUNT; ++k)
         for (int p = 0; p < POLICY_COUNT; ++p)
             fprintf(f, ",%s / %s", format_name[k], p == RANGE_NONE ? "none" : p == RANGE_AVERAGE ? "c/l" : "window");
     fputc('\n', f);
     sol_image scaled;
-    sol_exp_check(sol_image_alloc(&scaled, SCENE_W, SCENE_H, 3), "image");
+    exp_check(sol_image_alloc(&scaled, SCENE_W, SCENE_H, 3), "image");
     *r11_none_worst = *r11_avg_worst = 0.0;
     for (int i = 0; i < steps; ++i) {
-        sol_progress("d9 level sweep", (size_t)i, (size_t)steps);
+        exp_progress("d9 level sweep", (size_t)i, (size_t)steps);
         double level = pow(10.0, -8.0 + 16.0 * i / (steps - 1));
         for (int k = 0; k < SCENE_W * SCENE_H * 3; ++k)
             scaled.data[k] = (float)(base->data[k] * level);
@@ -356,10 +356,10 @@ static void level_sweep(const sol_exp *exp, const sol_image *base, double *r11_n
             }
         fputc('\n', f);
     }
-    sol_progress_done("d9 level sweep");
+    exp_progress_done("d9 level sweep");
     fclose(f);
     sol_image_free(&scaled);
-    sol_plot(exp, "level_sweep",
+    exp_plot(exp, "level_sweep",
              "set datafile separator comma\nset logscale x\nset grid\nset format x '10^{%%L}'\n"
              "set xlabel 'absolute level of the interior scene (x 1)'\nset ylabel 'mean display-code error'\n"
              "set key outside right\nset logscale y\nset yrange [1e-3:200]\n"
@@ -373,7 +373,7 @@ static void level_sweep(const sol_exp *exp, const sol_image *base, double *r11_n
 
 /* Tesseract's world-space RGB8 normals (S9): n * 0.5 + 0.5 per channel at 8 bits, decoded by
  * normalising; angular error over uniformly distributed directions (R2 points on the sphere). */
-static void rgb8_normals(const sol_exp *exp, double *mean_deg, double *max_deg)
+static void rgb8_normals(const exp_run *exp, double *mean_deg, double *max_deg)
 {
     const int n = exp->quick ? 100000 : 2000000;
     enum { CHUNKS = 64 };
@@ -395,10 +395,10 @@ static void rgb8_normals(const sol_exp *exp, double *mean_deg, double *max_deg)
         *mean_deg += part_sum[ch] / n;
         *max_deg = fmax(*max_deg, part_max[ch]);
     }
-    sol_table *t = sol_table_new("World-space RGB8 normals (n/2 + 1/2 in UNORM8, normalised on decode)",
+    exp_table *t = exp_table_new("World-space RGB8 normals (n/2 + 1/2 in UNORM8, normalised on decode)",
                                  "directions,mean angular error (deg),max angular error (deg)");
-    sol_table_row(t, "%d|%.4f|%.4f", n, *mean_deg, *max_deg);
-    sol_table_write(t, exp, "rgb8_normals");
+    exp_table_row(t, "%d|%.4f|%.4f", n, *mean_deg, *max_deg);
+    exp_table_write(t, exp, "rgb8_normals");
 }
 
 /* The float formats place their window from the average alone: the window policy is not run. */
@@ -413,14 +413,14 @@ typedef struct format_stats {
 } format_stats;
 
 /* One scene through every format and policy: a table row each, folded into `st`. */
-static void scene_format_rows(sol_table *t, const sol_image *img, scene_id id, double l, format_stats *st)
+static void scene_format_rows(exp_table *t, const sol_image *img, scene_id id, double l, format_stats *st)
 {
     for (int f = 0; f < FORMAT_COUNT; ++f)
         for (int p = 0; p < POLICY_COUNT; ++p) {
             if (!policy_applies((format)f, (policy)p))
                 continue;
             store_error e = measure_store(img, (format)f, (policy)p, l, NULL);
-            sol_table_row(t, "%s|%.3g|%s|%d|%s|%.0f|%.3f|%.2f|%.2f|%.4f", scene_name[id], l, format_name[f],
+            exp_table_row(t, "%s|%.3g|%s|%d|%s|%.0f|%.3f|%.2f|%.2f|%.4f", scene_name[id], l, format_name[f],
                           format_bits[f], policy_name[p], e.max_code, e.mean_code, e.pct_changed, e.pct_2codes,
                           e.max_rel_window);
             st->worst_max[f][p] = fmax(st->worst_max[f][p], e.max_code);
@@ -428,9 +428,9 @@ static void scene_format_rows(sol_table *t, const sol_image *img, scene_id id, d
         }
 }
 
-static void format_error_table(const sol_exp *exp, const sol_image scenes[SCENE_COUNT], format_stats *st)
+static void format_error_table(const exp_run *exp, const sol_image scenes[SCENE_COUNT], format_stats *st)
 {
-    sol_table *t = sol_table_new("HDR scenes stored in each format (HBD filmic, 8-bit sRGB display codes)",
+    exp_table *t = exp_table_new("HDR scenes stored in each format (HBD filmic, 8-bit sRGB display codes)",
                                  "scene,l,format,bits/px,range policy,max code error,mean code error,% px changed,"
                                  "% px >= 2 codes,max rel. error in c_min..c_max");
     for (int id = 0; id < SCENE_COUNT; ++id) {
@@ -440,19 +440,19 @@ static void format_error_table(const sol_exp *exp, const sol_image scenes[SCENE_
         if (id != SKY_SUN) /* the sky is all bright: nothing to see in the pair */
             comparison_images(exp, img, scene_name[id], l);
     }
-    sol_table_write(t, exp, "format_errors");
+    exp_table_write(t, exp, "format_errors");
 }
 
-static void format_summary_table(const sol_exp *exp, const format_stats *st)
+static void format_summary_table(const exp_run *exp, const format_stats *st)
 {
-    sol_table *summary = sol_table_new("Formats over the four scenes", "format,bits/px,range policy,"
+    exp_table *summary = exp_table_new("Formats over the four scenes", "format,bits/px,range policy,"
                                        "worst max code error,average mean code error");
     for (int f = 0; f < FORMAT_COUNT; ++f)
         for (int p = 0; p < POLICY_COUNT; ++p)
             if (policy_applies((format)f, (policy)p))
-                sol_table_row(summary, "%s|%d|%s|%.0f|%.3f", format_name[f], format_bits[f], policy_name[p],
+                exp_table_row(summary, "%s|%d|%s|%.0f|%.3f", format_name[f], format_bits[f], policy_name[p],
                               st->worst_max[f][p], st->mean_mean[f][p]);
-    sol_table_write(summary, exp, "format_summary");
+    exp_table_write(summary, exp, "format_summary");
 }
 
 /* Each format blends with its better policy in format_summary: the window for RGBM, c / l for the rest. */
@@ -463,9 +463,9 @@ static policy accumulation_policy(format f)
 
 /* Additive light accumulation in the interior scene; returns the mean code errors with 16 lights
  * of R11G11B10F and RGBA16F (the D9 row). */
-static void light_accumulation_table(const sol_exp *exp, const sol_image *interior, double *r11_many, double *fp16_many)
+static void light_accumulation_table(const exp_run *exp, const sol_image *interior, double *r11_many, double *fp16_many)
 {
-    sol_table *acc = sol_table_new("Additive light accumulation in the buffer (interior scene, re-quantised per blend)",
+    exp_table *acc = exp_table_new("Additive light accumulation in the buffer (interior scene, re-quantised per blend)",
                                    "format,range policy,lights,max code error,mean code error");
     const int light_counts[] = {1, 4, 16, 64};
     for (int f = 0; f < FORMAT_COUNT; ++f) {
@@ -475,17 +475,17 @@ static void light_accumulation_table(const sol_exp *exp, const sol_image *interi
                 continue;
             double max_code, mean = accumulate_lights(interior, (format)f, p, log_average_luminance(interior),
                                                       light_counts[c], &max_code);
-            sol_table_row(acc, "%s|%s|%d|%.0f|%.3f", format_name[f], policy_name[p], light_counts[c], max_code, mean);
+            exp_table_row(acc, "%s|%s|%d|%.0f|%.3f", format_name[f], policy_name[p], light_counts[c], max_code, mean);
             if (light_counts[c] == 16 && f == R11G11B10F)
                 *r11_many = mean;
             if (light_counts[c] == 16 && f == FP16)
                 *fp16_many = mean;
         }
     }
-    sol_table_write(acc, exp, "light_accumulation");
+    exp_table_write(acc, exp, "light_accumulation");
 }
 
-static void claim_d9(const sol_exp *exp, const format_stats *st, double r11_many, double fp16_many)
+static void claim_d9(const exp_run *exp, const format_stats *st, double r11_many, double fp16_many)
 {
     char fig[256];
     snprintf(fig, sizeof fig,
@@ -499,8 +499,8 @@ static void claim_d9(const sol_exp *exp, const format_stats *st, double r11_many
     snprintf(acc_note, sizeof acc_note, "; 16 lights blended: R11G11B10F mean code error %.3f vs RGBA16F %.3f",
              r11_many, fp16_many);
     strncat(fig, acc_note, sizeof fig - strlen(fig) - 1);
-    sol_claim(exp, "D9", "RGBK at LDR bandwidth; R11G11B10F same bandwidth, not enough precision for linear HDR",
-              fig, "qualitative", r11_worse ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+    exp_claim(exp, "D9", "RGBK at LDR bandwidth; R11G11B10F same bandwidth, not enough precision for linear HDR",
+              fig, "qualitative", r11_worse ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "four synthetic scenes (interior, night street, sky with sun, dark cave; float EXR files) through "
               "each 32-bit format, HBD "
               "filmic at the scene's log-average, errors in 8-bit sRGB display codes: R11G11B10F's relative step "
@@ -510,18 +510,18 @@ static void claim_d9(const sol_exp *exp, const format_stats *st, double r11_many
               "is not more precise (table format_summary)");
 }
 
-static void claim_d10(const sol_exp *exp, double r11_none, double r11_avg)
+static void claim_d10(const exp_run *exp, double r11_none, double r11_avg)
 {
     char fig[256];
     snprintf(fig, sizeof fig, "R11G11B10F mean code error over levels 1e-8..1e8: %.3f unscaled vs %.3f scaled by 1/l",
              r11_none, r11_avg);
-    sol_claim(exp, "D10", "range scaling from the average luminance improves precision", fig, "qualitative",
-              r11_avg < r11_none ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "D10", "range scaling from the average luminance improves precision", fig, "qualitative",
+              r11_avg < r11_none ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the interior scene at absolute levels 1e-8..1e8: scaling the stored range by 1/l keeps the error flat, "
               "without it the error grows once values fall into denormals or above 65024 (plot level_sweep)");
 }
 
-static void claim_s9_rgb10(const sol_exp *exp, const format_stats *st)
+static void claim_s9_rgb10(const exp_run *exp, const format_stats *st)
 {
     char fig[256];
     snprintf(fig, sizeof fig,
@@ -532,28 +532,28 @@ static void claim_s9_rgb10(const sol_exp *exp, const format_stats *st)
              st->mean_mean[R11G11B10F][RANGE_AVERAGE]);
     int rgb10_better = st->mean_mean[RGB10_0_2][RANGE_WINDOW] < st->mean_mean[RGB8][RANGE_WINDOW] &&
                        st->mean_mean[RGB10_0_2][RANGE_AVERAGE] < st->mean_mean[RGB8][RANGE_AVERAGE];
-    sol_claim(exp, "S9", "RGB10 scaled to 0..2: overbright and better precision than RGB8", fig, "qualitative",
-              rgb10_better ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "S9", "RGB10 scaled to 0..2: overbright and better precision than RGB8", fig, "qualitative",
+              rgb10_better ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "half the step of RGB8 with twice the headroom; R11G11B10F (the preferred format) keeps a constant "
               "relative step of 2^-6 (2^-5 in blue) instead (plot relative_step)");
 }
 
 /* Measures the RGB8 normals (table rgb8_normals) and writes their S9 row. */
-static void claim_s9_normals(const sol_exp *exp)
+static void claim_s9_normals(const exp_run *exp)
 {
     double normal_mean, normal_max;
     rgb8_normals(exp, &normal_mean, &normal_max);
     char fig[256];
     snprintf(fig, sizeof fig, "RGB8 world-space normals: mean %.3f deg, max %.3f deg", normal_mean, normal_max);
-    sol_claim(exp, "S9", "world-space RGB8 normals", fig, "qualitative (measured)", SOL_REPRODUCED,
+    exp_claim(exp, "S9", "world-space RGB8 normals", fig, "qualitative (measured)", EXP_REPRODUCED,
               "the notes make no quantitative claim; this is the precision the layout buys: n/2 + 1/2 in three UNORM8 "
               "channels, normalised on decode, over uniformly distributed directions");
 }
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "d9_d10_s9_hdr_formats", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "d9_d10_s9_hdr_formats", argc, argv);
     if (exp.bench)
         return 0; /* no accuracy knob here: formats are fixed */
     sol_image scenes[SCENE_COUNT];

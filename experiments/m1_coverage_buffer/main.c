@@ -5,7 +5,7 @@
  * Scene: random axis-aligned wall-like occluder boxes ray-cast into a full-resolution depth
  * buffer ("the previous frame's z buffer"); many random test boxes, whose exact visibility is
  * decided at every pixel centre they cover (sol_box_visible: the rasterised reference). */
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_screen.h"
 
 #include <stdint.h>
@@ -48,7 +48,7 @@ static void run_tests(void *ctx)
     long visited = 0;
     for (int i = 0; i < t->count; ++i) {
         int v = 0;
-        sol_exp_check(sol_cbuffer_test(t->cb, &t->bounds[i], t->max_refine, &t->occluded[i], &v), "testing box");
+        exp_check(sol_cbuffer_test(t->cb, &t->bounds[i], t->max_refine, &t->occluded[i], &v), "testing box");
         visited += v;
     }
     t->visited = visited;
@@ -59,13 +59,13 @@ static const char *downscale_name(sol_downscale d)
     return d == SOL_DOWNSCALE_MAX ? "max" : d == SOL_DOWNSCALE_MIN ? "min" : "mean";
 }
 
-static void save_depth_png(const sol_exp *exp, const float *depth, const sol_camera *cam)
+static void save_depth_png(const exp_run *exp, const float *depth, const sol_camera *cam)
 {
     sol_image img;
-    sol_exp_check(sol_image_alloc(&img, cam->width, cam->height, 1), "allocating image");
+    exp_check(sol_image_alloc(&img, cam->width, cam->height, 1), "allocating image");
     for (int i = 0; i < cam->width * cam->height; ++i) /* inverse depth, white at the nearest occluders */
         img.data[i] = (float)(8.0 / depth[i] > 1.0 ? 1.0 : 8.0 / depth[i]);
-    sol_exp_check(sol_png_write(sol_exp_path(exp, "depth.png"), &img, 8), "writing depth.png");
+    exp_check(sol_png_write(exp_path(exp, "depth.png"), &img, 8), "writing depth.png");
     sol_image_free(&img);
 }
 
@@ -89,25 +89,25 @@ static int latency_false_culls(const sol_camera *cam, const sol_box *occluders, 
     float *old_depth = malloc(sizeof(float) * (size_t)cam->width * (size_t)cam->height);
     float *new_depth = malloc(sizeof(float) * (size_t)cam->width * (size_t)cam->height);
     if (!occ_now || !test_now || !old_depth || !new_depth)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     shift_boxes(occluders, n_occ, step, occ_now);
     shift_boxes(tests, n_tests, step, test_now);
     sol_box *occ_old = malloc(sizeof *occ_old * (size_t)n_occ);
     if (!occ_old)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     shift_boxes(occluders, n_occ, still, occ_old);
-    sol_exp_check(sol_boxes_render_depth(cam, occ_old, (size_t)n_occ, old_depth), "rendering previous depth");
-    sol_exp_check(sol_boxes_render_depth(cam, occ_now, (size_t)n_occ, new_depth), "rendering current depth");
+    exp_check(sol_boxes_render_depth(cam, occ_old, (size_t)n_occ, old_depth), "rendering previous depth");
+    exp_check(sol_boxes_render_depth(cam, occ_now, (size_t)n_occ, new_depth), "rendering current depth");
     sol_cbuffer cb;
-    sol_exp_check(sol_cbuffer_build(old_depth, cam->width, cam->height, NULL, &cb), "building coverage buffer");
+    exp_check(sol_cbuffer_build(old_depth, cam->width, cam->height, NULL, &cb), "building coverage buffer");
     int wrong = 0, seen = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : wrong, seen)
     for (int i = 0; i < n_tests; ++i) {
         sol_screen_bounds b;
         int visible, occluded;
-        sol_exp_check(sol_box_screen_bounds(cam, &test_now[i], &b), "bounds");
-        sol_exp_check(sol_box_visible(cam, new_depth, &test_now[i], &visible), "reference visibility");
-        sol_exp_check(sol_cbuffer_test(&cb, &b, -1, &occluded, NULL), "testing box");
+        exp_check(sol_box_screen_bounds(cam, &test_now[i], &b), "bounds");
+        exp_check(sol_box_visible(cam, new_depth, &test_now[i], &visible), "reference visibility");
+        exp_check(sol_cbuffer_test(&cb, &b, -1, &occluded, NULL), "testing box");
         wrong += occluded && visible;
         seen += visible;
     }
@@ -134,7 +134,7 @@ typedef struct cull_scene {
 } cull_scene;
 
 /* Quick runs halve the image and test fewer boxes. */
-static void scene_init(cull_scene *sc, const sol_exp *exp)
+static void scene_init(cull_scene *sc, const exp_run *exp)
 {
     sc->cam = (sol_camera){.width = exp->quick ? 256 : 512, .height = exp->quick ? 128 : 256,
                            .focal = exp->quick ? 150 : 300, .znear = 0.5, .zfar = 300.0};
@@ -150,12 +150,12 @@ static void scene_init(cull_scene *sc, const sol_exp *exp)
     sc->occluded = malloc(sizeof *sc->occluded * n_tests);
     sc->depth = malloc(sizeof *sc->depth * (size_t)sc->cam.width * (size_t)sc->cam.height);
     if (!sc->occluders || !sc->tests || !sc->bounds || !sc->visible || !sc->occluded || !sc->depth)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (int i = 0; i < sc->n_occluders; ++i)
         sc->occluders[i] = box_in_view(&sc->cam, 8.0, 60.0, occ_half);
     for (int i = 0; i < sc->n_tests; ++i)
         sc->tests[i] = box_in_view(&sc->cam, 10.0, 150.0, test_half);
-    sol_exp_check(sol_boxes_render_depth(&sc->cam, sc->occluders, (size_t)sc->n_occluders, sc->depth), "rendering depth");
+    exp_check(sol_boxes_render_depth(&sc->cam, sc->occluders, (size_t)sc->n_occluders, sc->depth), "rendering depth");
 }
 
 static void scene_free(cull_scene *sc)
@@ -174,8 +174,8 @@ static void reference_visibility(cull_scene *sc)
     int n_visible = 0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : n_visible)
     for (int i = 0; i < sc->n_tests; ++i) {
-        sol_exp_check(sol_box_screen_bounds(&sc->cam, &sc->tests[i], &sc->bounds[i]), "bounds");
-        sol_exp_check(sol_box_visible(&sc->cam, sc->depth, &sc->tests[i], &sc->visible[i]), "reference visibility");
+        exp_check(sol_box_screen_bounds(&sc->cam, &sc->tests[i], &sc->bounds[i]), "bounds");
+        exp_check(sol_box_visible(&sc->cam, sc->depth, &sc->tests[i], &sc->visible[i]), "reference visibility");
         n_visible += sc->visible[i];
     }
     sc->n_visible = n_visible;
@@ -188,7 +188,7 @@ static double test_all_boxes(const cull_scene *sc, const sol_cbuffer *cb, int ma
                              long *visited)
 {
     test_set t = {cb, sc->bounds, sc->n_tests, max_refine, sc->occluded, 0};
-    double ns = sol_time_per_item_ns(run_tests, &t, (size_t)sc->n_tests, sc->repeats);
+    double ns = exp_time_per_item_ns(run_tests, &t, (size_t)sc->n_tests, sc->repeats);
     *culled = *wrong = 0;
     for (int i = 0; i < sc->n_tests; ++i) {
         *culled += sc->occluded[i] && !sc->visible[i];
@@ -209,13 +209,13 @@ static double culled_pct(const cull_scene *sc, int culled)
 }
 
 /* One downscale of the refinement sweep: a row per refinement depth. */
-static void refine_sweep_downscale(const cull_scene *sc, sol_downscale d, sol_table *sweep, FILE *csv,
+static void refine_sweep_downscale(const cull_scene *sc, sol_downscale d, exp_table *sweep, FILE *csv,
                                    cull_results *res)
 {
     const int refine_levels[] = {0, 1, 2, 3, 4, -1};
     sol_cbuffer cb;
     sol_cbuffer_options opt = {.block = 4, .downscale = d};
-    sol_exp_check(sol_cbuffer_build(sc->depth, sc->cam.width, sc->cam.height, &opt, &cb), "building coverage buffer");
+    exp_check(sol_cbuffer_build(sc->depth, sc->cam.width, sc->cam.height, &opt, &cb), "building coverage buffer");
     for (size_t r = 0; r < sizeof refine_levels / sizeof refine_levels[0]; ++r) {
         int culled, wrong;
         long visited;
@@ -229,7 +229,7 @@ static void refine_sweep_downscale(const cull_scene *sc, sol_downscale d, sol_ta
         char levels[16];
         snprintf(levels, sizeof levels, refine_levels[r] < 0 ? "all" : "%d", refine_levels[r]);
         double pct = culled_pct(sc, culled), texels = (double)visited / sc->n_tests;
-        sol_table_row(sweep, "%s|%s|%.2f|%d|%.2f|%.1f", downscale_name(d), levels, pct, wrong, texels, ns);
+        exp_table_row(sweep, "%s|%s|%.2f|%d|%.2f|%.1f", downscale_name(d), levels, pct, wrong, texels, ns);
         fprintf(csv, "%s,%d,%.4f,%d,%.4f,%.3f\n", downscale_name(d), refine_levels[r] < 0 ? cb.levels : refine_levels[r],
                 pct, wrong, texels, ns);
     }
@@ -238,69 +238,69 @@ static void refine_sweep_downscale(const cull_scene *sc, sol_downscale d, sol_ta
 
 /* Refinement depth sweep for the three downscales (block 4, as the 1/4-size buffers of the
  * consoles). The "levels" column is the number of finer levels the test may descend. */
-static void refine_sweep(const sol_exp *exp, const cull_scene *sc, cull_results *res)
+static void refine_sweep(const exp_run *exp, const cull_scene *sc, cull_results *res)
 {
-    sol_table *sweep = sol_table_new("Coverage buffer: culling vs refinement depth (block 4)",
+    exp_table *sweep = exp_table_new("Coverage buffer: culling vs refinement depth (block 4)",
                                      "downscale,refine levels,culled of hidden %,false culls,texels per test,ns per test");
-    FILE *csv = sol_exp_open(exp, "refine_curves.csv");
+    FILE *csv = exp_open(exp, "refine_curves.csv");
     fputs("downscale,refine,culled_pct,false_culls,texels,ns\n", csv);
     for (int d = SOL_DOWNSCALE_MAX; d <= SOL_DOWNSCALE_MEAN; ++d) {
         refine_sweep_downscale(sc, (sol_downscale)d, sweep, csv, res);
         fputs("\n\n", csv); /* gnuplot data blocks: index 0 max, 1 min, 2 mean */
     }
     fclose(csv);
-    sol_table_write(sweep, exp, "refine_sweep");
+    exp_table_write(sweep, exp, "refine_sweep");
 }
 
 /* Coverage-buffer resolution: culled fraction and false culls against the block size. */
-static void block_sweep(const sol_exp *exp, const cull_scene *sc, cull_results *res)
+static void block_sweep(const exp_run *exp, const cull_scene *sc, cull_results *res)
 {
-    sol_table *blocks = sol_table_new("Coverage buffer: resolution (max downscale, full refinement)",
+    exp_table *blocks = exp_table_new("Coverage buffer: resolution (max downscale, full refinement)",
                                       "block,buffer size,levels,culled of hidden %,false culls,ns per test");
     for (int block = 1; block <= 16; block *= 2) {
         sol_cbuffer cb;
         sol_cbuffer_options opt = {.block = block};
-        sol_exp_check(sol_cbuffer_build(sc->depth, sc->cam.width, sc->cam.height, &opt, &cb), "building coverage buffer");
+        exp_check(sol_cbuffer_build(sc->depth, sc->cam.width, sc->cam.height, &opt, &cb), "building coverage buffer");
         int culled, wrong;
         long visited;
         double ns = test_all_boxes(sc, &cb, -1, &culled, &wrong, &visited);
-        sol_table_row(blocks, "%d|%dx%d|%d|%.2f|%d|%.1f", block, cb.width[0], cb.height[0], cb.levels,
+        exp_table_row(blocks, "%d|%dx%d|%d|%.2f|%d|%.1f", block, cb.width[0], cb.height[0], cb.levels,
                       culled_pct(sc, culled), wrong, ns);
         res->false_culls[SOL_DOWNSCALE_MAX] += wrong;
         sol_cbuffer_free(&cb);
     }
-    sol_table_write(blocks, exp, "block_sweep");
+    exp_table_write(blocks, exp, "block_sweep");
 }
 
 /* Outside the claim: the talk reads the depth back with one frame of delay. Camera motion
  * between that frame and this one breaks the guarantee, whatever the downscale. Returns the
  * largest number of false culls over the camera steps. */
-static int latency_table(const sol_exp *exp, const cull_scene *sc)
+static int latency_table(const exp_run *exp, const cull_scene *sc)
 {
     int latency_worst = 0;
-    sol_table *lat = sol_table_new("One frame of latency: previous frame's depth (max downscale), camera moved",
+    exp_table *lat = exp_table_new("One frame of latency: previous frame's depth (max downscale), camera moved",
                                    "camera step in x and in z,visible boxes now,false culls");
     const double steps[4][3] = {{0, 0, 0}, {0.1, 0, 0.1}, {0.3, 0, 0.3}, {1.0, 0, 1.0}};
     for (int k = 0; k < 4; ++k) {
         int seen = 0;
         int wrong = latency_false_culls(&sc->cam, sc->occluders, sc->n_occluders, sc->tests, sc->n_tests, steps[k], &seen);
         latency_worst = wrong > latency_worst ? wrong : latency_worst;
-        sol_table_row(lat, "%.1f|%d|%d", steps[k][0], seen, wrong);
+        exp_table_row(lat, "%.1f|%d|%d", steps[k][0], seen, wrong);
     }
-    sol_table_write(lat, exp, "latency");
+    exp_table_write(lat, exp, "latency");
     return latency_worst;
 }
 
-static void plot_results(const sol_exp *exp)
+static void plot_results(const exp_run *exp)
 {
-    sol_plot(exp, "cull_vs_cost",
+    exp_plot(exp, "cull_vs_cost",
              "set datafile separator comma\n"
              "set xlabel 'test cost (ns per box, median)'\nset ylabel 'hidden boxes culled (%%)'\n"
              "set key bottom right\nset grid\n"
              "plot 'refine_curves.csv' index 0 using 6:3 with linespoints lw 2 title 'max downscale (conservative)', "
              "'' index 1 using 6:3 with linespoints title 'min downscale', "
              "'' index 2 using 6:3 with linespoints title 'mean downscale'");
-    sol_plot(exp, "false_culls",
+    exp_plot(exp, "false_culls",
              "set datafile separator comma\nset style data histograms\nset style fill solid 0.6\n"
              "set xlabel 'refinement levels below the start level'\nset ylabel 'visible boxes culled'\n"
              "set grid ytics\nset key top left\n"
@@ -309,25 +309,25 @@ static void plot_results(const sol_exp *exp)
 }
 
 /* The M1 row; a false cull by the max downscale is a bug in the library, so the driver fails. */
-static void write_claim(const sol_exp *exp, const cull_scene *sc, const cull_results *res)
+static void write_claim(const exp_run *exp, const cull_scene *sc, const cull_results *res)
 {
     char sol_fig[256];
     snprintf(sol_fig, sizeof sol_fig, "0 false culls of %d visible boxes (max; all depths and block sizes); min: %d, mean: %d",
              sc->n_visible, res->false_culls[SOL_DOWNSCALE_MIN], res->false_culls[SOL_DOWNSCALE_MEAN]);
-    sol_claim(exp, "M1", "no false culls (conservative max downscale)", sol_fig, "exactly 0",
-              res->false_culls[SOL_DOWNSCALE_MAX] == 0 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "M1", "no false culls (conservative max downscale)", sol_fig, "exactly 0",
+              res->false_culls[SOL_DOWNSCALE_MAX] == 0 ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "%d random boxes against %d occluders; max downscale + min/max hierarchy culls %.1f%% of the %d "
               "hidden boxes with no visible box culled; min/mean downscales cull visible boxes; a camera moving "
               "during the one-frame readback delay is another matter (latency table: up to %d false culls)",
               sc->n_tests, sc->n_occluders, culled_pct(sc, res->culled_max_full), sc->n_hidden, res->latency_worst);
     if (res->false_culls[SOL_DOWNSCALE_MAX])
-        sol_exp_die("max downscale culled %d visible boxes", res->false_culls[SOL_DOWNSCALE_MAX]);
+        exp_die("max downscale culled %d visible boxes", res->false_culls[SOL_DOWNSCALE_MAX]);
 }
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "m1_coverage_buffer", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "m1_coverage_buffer", argc, argv);
     cull_scene sc;
     scene_init(&sc, &exp);
     if (!exp.bench)

@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_hdr.h"
 
 typedef enum depth_code { UNORM16, UNORM24, RG8_RATIONAL, RG8_ROUNDED_X, CODE_COUNT } depth_code;
@@ -90,10 +90,10 @@ static void code_space(int *distinct_in_unit, int *above_one, int *redundant)
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "m2_depth_packing", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "m2_depth_packing", argc, argv);
     const int samples = exp.quick ? 1000003 : 16000057; /* not a multiple of 255: no aligned sampling */
-    sol_table *t = sol_table_new("Linear depth encodings over [0, 1]",
+    exp_table *t = exp_table_new("Linear depth encodings over [0, 1]",
                                  "encoding,bits,step,max abs error,RMS error,% depths off > 1/510,"
                                  "max error at 1 km far plane (mm),ns per round trip");
     depth_error err[CODE_COUNT];
@@ -102,21 +102,21 @@ int main(int argc, char **argv)
     for (int c = 0; c < CODE_COUNT; ++c) {
         err[c] = measure((depth_code)c, samples);
         time_job job = {(depth_code)c, 0};
-        double ns = sol_time_per_item_ns(run_round_trips, &job, 65536, exp.quick ? 3 : 9);
-        sol_table_row(t, "%s|%d|%.3e|%.3e|%.3e|%.3f|%.3f|%.1f", code_name[c], bits[c], step[c], err[c].max_abs,
+        double ns = exp_time_per_item_ns(run_round_trips, &job, 65536, exp.quick ? 3 : 9);
+        exp_table_row(t, "%s|%d|%.3e|%.3e|%.3e|%.3f|%.3f|%.1f", code_name[c], bits[c], step[c], err[c].max_abs,
                       err[c].rms, err[c].pct_over_half_x_step, err[c].max_abs * 1e6, ns);
     }
-    sol_table_write(t, &exp, "depth_precision");
+    exp_table_write(t, &exp, "depth_precision");
     if (exp.bench)
         return 0;
 
     int distinct, above, redundant;
     code_space(&distinct, &above, &redundant);
-    sol_table *cs = sol_table_new("The 65536 (x, y) code pairs of x + y/255", "quantity,count");
-    sol_table_row(cs, "distinct depths in [0, 1]|%d", distinct);
-    sol_table_row(cs, "distinct depths above 1 (x = 255, y > 0)|%d", above);
-    sol_table_row(cs, "pairs duplicating another (y = 255 equals x + 1, y = 0)|%d", redundant);
-    sol_table_write(cs, &exp, "code_space");
+    exp_table *cs = exp_table_new("The 65536 (x, y) code pairs of x + y/255", "quantity,count");
+    exp_table_row(cs, "distinct depths in [0, 1]|%d", distinct);
+    exp_table_row(cs, "distinct depths above 1 (x = 255, y > 0)|%d", above);
+    exp_table_row(cs, "pairs duplicating another (y = 255 equals x + 1, y = 0)|%d", redundant);
+    exp_table_write(cs, &exp, "code_space");
 
     /* Filtering the two channels (bilinear, bilateral taps) filters depth: decode is linear. */
     double worst_filter = 0.0;
@@ -131,7 +131,7 @@ int main(int argc, char **argv)
         worst_filter = fmax(worst_filter, fabs(filtered - expect));
     }
 
-    FILE *f = sol_exp_open(&exp, "edge_errors.csv");
+    FILE *f = exp_open(&exp, "edge_errors.csv");
     fputs("depth,UNORM16,rational,rounded_x\n", f);
     const double lo = 100.0 / 255.0 - 1.0 / 255.0, hi = 100.0 / 255.0 + 1.0 / 255.0;
     for (int i = 0; i <= 4000; ++i) {
@@ -140,7 +140,7 @@ int main(int argc, char **argv)
                 fabs(round_trip(RG8_ROUNDED_X, d) - d));
     }
     fclose(f);
-    sol_plot(&exp, "edge_errors",
+    exp_plot(&exp, "edge_errors",
              "set datafile separator comma\nset grid\nset logscale y\nset format y '10^{%%L}'\nset yrange [1e-9:1e-2]\n"
              "set xlabel 'linear depth (around x = 100/255)'\nset ylabel '|decoded - depth|'\nset key top left\n"
              "plot 'edge_errors.csv' using 1:($2+1e-12) with lines title 'UNORM16', "
@@ -151,8 +151,8 @@ int main(int argc, char **argv)
     snprintf(fig, sizeof fig, "step 1/65025 (UNORM16 1/65535); max error %.3e (UNORM16 %.3e); rounded x: %.3e",
              err[RG8_RATIONAL].max_abs, err[UNORM16].max_abs, err[RG8_ROUNDED_X].max_abs);
     int as_good = err[RG8_RATIONAL].max_abs <= 0.5 / 65025.0 * (1.0 + 1e-9);
-    sol_claim(&exp, "M2", "linear depth as x + y/255 in two 8-bit channels", fig, "max error <= half a step",
-              as_good ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(&exp, "M2", "linear depth as x + y/255 in two 8-bit channels", fig, "max error <= half a step",
+              as_good ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the split keeps %d distinct depths in [0,1] (16-bit UNORM: 65536) with worst error half a step; x must be "
               "floor(255 d) - if the 8-bit write rounds x instead, %.1f%% of depths are off by up to one x step (1/255); "
               "filtering the channels filters depth exactly (max deviation %.1e)",

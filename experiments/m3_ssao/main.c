@@ -5,7 +5,7 @@
  *  2. error vs accumulated frames of the 4-sample half-resolution estimate, camera still and
  *     camera moving (reprojection), against the 64-sample single-frame error.
  * The talk's console timings (1 ms X360, 1.2 ms PS3) cannot be measured without the consoles. */
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_screen.h"
 
 #include <math.h>
@@ -69,9 +69,9 @@ typedef struct half_pipeline {
 static void run_half(void *ctx)
 {
     half_pipeline *p = ctx;
-    sol_exp_check(sol_depth_half(p->depth, p->full->width, p->full->height, p->half_depth), "half depth");
-    sol_exp_check(sol_vo_compute(&p->half, p->half_depth, &p->opt, p->half_vo), "half-resolution VO");
-    sol_exp_check(sol_bilateral_upsample(p->half_vo, p->half_depth, p->depth, p->full->width, p->full->height, p->out),
+    exp_check(sol_depth_half(p->depth, p->full->width, p->full->height, p->half_depth), "half depth");
+    exp_check(sol_vo_compute(&p->half, p->half_depth, &p->opt, p->half_vo), "half-resolution VO");
+    exp_check(sol_bilateral_upsample(p->half_vo, p->half_depth, p->depth, p->full->width, p->full->height, p->out),
                   "upsampling");
 }
 
@@ -85,24 +85,24 @@ typedef struct full_job {
 static void run_full(void *ctx)
 {
     full_job *j = ctx;
-    sol_exp_check(sol_vo_compute(j->cam, j->depth, &j->opt, j->out), "VO");
+    exp_check(sol_vo_compute(j->cam, j->depth, &j->opt, j->out), "VO");
 }
 
 static float *alloc_floats(size_t n)
 {
     float *p = calloc(n, sizeof *p);
     if (!p)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     return p;
 }
 
-static void save_gray(const sol_exp *exp, const char *file, const float *v, int w, int h, double scale)
+static void save_gray(const exp_run *exp, const char *file, const float *v, int w, int h, double scale)
 {
     sol_image img;
-    sol_exp_check(sol_image_alloc(&img, w, h, 1), "allocating");
+    exp_check(sol_image_alloc(&img, w, h, 1), "allocating");
     for (int i = 0; i < w * h; ++i)
         img.data[i] = (float)fmin(1.0, fmax(0.0, 1.0 - scale * fmax(0.0, v[i] - 0.5))); /* white = open */
-    sol_exp_check(sol_png_write(sol_exp_path(exp, file), &img, 8), "writing %s", file);
+    exp_check(sol_png_write(exp_path(exp, file), &img, 8), "writing %s", file);
     sol_image_free(&img);
 }
 
@@ -118,7 +118,7 @@ typedef struct ssao_scene {
 } ssao_scene;
 
 /* Quick runs shrink the image and the reference so that development runs take seconds. */
-static void scene_init(ssao_scene *sc, const sol_exp *exp)
+static void scene_init(ssao_scene *sc, const exp_run *exp)
 {
     sc->cam = (sol_camera){.width = exp->quick ? 128 : 256, .height = exp->quick ? 80 : 160,
                            .focal = exp->quick ? 80 : 160, .znear = 0.1, .zfar = 100};
@@ -137,9 +137,9 @@ static void scene_init(ssao_scene *sc, const sol_exp *exp)
     sc->vo = alloc_floats(sc->n);
     sc->half_depth = alloc_floats(sc->nh);
     sc->half_vo = alloc_floats(sc->nh);
-    sol_exp_check(sol_boxes_render_depth(&sc->cam, view, N_BOXES, sc->depth), "rendering depth");
+    exp_check(sol_boxes_render_depth(&sc->cam, view, N_BOXES, sc->depth), "rendering depth");
     sc->ref_opt = (sol_vo_options){.radius = RADIUS, .samples = sc->ref_samples, .same_rotation_everywhere = 1};
-    sol_exp_check(sol_vo_compute(&sc->cam, sc->depth, &sc->ref_opt, sc->ref), "reference VO");
+    exp_check(sol_vo_compute(&sc->cam, sc->depth, &sc->ref_opt, sc->ref), "reference VO");
 }
 
 static void scene_free(ssao_scene *sc)
@@ -153,15 +153,15 @@ static void scene_free(ssao_scene *sc)
 
 /* Part 1 (the accuracy knob): samples per pixel 4..64, full vs half resolution, error and time per
  * pixel. Fills err_full/err_half (index k for 4 * 2^k samples). */
-static void measure_sample_counts(const sol_exp *exp, ssao_scene *sc, double err_full[7], double err_half[7])
+static void measure_sample_counts(const exp_run *exp, ssao_scene *sc, double err_full[7], double err_half[7])
 {
-    sol_table *t = sol_table_new("Volumetric obscurance: RMS error vs a reference, per sample count",
+    exp_table *t = exp_table_new("Volumetric obscurance: RMS error vs a reference, per sample count",
                                  "samples,full-res RMS,full-res ns/pixel,half-res RMS,half-res ns/pixel");
-    FILE *csv = sol_exp_open(exp, "samples_curves.csv");
+    FILE *csv = exp_open(exp, "samples_curves.csv");
     fputs("samples,full_rms,full_ns,half_rms,half_ns\n", csv);
     for (int k = 0, s = 4; s <= 64; s *= 2, ++k) {
         full_job fj = {&sc->cam, sc->depth, sc->vo, {.radius = RADIUS, .samples = s}};
-        double ns_full = sol_time_per_item_ns(run_full, &fj, sc->n, sc->repeats);
+        double ns_full = exp_time_per_item_ns(run_full, &fj, sc->n, sc->repeats);
         err_full[k] = rms_error(sc->vo, sc->ref, sc->depth, sc->n, sc->cam.zfar);
         if (k == 0 && !exp->bench) {
             save_gray(exp, "vo_4_samples.png", sc->vo, sc->cam.width, sc->cam.height, 2.0);
@@ -169,13 +169,13 @@ static void measure_sample_counts(const sol_exp *exp, ssao_scene *sc, double err
         }
         half_pipeline hp = {&sc->cam, sc->half_cam, sc->depth, sc->half_depth, sc->half_vo, sc->vo,
                             {.radius = RADIUS, .samples = s}};
-        double ns_half = sol_time_per_item_ns(run_half, &hp, sc->n, sc->repeats);
+        double ns_half = exp_time_per_item_ns(run_half, &hp, sc->n, sc->repeats);
         err_half[k] = rms_error(sc->vo, sc->ref, sc->depth, sc->n, sc->cam.zfar);
-        sol_table_row(t, "%d|%.5f|%.1f|%.5f|%.1f", s, err_full[k], ns_full, err_half[k], ns_half);
+        exp_table_row(t, "%d|%.5f|%.1f|%.5f|%.1f", s, err_full[k], ns_full, err_half[k], ns_half);
         fprintf(csv, "%d,%.6f,%.3f,%.6f,%.3f\n", s, err_full[k], ns_full, err_half[k], ns_half);
     }
     fclose(csv);
-    sol_table_write(t, exp, "samples");
+    exp_table_write(t, exp, "samples");
 }
 
 /* Part 2 configurations: camera still (history cap 32), and camera moving sideways and forward
@@ -197,7 +197,7 @@ typedef struct moving_sequence {
     double motion[FRAMES_MAX][3];
 } moving_sequence;
 
-static void render_moving_sequence(const sol_exp *exp, const ssao_scene *sc, int frames, moving_sequence *seq)
+static void render_moving_sequence(const exp_run *exp, const ssao_scene *sc, int frames, moving_sequence *seq)
 {
     const size_t n = sc->n;
     seq->depth = alloc_floats(n * (size_t)frames);
@@ -210,16 +210,16 @@ static void render_moving_sequence(const sol_exp *exp, const ssao_scene *sc, int
             seq->motion[f][k] = eye[k] - eye_prev[k];
         memcpy(eye_prev, eye, sizeof eye);
         view_boxes(sc->world, eye, view);
-        sol_exp_check(sol_boxes_render_depth(&sc->cam, view, N_BOXES, seq->depth + n * (size_t)f), "rendering depth");
+        exp_check(sol_boxes_render_depth(&sc->cam, view, N_BOXES, seq->depth + n * (size_t)f), "rendering depth");
         if (is_measured_frame(f)) {
             sol_vo_options ro = sc->ref_opt;
             ro.samples = exp->quick ? 256 : 1024; /* a reference per measured frame: fewer samples */
-            sol_exp_check(sol_vo_compute(&sc->cam, seq->depth + n * (size_t)f, &ro, seq->ref + n * (size_t)f),
+            exp_check(sol_vo_compute(&sc->cam, seq->depth + n * (size_t)f, &ro, seq->ref + n * (size_t)f),
                           "reference");
         }
-        sol_progress("m3 moving references", (size_t)f + 1, (size_t)frames);
+        exp_progress("m3 moving references", (size_t)f + 1, (size_t)frames);
     }
-    sol_progress_done("m3 moving references");
+    exp_progress_done("m3 moving references");
 }
 
 /* One configuration: 4 samples per frame at half resolution accumulated over `frames` frames;
@@ -230,22 +230,22 @@ static void accumulate_config(ssao_scene *sc, const moving_sequence *seq, int c,
     const int moving = config_moving[c];
     const size_t n = sc->n;
     sol_history hist[2];
-    sol_exp_check(sol_history_alloc(&hist[0], sc->half_cam.width, sc->half_cam.height, 1), "history");
-    sol_exp_check(sol_history_alloc(&hist[1], sc->half_cam.width, sc->half_cam.height, 1), "history");
+    exp_check(sol_history_alloc(&hist[0], sc->half_cam.width, sc->half_cam.height, 1), "history");
+    exp_check(sol_history_alloc(&hist[1], sc->half_cam.width, sc->half_cam.height, 1), "history");
     const sol_temporal_options topt = {.max_frames = config_cap[c]};
     const double still[3] = {0, 0, 0};
     for (int f = 0; f < frames; ++f) {
         const float *depth_f = moving ? seq->depth + n * (size_t)f : sc->depth;
-        sol_exp_check(sol_depth_half(depth_f, sc->cam.width, sc->cam.height, sc->half_depth), "half depth");
+        exp_check(sol_depth_half(depth_f, sc->cam.width, sc->cam.height, sc->half_depth), "half depth");
         sol_vo_options o = {.radius = RADIUS, .samples = 4, .frame = (unsigned)f};
-        sol_exp_check(sol_vo_compute(&sc->half_cam, sc->half_depth, &o, sc->half_vo), "VO");
+        exp_check(sol_vo_compute(&sc->half_cam, sc->half_depth, &o, sc->half_vo), "VO");
         sol_history *next = &hist[(f + 1) % 2];
-        sol_exp_check(sol_temporal_accumulate(&sc->half_cam, sc->half_depth, sc->half_vo,
+        exp_check(sol_temporal_accumulate(&sc->half_cam, sc->half_depth, sc->half_vo,
                                               moving ? seq->motion[f] : still, &topt, &hist[f % 2], next),
                       "accumulating");
         err[f + 1] = NAN;
         if (!moving || is_measured_frame(f)) {
-            sol_exp_check(sol_bilateral_upsample(next->values, sc->half_depth, depth_f, sc->cam.width, sc->cam.height,
+            exp_check(sol_bilateral_upsample(next->values, sc->half_depth, depth_f, sc->cam.width, sc->cam.height,
                                                  sc->vo),
                           "upsampling");
             err[f + 1] = rms_error(sc->vo, moving ? seq->ref + n * (size_t)f : sc->ref, depth_f, n, sc->cam.zfar);
@@ -256,7 +256,7 @@ static void accumulate_config(ssao_scene *sc, const moving_sequence *seq, int c,
 }
 
 /* Part 2: every configuration over the frame sequence; saves the still camera's accumulated image. */
-static void measure_accumulation(const sol_exp *exp, ssao_scene *sc, int frames, double err_acc[CONFIGS][FRAMES_MAX + 1])
+static void measure_accumulation(const exp_run *exp, ssao_scene *sc, int frames, double err_acc[CONFIGS][FRAMES_MAX + 1])
 {
     moving_sequence seq;
     render_moving_sequence(exp, sc, frames, &seq);
@@ -264,19 +264,19 @@ static void measure_accumulation(const sol_exp *exp, ssao_scene *sc, int frames,
         accumulate_config(sc, &seq, c, frames, err_acc[c]);
         if (c == 0)
             save_gray(exp, "vo_4_samples_accumulated.png", sc->vo, sc->cam.width, sc->cam.height, 2.0);
-        sol_progress("m3 temporal", (size_t)c + 1, CONFIGS);
+        exp_progress("m3 temporal", (size_t)c + 1, CONFIGS);
     }
-    sol_progress_done("m3 temporal");
+    exp_progress_done("m3 temporal");
     free(seq.depth);
     free(seq.ref);
 }
 
 /* Every frame goes to the CSV (empty where not measured); power-of-two frames go to the table. */
-static void write_accumulation_table(const sol_exp *exp, int frames, double err_acc[CONFIGS][FRAMES_MAX + 1])
+static void write_accumulation_table(const exp_run *exp, int frames, double err_acc[CONFIGS][FRAMES_MAX + 1])
 {
-    FILE *tcsv = sol_exp_open(exp, "temporal_curves.csv");
+    FILE *tcsv = exp_open(exp, "temporal_curves.csv");
     fputs("frames,still_cap32,moving_cap1,moving_cap4,moving_cap8,moving_cap16,moving_cap32\n", tcsv);
-    sol_table *tt = sol_table_new("4-sample half-resolution VO accumulated over frames (RMS vs reference)",
+    exp_table *tt = exp_table_new("4-sample half-resolution VO accumulated over frames (RMS vs reference)",
                                   "frames,still (cap 32),moving no accumulation,moving cap 4,moving cap 8,moving cap 16,moving cap 32");
     for (int f = 1; f <= frames; ++f) {
         fprintf(tcsv, "%d", f);
@@ -284,16 +284,16 @@ static void write_accumulation_table(const sol_exp *exp, int frames, double err_
             isnan(err_acc[c][f]) ? fputs(",", tcsv) : fprintf(tcsv, ",%.6f", err_acc[c][f]);
         fputc('\n', tcsv);
         if ((f & (f - 1)) == 0)
-            sol_table_row(tt, "%d|%.5f|%.5f|%.5f|%.5f|%.5f|%.5f", f, err_acc[0][f], err_acc[1][f], err_acc[2][f],
+            exp_table_row(tt, "%d|%.5f|%.5f|%.5f|%.5f|%.5f|%.5f", f, err_acc[0][f], err_acc[1][f], err_acc[2][f],
                           err_acc[3][f], err_acc[4][f], err_acc[5][f]);
     }
     fclose(tcsv);
-    sol_table_write(tt, exp, "temporal");
+    exp_table_write(tt, exp, "temporal");
 }
 
-static void plot_error_curves(const sol_exp *exp)
+static void plot_error_curves(const exp_run *exp)
 {
-    sol_plot(exp, "error_vs_samples",
+    exp_plot(exp, "error_vs_samples",
              "set datafile separator comma\nset logscale xy\nset xlabel 'samples per pixel (accumulated curves: 4 x frame number)'\n"
              "set ylabel 'RMS error of VO'\nset grid\nset key bottom left\nset xtics (4,8,16,32,64,128)\n"
              "plot 'samples_curves.csv' using 1:2 with linespoints lw 2 title 'full resolution', "
@@ -302,7 +302,7 @@ static void plot_error_curves(const sol_exp *exp)
              "'' using ($1*4):3 with linespoints dt 3 title '4 samples, moving, no accumulation', "
              "'' using ($1*4):5 with linespoints dt 4 title '4 samples x frames, moving, cap 8', "
              "'' using ($1*4):7 with linespoints dt 5 title '4 samples x frames, moving, cap 32'");
-    sol_plot(exp, "error_vs_time",
+    exp_plot(exp, "error_vs_time",
              "set datafile separator comma\nset logscale xy\nset xlabel 'ns per full-resolution pixel (median)'\n"
              "set ylabel 'RMS error of VO'\nset grid\nset key top right\n"
              "plot 'samples_curves.csv' using 3:2:1 with linespoints lw 2 title 'full resolution', "
@@ -312,7 +312,7 @@ static void plot_error_curves(const sol_exp *exp)
 
 /* M3 rows: still-camera accumulation vs the 64-sample error, moving camera vs no accumulation, and
  * the console timings that cannot be measured here. */
-static void write_claims(const sol_exp *exp, const ssao_scene *sc, int frames, const double err_full[7],
+static void write_claims(const exp_run *exp, const ssao_scene *sc, int frames, const double err_full[7],
                          const double err_half[7], double err_acc[CONFIGS][FRAMES_MAX + 1])
 {
     const int f16 = frames >= 16 ? 16 : frames;
@@ -325,27 +325,27 @@ static void write_claims(const sol_exp *exp, const ssao_scene *sc, int frames, c
              "RMS vs %d-sample reference: 4 spp %.4f, 64 spp %.4f (full res); half res 4 spp %.4f, 64 spp %.4f; 4 spp "
              "accumulated %d frames, still camera: %.4f",
              sc->ref_samples, err_full[0], err_full[4], err_half[0], err_half[4], f16, err_acc[0][f16]);
-    sol_claim(exp, "M3", "VO with 4 samples at half resolution plus temporal accumulation", fig,
+    exp_claim(exp, "M3", "VO with 4 samples at half resolution plus temporal accumulation", fig,
               "accumulated 4 spp (16 frames) within 1.5x of the half-res 64-spp single-frame error",
-              err_acc[0][f16] <= 1.5 * err_half[4] ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+              err_acc[0][f16] <= 1.5 * err_half[4] ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "with a still camera the 4-sample frames add up to the many-sample estimate (R2 points continue from "
               "frame to frame); the remaining floor is the half-resolution upsampling error");
     snprintf(fig, sizeof fig, "moving camera, after %d frames: best history cap %.0f gives %.4f (cap 32: %.4f; single "
              "frame, same camera, %.4f)", frames, config_cap[best], err_acc[best][frames], err_acc[5][frames], err_acc[1][frames]);
-    sol_claim(exp, "M3", "temporal accumulation with simple reprojection (moving camera)", fig,
+    exp_claim(exp, "M3", "temporal accumulation with simple reprojection (moving camera)", fig,
               "error reduced vs no accumulation",
-              err_acc[best][frames] < err_acc[1][frames] ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+              err_acc[best][frames] < err_acc[1][frames] ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the bilinear history fetch blurs the history a little every frame and disocclusions restart it, so "
               "with motion the gain is smaller than with a still camera and a shorter history can be better");
-    sol_claim(exp, "M3", "1 ms on X360, 1.2 ms on PS3", "not measurable here (CPU only)", "-", SOL_NOT_REPRODUCED,
+    exp_claim(exp, "M3", "1 ms on X360, 1.2 ms on PS3", "not measurable here (CPU only)", "-", EXP_NOT_REPRODUCED,
               "console GPU timings need the consoles and their shaders; this CPU code's ns/pixel (samples table) only "
               "ranks sample counts against each other");
 }
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "m3_ssao", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "m3_ssao", argc, argv);
     ssao_scene sc;
     scene_init(&sc, &exp);
     double err_full[7] = {0}, err_half[7] = {0};

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_hdr.h"
 
 typedef struct look {
@@ -55,7 +55,7 @@ static void colour_set_init(colour_set *s, int per_axis, const sol_grade *grade)
     s->want = malloc(n * 3 * sizeof *s->want);
     s->lab = malloc(n * 3 * sizeof *s->lab);
     if (!s->rgb || !s->want || !s->lab)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (size_t k = 0; k < n; ++k) {
         int r = (int)(k % per_axis), g = (int)(k / per_axis % per_axis), b = (int)(k / per_axis / per_axis);
         double *c = s->rgb + 3 * k;
@@ -85,7 +85,7 @@ static lut_error measure(const sol_lut3d *lut, sol_lut_interp interp, const colo
     int n = s->per_axis;
     double *part = calloc((size_t)n * 5, sizeof *part);
     if (!part)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
 #pragma omp parallel for schedule(dynamic, 1)
     for (int b = 0; b < n; ++b) {
         double *p = part + 5 * b;
@@ -150,18 +150,18 @@ static void run_apply(void *ctx)
     job->sink = acc;
 }
 
-static void size_sweep(const sol_exp *exp, int *sufficient16, double worst16[2], int *largest_needed)
+static void size_sweep(const exp_run *exp, int *sufficient16, double worst16[2], int *largest_needed)
 {
     static const int sizes[] = {2, 3, 4, 6, 8, 12, 16, 17, 24, 32, 33, 48, 64};
     const int n_sizes = exp->quick ? 8 : (int)(sizeof sizes / sizeof sizes[0]);
     const int per_axis = exp->quick ? 18 : 52; /* every 15 or every 5 codes */
-    sol_table *t = sol_table_new("3D LUT grading error vs size (8-bit sRGB cube, every 5th code)",
+    exp_table *t = exp_table_new("3D LUT grading error vs size (8-bit sRGB cube, every 5th code)",
                                  "transform,N,interpolation,max code error,mean code error,% >= 2 codes,"
                                  "max dE00,mean dE00,ns per pixel");
-    sol_table *suff = sol_table_new("Smallest LUT size N with max dE00 < 1 over the 8-bit cube, and the errors at N = 16",
+    exp_table *suff = exp_table_new("Smallest LUT size N with max dE00 < 1 over the 8-bit cube, and the errors at N = 16",
                                     "transform,trilinear,trilinear 8-bit entries,tetrahedral,"
                                     "max dE00 at 16 (tri / tri8 / tet),mean dE00 at 16 (tri8),max codes at 16 (tri8)");
-    FILE *csv = sol_exp_open(exp, "size_curves.csv");
+    FILE *csv = exp_open(exp, "size_curves.csv");
     fputs("look,variant,N,max_code,mean_code,max_de,mean_de,ns\n", csv);
     *sufficient16 = 2; /* 2: max dE00 < 1 at 16 for every look; 1: only the mean < 0.5; 0: neither */
     for (int l = 0; l < LOOK_COUNT; ++l) {
@@ -171,20 +171,20 @@ static void size_sweep(const sol_exp *exp, int *sufficient16, double worst16[2],
         double de16[VARIANT_COUNT] = {0, 0, 0}, mean16 = 0.0, code16 = 0.0;
         size_t n_colours = (size_t)per_axis * per_axis * per_axis, n_timed = n_colours < 16384 ? n_colours : 16384;
         apply_job exact_job = {NULL, 0, &looks[l].grade, set.rgb, n_timed, 0};
-        double ns_exact = sol_time_per_item_ns(run_apply, &exact_job, exact_job.n, exp->quick ? 3 : 7);
-        sol_table_row(t, "%s|exact|transform|0|0|0|0|0|%.1f", looks[l].name, ns_exact);
+        double ns_exact = exp_time_per_item_ns(run_apply, &exact_job, exact_job.n, exp->quick ? 3 : 7);
+        exp_table_row(t, "%s|exact|transform|0|0|0|0|0|%.1f", looks[l].name, ns_exact);
         for (int v = 0; v < VARIANT_COUNT; ++v) {
-            sol_progress("m4 LUT size sweep", (size_t)(l * VARIANT_COUNT + v), LOOK_COUNT * VARIANT_COUNT);
+            exp_progress("m4 LUT size sweep", (size_t)(l * VARIANT_COUNT + v), LOOK_COUNT * VARIANT_COUNT);
             for (int k = 0; k < n_sizes; ++k) {
                 sol_lut3d lut;
-                sol_exp_check(sol_lut3d_bake(sizes[k], grade_fn, (void *)&looks[l].grade, &lut), "baking");
+                exp_check(sol_lut3d_bake(sizes[k], grade_fn, (void *)&looks[l].grade, &lut), "baking");
                 if (v == TRILINEAR_8BIT)
                     quantize_entries(&lut);
                 sol_lut_interp interp = v == TETRAHEDRAL ? SOL_LUT_TETRAHEDRAL : SOL_LUT_TRILINEAR;
                 lut_error e = measure(&lut, interp, &set);
                 apply_job job = {&lut, interp, NULL, set.rgb, n_timed, 0};
-                double ns = sol_time_per_item_ns(run_apply, &job, job.n, exp->quick ? 3 : 7);
-                sol_table_row(t, "%s|%d|%s|%.0f|%.3f|%.2f|%.3f|%.4f|%.1f", looks[l].name, sizes[k], variant_name[v],
+                double ns = exp_time_per_item_ns(run_apply, &job, job.n, exp->quick ? 3 : 7);
+                exp_table_row(t, "%s|%d|%s|%.0f|%.3f|%.2f|%.3f|%.4f|%.1f", looks[l].name, sizes[k], variant_name[v],
                               e.max_code, e.mean_code, e.off_by_2, e.max_de, e.mean_de, ns);
                 fprintf(csv, "%d,%d,%d,%.0f,%.5f,%.5f,%.5f,%.3f\n", l, v, sizes[k], e.max_code, e.mean_code, e.max_de,
                         e.mean_de, ns);
@@ -204,7 +204,7 @@ static void size_sweep(const sol_exp *exp, int *sufficient16, double worst16[2],
         char cells[VARIANT_COUNT][32];
         for (int v = 0; v < VARIANT_COUNT; ++v)
             snprintf(cells[v], sizeof cells[v], smallest[v] ? "%d" : "> %d", smallest[v] ? smallest[v] : sizes[n_sizes - 1]);
-        sol_table_row(suff, "%s|%s|%s|%s|%.2f / %.2f / %.2f|%.3f|%.0f", looks[l].name, cells[0], cells[1], cells[2],
+        exp_table_row(suff, "%s|%s|%s|%s|%.2f / %.2f / %.2f|%.3f|%.0f", looks[l].name, cells[0], cells[1], cells[2],
                       de16[0], de16[1], de16[2], mean16, code16);
         if (de16[TRILINEAR_8BIT] >= 1.0 && *sufficient16 == 2)
             *sufficient16 = 1;
@@ -216,10 +216,10 @@ static void size_sweep(const sol_exp *exp, int *sufficient16, double worst16[2],
         worst16[1] = fmax(worst16[1], mean16);
         colour_set_free(&set);
     }
-    sol_progress_done("m4 LUT size sweep");
+    exp_progress_done("m4 LUT size sweep");
     fclose(csv);
-    sol_table_write(t, exp, "lut_error");
-    sol_table_write(suff, exp, "lut_sufficient_size");
+    exp_table_write(t, exp, "lut_error");
+    exp_table_write(suff, exp, "lut_sufficient_size");
 }
 
 /* ---- the chart workflow ---- */
@@ -228,7 +228,7 @@ enum { SHOT_W = 320, SHOT_H = 200, CHART_Y = SHOT_H - 17 };
 /* A synthetic 8-bit "screenshot": gradients, saturated patches and skin-like tones. */
 static void make_screenshot(sol_image *img)
 {
-    sol_exp_check(sol_image_alloc(img, SHOT_W, SHOT_H, 3), "screenshot");
+    exp_check(sol_image_alloc(img, SHOT_W, SHOT_H, 3), "screenshot");
     for (int y = 0; y < SHOT_H; ++y)
         for (int x = 0; x < SHOT_W; ++x) {
             float *p = sol_image_pixel(img, x, y);
@@ -254,7 +254,7 @@ static void make_screenshot(sol_image *img)
 
 static void grade_image(const sol_image *in, sol_image *out, const sol_grade *grade)
 {
-    sol_exp_check(sol_image_alloc(out, in->width, in->height, 3), "graded image");
+    exp_check(sol_image_alloc(out, in->width, in->height, 3), "graded image");
     for (int y = 0; y < in->height; ++y)
         for (int x = 0; x < in->width; ++x) {
             const float *p = sol_image_pixel(in, x, y);
@@ -273,18 +273,18 @@ static void identity_fn(const double in[3], double out[3], void *ctx)
 }
 
 /* Identity round trip through an 8-bit PNG for a given chart size; returns max |error| in codes. */
-static double chart_identity_round_trip(const sol_exp *exp, int size, int *exact_entries)
+static double chart_identity_round_trip(const exp_run *exp, int size, int *exact_entries)
 {
     sol_image shot, back;
     sol_lut3d id, read;
     make_screenshot(&shot);
-    sol_exp_check(sol_lut3d_bake(size, identity_fn, NULL, &id), "identity LUT");
-    sol_exp_check(sol_lut3d_chart_write(&id, &shot, 0, CHART_Y), "chart");
+    exp_check(sol_lut3d_bake(size, identity_fn, NULL, &id), "identity LUT");
+    exp_check(sol_lut3d_chart_write(&id, &shot, 0, CHART_Y), "chart");
     char name[64];
     snprintf(name, sizeof name, "chart_identity_%d.png", size);
-    sol_exp_check(sol_png_write(sol_exp_path(exp, name), &shot, 8), "writing %s", name);
-    sol_exp_check(sol_png_read(sol_exp_path(exp, name), &back, NULL), "reading %s", name);
-    sol_exp_check(sol_lut3d_chart_read(&back, 0, CHART_Y, size, &read), "reading the chart");
+    exp_check(sol_png_write(exp_path(exp, name), &shot, 8), "writing %s", name);
+    exp_check(sol_png_read(exp_path(exp, name), &back, NULL), "reading %s", name);
+    exp_check(sol_lut3d_chart_read(&back, 0, CHART_Y, size, &read), "reading the chart");
     double worst = 0.0;
     int exact = 0, n = size * size * size * 3;
     for (int i = 0; i < n; ++i) {
@@ -293,7 +293,7 @@ static double chart_identity_round_trip(const sol_exp *exp, int size, int *exact
     }
     *exact_entries = exact;
     if (size != 16)
-        remove(sol_exp_path(exp, name)); /* keep only the talk's chart as an image */
+        remove(exp_path(exp, name)); /* keep only the talk's chart as an image */
     sol_lut3d_free(&id);
     sol_lut3d_free(&read);
     sol_image_free(&shot);
@@ -301,29 +301,29 @@ static double chart_identity_round_trip(const sol_exp *exp, int size, int *exact
     return worst;
 }
 
-static void chart_workflow(const sol_exp *exp, double *graded_max_code, int *chart16_exact)
+static void chart_workflow(const exp_run *exp, double *graded_max_code, int *chart16_exact)
 {
-    sol_table *t = sol_table_new("Chart workflow: 16 slices of 16x16 in an 8-bit screenshot",
+    exp_table *t = exp_table_new("Chart workflow: 16 slices of 16x16 in an 8-bit screenshot",
                                  "case,LUT size,entries read back exactly,max error (codes),mean error (codes),max dE00");
     for (int size = 16; size <= 17; ++size) {
         int exact;
         double worst = chart_identity_round_trip(exp, size, &exact);
         if (size == 16)
             *chart16_exact = exact == size * size * size * 3;
-        sol_table_row(t, "identity round trip|%d|%d of %d|%.3f|-|-", size, exact, size * size * size * 3, worst);
+        exp_table_row(t, "identity round trip|%d|%d of %d|%.3f|-|-", size, exact, size * size * size * 3, worst);
     }
     /* The artist's edit: the combined look applied to the whole screenshot (chart included),
      * saved as 8 bits; the chart read back becomes the LUT that the engine applies. */
     sol_image shot, graded, graded8, engine;
     sol_lut3d id, lut;
     make_screenshot(&shot);
-    sol_exp_check(sol_lut3d_bake(16, identity_fn, NULL, &id), "identity LUT");
-    sol_exp_check(sol_lut3d_chart_write(&id, &shot, 0, CHART_Y), "chart");
+    exp_check(sol_lut3d_bake(16, identity_fn, NULL, &id), "identity LUT");
+    exp_check(sol_lut3d_chart_write(&id, &shot, 0, CHART_Y), "chart");
     grade_image(&shot, &graded, &looks[COMBINED].grade);
-    sol_exp_check(sol_png_write(sol_exp_path(exp, "chart_graded.png"), &graded, 8), "writing graded");
-    sol_exp_check(sol_png_read(sol_exp_path(exp, "chart_graded.png"), &graded8, NULL), "reading graded");
-    sol_exp_check(sol_lut3d_chart_read(&graded8, 0, CHART_Y, 16, &lut), "reading the graded chart");
-    sol_exp_check(sol_image_alloc(&engine, SHOT_W, SHOT_H, 3), "engine image");
+    exp_check(sol_png_write(exp_path(exp, "chart_graded.png"), &graded, 8), "writing graded");
+    exp_check(sol_png_read(exp_path(exp, "chart_graded.png"), &graded8, NULL), "reading graded");
+    exp_check(sol_lut3d_chart_read(&graded8, 0, CHART_Y, 16, &lut), "reading the graded chart");
+    exp_check(sol_image_alloc(&engine, SHOT_W, SHOT_H, 3), "engine image");
     double worst = 0.0, mean = 0.0, worst_de = 0.0;
     int count = 0;
     for (int y = 0; y < CHART_Y; ++y) /* the picture above the chart */
@@ -343,10 +343,10 @@ static void chart_workflow(const sol_exp *exp, double *graded_max_code, int *cha
             worst_de = fmax(worst_de, sol_ciede2000(la, lb));
             ++count;
         }
-    sol_exp_check(sol_png_write(sol_exp_path(exp, "chart_lut_applied.png"), &engine, 8), "writing engine image");
-    sol_table_row(t, "combined look, chart LUT vs graded picture|16|-|%.0f|%.3f|%.3f", worst, mean / count, worst_de);
+    exp_check(sol_png_write(exp_path(exp, "chart_lut_applied.png"), &engine, 8), "writing engine image");
+    exp_table_row(t, "combined look, chart LUT vs graded picture|16|-|%.0f|%.3f|%.3f", worst, mean / count, worst_de);
     *graded_max_code = worst;
-    sol_table_write(t, exp, "chart_workflow");
+    exp_table_write(t, exp, "chart_workflow");
     sol_lut3d_free(&id);
     sol_lut3d_free(&lut);
     sol_image_free(&shot);
@@ -357,8 +357,8 @@ static void chart_workflow(const sol_exp *exp, double *graded_max_code, int *cha
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "m4_lut_grading", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "m4_lut_grading", argc, argv);
     int sufficient16 = 0;
     double worst16[2] = {0.0, 0.0}; /* max dE00 and mean dE00 at N = 16 (8-bit entries), worst look */
     int largest_needed = 0; /* the N every look needs for max dE00 < 1 (8-bit entries) */
@@ -368,14 +368,14 @@ int main(int argc, char **argv)
     double graded_max = 0.0;
     int chart16_exact = 0;
     chart_workflow(&exp, &graded_max, &chart16_exact);
-    sol_plot(&exp, "lut_error_vs_size",
+    exp_plot(&exp, "lut_error_vs_size",
              "set datafile separator comma\nset logscale xy\nset grid\nset xlabel 'LUT size N'\n"
              "set ylabel 'max CIEDE2000 over the 8-bit cube'\nset key outside right\nset xtics (2,4,8,16,32,64)\n"
              "plot for [l=0:%d] 'size_curves.csv' index 3*l+1 using 3:6 with linespoints title sprintf('look %%d, tri 8-bit', l), "
              "for [l=0:%d] '' index 3*l+2 using 3:6 with linespoints dt 2 title sprintf('look %%d, tetra', l), "
              "1 with lines lc rgb 'black' dt 3 title 'dE00 = 1'",
              LOOK_COUNT - 1, LOOK_COUNT - 1);
-    sol_plot(&exp, "lut_time_vs_size",
+    exp_plot(&exp, "lut_time_vs_size",
              "set datafile separator comma\nset logscale x\nset grid\nset xlabel 'LUT size N'\n"
              "set ylabel 'ns per pixel (median)'\nset key top left\nset xtics (2,4,8,16,32,64)\n"
              "plot 'size_curves.csv' index %d using 3:8 with linespoints title 'trilinear', "
@@ -384,10 +384,10 @@ int main(int argc, char **argv)
     char fig[256];
     snprintf(fig, sizeof fig, "at 16^3 (8-bit entries, trilinear), worst look: max dE00 %.2f, mean dE00 %.3f; "
              "16^3 chart round trip %s", worst16[0], worst16[1], chart16_exact ? "exact" : "NOT exact");
-    sol_claim(&exp, "M4", "16x16x16 LUT proved to be enough; identity chart read back", fig,
+    exp_claim(&exp, "M4", "16x16x16 LUT proved to be enough; identity chart read back", fig,
               "enough = max dE00 < 1 over the 8-bit cube",
-              !chart16_exact ? SOL_NOT_REPRODUCED
-              : sufficient16 == 2 ? SOL_REPRODUCED : (sufficient16 == 1 ? SOL_DIFFERS_EXPLAINED : SOL_NOT_REPRODUCED),
+              !chart16_exact ? EXP_NOT_REPRODUCED
+              : sufficient16 == 2 ? EXP_REPRODUCED : (sufficient16 == 1 ? EXP_DIFFERS_EXPLAINED : EXP_NOT_REPRODUCED),
               "five global looks baked at N=2..64: at 16^3 the mean error is far below visibility but the worst colours "
               "of the strongest looks (saturation and hue changes clipped at the cube faces) reach dE00 %.1f; every "
               "look has max dE00 < 1 only from N = %d%s (table lut_sufficient_size); the 16^3 identity chart survives an 8-bit PNG "

@@ -8,7 +8,7 @@
  * rebuilt and the true specular), luminance-weighted mean and maximum, and the error of the final
  * colour; against the hue difference of the two lights (0 = same colour, where 4 channels are
  * exact) and against the glossiness. Images of both layouts are written for the red/blue pair. */
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_lighting.h"
 
 #include <stdlib.h>
@@ -57,7 +57,7 @@ static void shade(const scene *s, double x, double y, sol_light_accum *acc)
         double r[3] = {-l[0], -l[1], l[2]}; /* l reflected about +z */
         double r_dot_v = fmax(0.0, sol_dot3(r, v));
         double phong = (s->gloss + 2.0) / (2.0 * M_PI) * pow(r_dot_v, s->gloss); /* normalised (D8) */
-        sol_exp_check(sol_light_accum_add(acc, L->colour, n_dot_l / d2, phong * n_dot_l / d2), "accumulating");
+        exp_check(sol_light_accum_add(acc, L->colour, n_dot_l / d2, phong * n_dot_l / d2), "accumulating");
     }
 }
 
@@ -67,11 +67,11 @@ static double rgb_angle_deg(const double a[3], const double b[3])
 }
 
 /* Renders the floor [-4,4]^2; optionally writes tone-mapped images of both layouts. */
-static error_stats render(const scene *s, const sol_exp *exp, const char *image_prefix)
+static error_stats render(const scene *s, const exp_run *exp, const char *image_prefix)
 {
     sol_light_accum *acc = malloc(sizeof *acc * IMAGE * IMAGE);
     if (!acc)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     double max_spec = 0.0;
     for (int j = 0; j < IMAGE; ++j)
         for (int i = 0; i < IMAGE; ++i) {
@@ -80,14 +80,14 @@ static error_stats render(const scene *s, const sol_exp *exp, const char *image_
         }
     sol_image img6 = {0}, img4 = {0};
     if (image_prefix) {
-        sol_exp_check(sol_image_alloc(&img6, IMAGE, IMAGE, 3), "image");
-        sol_exp_check(sol_image_alloc(&img4, IMAGE, IMAGE, 3), "image");
+        exp_check(sol_image_alloc(&img6, IMAGE, IMAGE, 3), "image");
+        exp_check(sol_image_alloc(&img4, IMAGE, IMAGE, 3), "image");
     }
     error_stats e = {0, 0, 0, 0};
     double weight_sum = 0.0, err_sum = 0.0, ref_sum = 0.0, spec_err = 0.0, spec_sum = 0.0;
     for (int i = 0; i < IMAGE * IMAGE; ++i) {
         double spec4[3];
-        sol_exp_check(sol_light_accum_specular4(&acc[i], spec4), "rebuilding specular");
+        exp_check(sol_light_accum_specular4(&acc[i], spec4), "rebuilding specular");
         double lum = sol_luminance(acc[i].specular);
         double angle = lum > 0.0 ? rgb_angle_deg(spec4, acc[i].specular) : 0.0;
         e.mean_angle_deg += lum * angle;
@@ -114,9 +114,9 @@ static error_stats render(const scene *s, const sol_exp *exp, const char *image_
     if (image_prefix) {
         char name[256];
         snprintf(name, sizeof name, "%s_6ch.png", image_prefix);
-        sol_exp_check(sol_png_write(sol_exp_path(exp, name), &img6, 8), "writing %s", name);
+        exp_check(sol_png_write(exp_path(exp, name), &img6, 8), "writing %s", name);
         snprintf(name, sizeof name, "%s_4ch.png", image_prefix);
-        sol_exp_check(sol_png_write(sol_exp_path(exp, name), &img4, 8), "writing %s", name);
+        exp_check(sol_png_write(exp_path(exp, name), &img4, 8), "writing %s", name);
         sol_image_free(&img6);
         sol_image_free(&img4);
     }
@@ -141,8 +141,8 @@ static scene base_scene(void)
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "s2_light_accumulation", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "s2_light_accumulation", argc, argv);
     if (exp.bench)
         return 0; /* no accuracy knob: the layouts differ in storage, not in a tunable setting */
 
@@ -155,7 +155,7 @@ int main(int argc, char **argv)
                  {"warm + cool white", {1.0, 0.85, 0.7}, {0.7, 0.85, 1.0}},
                  {"orange + green", {1.0, 0.5, 0.1}, {0.2, 1.0, 0.3}},
                  {"red + blue", {1.0, 0.1, 0.1}, {0.1, 0.2, 1.0}}};
-    sol_table *t = sol_table_new("4-channel (diffuse * strength) vs 6-channel light accumulation, two lights",
+    exp_table *t = exp_table_new("4-channel (diffuse * strength) vs 6-channel light accumulation, two lights",
                                  "light colours,mean specular hue error (deg),max hue error (deg),specular RGB L1 error,final colour L1 error");
     error_stats red_blue = {0}, same = {0};
     for (size_t k = 0; k < sizeof pairs / sizeof *pairs; ++k) {
@@ -163,17 +163,17 @@ int main(int argc, char **argv)
         memcpy(s.lights[0].colour, pairs[k].a, sizeof pairs[k].a);
         memcpy(s.lights[1].colour, pairs[k].b, sizeof pairs[k].b);
         error_stats e = render(&s, &exp, k == 4 ? "red_blue" : NULL);
-        sol_table_row(t, "%s|%.3f|%.3f|%.4f|%.4f", pairs[k].name, e.mean_angle_deg, e.max_angle_deg, e.spec_rel_error,
+        exp_table_row(t, "%s|%.3f|%.3f|%.4f|%.4f", pairs[k].name, e.mean_angle_deg, e.max_angle_deg, e.spec_rel_error,
                       e.final_rel_error);
         if (k == 4)
             red_blue = e;
         if (k == 0)
             same = e;
     }
-    sol_table_write(t, &exp, "colour_pairs");
+    exp_table_write(t, &exp, "colour_pairs");
 
     /* Hue difference sweep (light A fixed at hue 0) for two glossiness values. */
-    FILE *f = sol_exp_open(&exp, "hue_sweep.csv");
+    FILE *f = exp_open(&exp, "hue_sweep.csv");
     fprintf(f, "hue_difference_deg,mean_gloss8,max_gloss8,mean_gloss64,max_gloss64\n");
     const int steps = exp.quick ? 6 : 18;
     for (int k = 0; k <= steps; ++k) {
@@ -191,7 +191,7 @@ int main(int argc, char **argv)
         fputc('\n', f);
     }
     fclose(f);
-    sol_plot(&exp, "hue_sweep",
+    exp_plot(&exp, "hue_sweep",
              "set datafile separator comma\nset xlabel 'hue difference between the two lights (degrees)'\n"
              "set ylabel 'specular hue error of 4 channels (degrees)'\nset key top left\nset grid\n"
              "plot 'hue_sweep.csv' every ::1 using 1:2 with linespoints title 'mean, Phong n=8', "
@@ -203,9 +203,9 @@ int main(int argc, char **argv)
     snprintf(fig, sizeof fig, "same colour: %.1e deg; red+blue: mean %.1f deg, max %.1f deg specular hue error",
              same.max_angle_deg, red_blue.mean_angle_deg, red_blue.max_angle_deg);
     int ok = same.max_angle_deg < 1e-6 && red_blue.max_angle_deg > 1.0;
-    sol_claim(&exp, "S2", "4 channels (spec ~ diffuse*strength) differ from 6 for two differently coloured lights", fig,
+    exp_claim(&exp, "S2", "4 channels (spec ~ diffuse*strength) differ from 6 for two differently coloured lights", fig,
               "exact (< 1e-6 deg) for one colour, visibly wrong (> 1 deg) for two",
-              ok ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+              ok ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the rebuilt specular keeps its luminance but takes the hue of the summed diffuse light: red+blue "
               "specular RGB off by %.0f%% (L1), final colour (albedo 0.5, F0 0.04) by %.1f%%",
               100.0 * red_blue.spec_rel_error, 100.0 * red_blue.final_rel_error);

@@ -12,7 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_hdr.h"
 
 static const double fit_x_max = 16.0; /* the fit is clamped to 1 from x ~ 7.24 on */
@@ -54,7 +54,7 @@ static void run_evals(void *ctx)
     job->sink = acc;
 }
 
-static double s3_aces_fit(const sol_exp *exp)
+static double s3_aces_fit(const exp_run *exp)
 {
     const int samples = exp->quick ? 2000 : 16000;
     /* Sweep of the input scale (each scale independent: parallel and order-free). */
@@ -62,12 +62,12 @@ static double s3_aces_fit(const sol_exp *exp)
     const int n_scales = (int)((2.5 - s_lo) / s_step) + 1;
     double *sweep = malloc(sizeof *sweep * (size_t)n_scales);
     if (!sweep)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
 #pragma omp parallel for schedule(dynamic, 4)
     for (int k = 0; k < n_scales; ++k)
         sweep[k] = measure_fit(s_lo + k * s_step, fit_x_max, samples / 4).max_abs;
     int best = 0;
-    FILE *csv = sol_exp_open(exp, "scale_sweep_curve.csv");
+    FILE *csv = exp_open(exp, "scale_sweep_curve.csv");
     fputs("scale,max_abs_error\n", csv);
     for (int k = 0; k < n_scales; ++k) {
         fprintf(csv, "%.4f,%.6f\n", s_lo + k * s_step, sweep[k]);
@@ -77,7 +77,7 @@ static double s3_aces_fit(const sol_exp *exp)
     double s_best = s_lo + best * s_step, sweep_min = sweep[best];
     free(sweep);
 
-    sol_table *t = sol_table_new("ACES fit vs ACES 1.0 RRT+ODT (Rec.709 100 nits dim, grey, linear), x in [0,16]",
+    exp_table *t = exp_table_new("ACES fit vs ACES 1.0 RRT+ODT (Rec.709 100 nits dim, grey, linear), x in [0,16]",
                                  "input scale s in ref(s x),s,max abs error,at x,max abs error (sRGB-encoded),mean abs error");
     const struct { const char *label; double s; } rows[] = {
         {"none", 1.0}, {"note's 'multiply input by 0.6' (1/0.6)", 1.0 / 0.6}, {"one stop pre-exposure", 2.0},
@@ -87,31 +87,31 @@ static double s3_aces_fit(const sol_exp *exp)
         fit_error e = measure_fit(rows[r].s, fit_x_max, samples);
         if (rows[r].s == 2.0)
             one_stop = e.max_abs;
-        sol_table_row(t, "%s|%.4f|%.4f|%.3f|%.4f|%.4f", rows[r].label, rows[r].s, e.max_abs, e.at_x, e.max_abs_srgb,
+        exp_table_row(t, "%s|%.4f|%.4f|%.3f|%.4f|%.4f", rows[r].label, rows[r].s, e.max_abs, e.at_x, e.max_abs_srgb,
                       e.mean_abs);
     }
-    sol_table_write(t, exp, "fit_error");
+    exp_table_write(t, exp, "fit_error");
 
-    sol_table *ranges = sol_table_new("ACES fit error (one stop pre-exposure) over the input range",
+    exp_table *ranges = exp_table_new("ACES fit error (one stop pre-exposure) over the input range",
                                       "x range,max abs error,at x");
     const double x_max[] = {0.5, 1.0, 2.0, 4.0, 16.0, 100.0};
     for (size_t r = 0; r < sizeof x_max / sizeof x_max[0]; ++r) {
         fit_error e = measure_fit(2.0, x_max[r], samples);
-        sol_table_row(ranges, "[0, %g]|%.4f|%.3f", x_max[r], e.max_abs, e.at_x);
+        exp_table_row(ranges, "[0, %g]|%.4f|%.3f", x_max[r], e.max_abs, e.at_x);
     }
-    sol_table_write(ranges, exp, "fit_error_ranges");
+    exp_table_write(ranges, exp, "fit_error_ranges");
 
     eval_job fit = {1, 0}, ref = {0, 0};
-    double ns_fit = sol_time_per_item_ns(run_evals, &fit, 4096, exp->quick ? 3 : 9);
-    double ns_ref = sol_time_per_item_ns(run_evals, &ref, 4096, exp->quick ? 3 : 9);
-    sol_table *cost = sol_table_new("ACES: fit vs reference, accuracy vs time", "curve,max abs error,ns per value");
-    sol_table_row(cost, "ACES fit (Narkowicz)|%.4f|%.1f", one_stop, ns_fit);
-    sol_table_row(cost, "RRT+ODT reference (grey)|0|%.1f", ns_ref);
-    sol_table_write(cost, exp, "fit_cost");
+    double ns_fit = exp_time_per_item_ns(run_evals, &fit, 4096, exp->quick ? 3 : 9);
+    double ns_ref = exp_time_per_item_ns(run_evals, &ref, 4096, exp->quick ? 3 : 9);
+    exp_table *cost = exp_table_new("ACES: fit vs reference, accuracy vs time", "curve,max abs error,ns per value");
+    exp_table_row(cost, "ACES fit (Narkowicz)|%.4f|%.1f", one_stop, ns_fit);
+    exp_table_row(cost, "RRT+ODT reference (grey)|0|%.1f", ns_ref);
+    exp_table_write(cost, exp, "fit_cost");
     if (exp->bench)
         return one_stop;
 
-    csv = sol_exp_open(exp, "aces_curves.csv");
+    csv = exp_open(exp, "aces_curves.csv");
     fputs("x,fit,ref_2x,ref_x_over_0.6,error_2x\n", csv);
     for (int i = 0; i <= 800; ++i) {
         double x = 8.0 * i / 800.0, f = sol_tonemap_apply(SOL_TONEMAP_ACES_FIT, x);
@@ -119,14 +119,14 @@ static double s3_aces_fit(const sol_exp *exp)
                 f - sol_aces_reference(2.0 * x));
     }
     fclose(csv);
-    sol_plot(exp, "aces_fit_vs_reference",
+    exp_plot(exp, "aces_fit_vs_reference",
              "set datafile separator comma\nset key autotitle columnhead bottom right\nset grid\n"
              "set xlabel 'x (scene value)'\nset ylabel 'linear display value'\nset y2label 'fit - ref(2x)'\n"
              "set y2tics\nset ytics nomirror\n"
              "plot 'aces_curves.csv' using 1:2 with lines lw 2 title 'ACES fit', "
              "'' using 1:3 with lines lw 2 title 'RRT+ODT ref(2x)', '' using 1:4 with lines dt 2 title 'ref(x/0.6)', "
              "'' using 1:5 axes x1y2 with lines lc rgb 'red' title 'fit - ref(2x) (right axis)'");
-    sol_plot(exp, "fit_error_vs_scale",
+    exp_plot(exp, "fit_error_vs_scale",
              "set datafile separator comma\nset grid\nset xlabel 'input scale s in ref(s x)'\n"
              "set ylabel 'max |fit(x) - ref(s x)|, x in [0,16]'\nset logscale y\n"
              "plot 'scale_sweep_curve.csv' using 1:2 with lines lw 2 notitle");
@@ -134,8 +134,8 @@ static double s3_aces_fit(const sol_exp *exp)
     char fig[256];
     snprintf(fig, sizeof fig, "%.4f with ref(2x) (one stop pre-exposure); %.4f with ref(x/0.6)", one_stop,
              stated.max_abs);
-    sol_claim(exp, "S3", "ACES fit max error 0.0138", fig, "+-0.0005",
-              fabs(one_stop - 0.0138) <= 5e-4 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "S3", "ACES fit max error 0.0138", fig, "+-0.0005",
+              fabs(one_stop - 0.0138) <= 5e-4 ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "reference: ACES 1.0 RRT + ODT Rec.709 100 nits dim on grey, linear (2.4 gamma removed), x in [0,16]; the "
               "fit matches ref(2x), a one-stop pre-exposure (smallest max error %.4f at s = %.3f), not the note's "
               "'multiply by 0.6' (s = 1/0.6)",
@@ -190,14 +190,14 @@ static double arithmetic_mean(const float *lum, int n)
     return s / n;
 }
 
-static void s6_exposure(const sol_exp *exp)
+static void s6_exposure(const exp_run *exp)
 {
     const int frames = 180;
     const double dt = 1.0 / 30.0, rate = 1.5;
     float lum[FRAME_W * FRAME_H];
-    FILE *csv = sol_exp_open(exp, "exposure_frames.csv");
+    FILE *csv = exp_open(exp, "exposure_frames.csv");
     fputs("time_s,ev_arithmetic_mean,ev_log_average,ev_metered_no_skip,ev_metered,ev_adapted,key,exposure_ev\n", csv);
-    sol_table *t = sol_table_new("Automatic exposure over a dark-interior-to-sunlight walk (EV100)",
+    exp_table *t = exp_table_new("Automatic exposure over a dark-interior-to-sunlight walk (EV100)",
                                  "frame,sun in view,mean EV,log-average EV,histogram EV (no skip),histogram EV (skip 60%/10%),"
                                  "adapted EV,Krawczyk key");
     double adapted = 0.0, jump[3] = {0, 0, 0}, prev[3] = {0, 0, 0};
@@ -205,11 +205,11 @@ static void s6_exposure(const sol_exp *exp)
     for (int f = 0; f < frames; ++f) {
         render_frame(f, frames, lum);
         double mean = arithmetic_mean(lum, FRAME_W * FRAME_H), avg = log_average(lum, FRAME_W * FRAME_H), meter_all, meter;
-        sol_exp_check(sol_histogram_meter(lum, FRAME_W * FRAME_H, &no_skip, &meter_all, NULL), "metering");
-        sol_exp_check(sol_histogram_meter(lum, FRAME_W * FRAME_H, NULL, &meter, NULL), "metering");
+        exp_check(sol_histogram_meter(lum, FRAME_W * FRAME_H, &no_skip, &meter_all, NULL), "metering");
+        exp_check(sol_histogram_meter(lum, FRAME_W * FRAME_H, NULL, &meter, NULL), "metering");
         adapted = f == 0 ? meter : sol_adapt_exponential(adapted, meter, dt, rate);
         double key = sol_krawczyk_key(adapted), exposure;
-        sol_exp_check(sol_exposure_from_luminance(adapted, 0.0, &exposure), "exposure");
+        exp_check(sol_exposure_from_luminance(adapted, 0.0, &exposure), "exposure");
         double now[3] = {log2(mean), log2(avg), log2(meter)};
         for (int k = 0; k < 3; ++k) {
             if (f == frames / 3 + 1) /* the sun enters the frame */
@@ -221,25 +221,25 @@ static void s6_exposure(const sol_exp *exp)
                 sol_ev100_from_luminance(meter_all), sol_ev100_from_luminance(meter), sol_ev100_from_luminance(adapted),
                 key, log2(exposure));
         if (f % 20 == 0 || f == frames / 3 + 1)
-            sol_table_row(t, "%d|%s|%.2f|%.2f|%.2f|%.2f|%.2f|%.3f", f,
+            exp_table_row(t, "%d|%s|%.2f|%.2f|%.2f|%.2f|%.2f|%.3f", f,
                           f > frames / 3 && f < 2 * frames / 3 ? "yes" : "no", sol_ev100_from_luminance(mean),
                           sol_ev100_from_luminance(avg), sol_ev100_from_luminance(meter_all),
                           sol_ev100_from_luminance(meter), sol_ev100_from_luminance(adapted), key);
     }
     fclose(csv);
-    sol_table_write(t, exp, "exposure_sequence");
-    FILE *kc = sol_exp_open(exp, "krawczyk_curve.csv");
+    exp_table_write(t, exp, "exposure_sequence");
+    FILE *kc = exp_open(exp, "krawczyk_curve.csv");
     fputs("ev100,key\n", kc);
     for (int i = 0; i <= 200; ++i) {
         double ev = -4.0 + 20.0 * i / 200.0;
         fprintf(kc, "%.3f,%.5f\n", ev, sol_krawczyk_key(sol_luminance_from_ev100(ev)));
     }
     fclose(kc);
-    sol_plot(exp, "exposure_over_time",
+    exp_plot(exp, "exposure_over_time",
              "set datafile separator comma\nset key autotitle columnhead top left\nset grid\n"
              "set xlabel 'time (s)'\nset ylabel 'EV100'\n"
              "plot for [i=2:5] 'exposure_frames.csv' using 1:i with lines lw 2, '' using 1:6 with lines lw 4");
-    sol_plot(exp, "krawczyk_key",
+    exp_plot(exp, "krawczyk_key",
              "set datafile separator comma\nset grid\nset xlabel 'EV100'\nset ylabel 'key value'\n"
              "plot 'krawczyk_curve.csv' using 1:2 with lines lw 2 title '1.03 - 2/(log10(L+1)+2)'");
     char fig[256];
@@ -247,8 +247,8 @@ static void s6_exposure(const sol_exp *exp)
              jump[0], jump[1], jump[2]);
     /* The verdict checks what the note states: the sun moves the mean most, the trimmed histogram least. */
     const int trimmed_ignores_sun = fabs(jump[2]) <= fabs(jump[1]) && fabs(jump[1]) < fabs(jump[0]);
-    sol_claim(exp, "S6", "EV units, histogram metering skipping darkest/brightest, Krawczyk key, exponential adaptation",
-              fig, "qualitative", trimmed_ignores_sun ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "S6", "EV units, histogram metering skipping darkest/brightest, Krawczyk key, exponential adaptation",
+              fig, "qualitative", trimmed_ignores_sun ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "a 180-frame interior-to-sunlight walk: a 1e6 cd/m2 sun on 5 of 6144 pixels moves the arithmetic mean, "
               "barely the log average and not the trimmed histogram; the trimmed meter follows the bright part "
               "(~1-6 EV above the log average) and the adaptation (rate %.1f/s) smooths the step",
@@ -257,8 +257,8 @@ static void s6_exposure(const sol_exp *exp)
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "s3_s6_aces_exposure", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "s3_s6_aces_exposure", argc, argv);
     double err = s3_aces_fit(&exp);
     (void)err;
     if (!exp.bench)

@@ -6,7 +6,7 @@
  *    polynomial fit and his GGX refit of Lazarov's form, for scale, bias and F0*scale+bias.
  * 3. Accuracy vs time of the alternatives a shader has: LUTs of several sizes vs the two fits.
  * 4. Error maps and the error-vs-time plot. */
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_lighting.h"
 
 #include <stdlib.h>
@@ -24,7 +24,7 @@ static grid grid_alloc(int n)
 {
     grid g = {n, calloc((size_t)n * n, sizeof(double)), calloc((size_t)n * n, sizeof(double))};
     if (!g.scale || !g.bias)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     return g;
 }
 
@@ -40,7 +40,7 @@ static void grid_reference(grid *g, int samples)
 #pragma omp parallel for schedule(dynamic, 1)
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x)
-            sol_exp_check(sol_dfg_integrate(sol_dfg_alpha_from_gloss((x + 0.5) / n), (y + 0.5) / n, samples,
+            exp_check(sol_dfg_integrate(sol_dfg_alpha_from_gloss((x + 0.5) / n), (y + 0.5) / n, samples,
                                             &g->scale[y * n + x], &g->bias[y * n + x]),
                           "integrating DFG");
 }
@@ -90,7 +90,7 @@ static error_stats grid_errors(const grid *ref, dfg_fit fit, const sol_dfg_lut *
             continue;
         for (int x = 0; x < n; ++x) {
             double gloss = (x + 0.5) / n, nv = (y + 0.5) / n, s, b;
-            sol_exp_check(fit ? fit(gloss, nv, &s, &b) : sol_dfg_lut_sample(lut, gloss, nv, &s, &b), "DFG approx");
+            exp_check(fit ? fit(gloss, nv, &s, &b) : sol_dfg_lut_sample(lut, gloss, nv, &s, &b), "DFG approx");
             double ds = s - ref->scale[y * n + x], db = b - ref->bias[y * n + x];
             accumulate(&e, ds, db, gloss, nv);
             if (map)
@@ -111,30 +111,30 @@ static sol_status refit_polynomial(double gloss, double n_dot_v, double *scale, 
 }
 
 /* Least-squares refit of Narkowicz's polynomial form to the reference grid (in-sample). */
-static void refit(const sol_exp *exp, const grid *ref)
+static void refit(const exp_run *exp, const grid *ref)
 {
     size_t count = (size_t)ref->n * ref->n;
     double *g = malloc(sizeof *g * count), *v = malloc(sizeof *v * count);
     if (!g || !v)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (size_t k = 0; k < count; ++k) {
         g[k] = (k % ref->n + 0.5) / ref->n;
         v[k] = (k / ref->n + 0.5) / ref->n;
     }
-    sol_exp_check(sol_dfg_refit_polynomial(g, v, ref->scale, ref->bias, count, &refit_constants), "refitting");
+    exp_check(sol_dfg_refit_polynomial(g, v, ref->scale, ref->bias, count, &refit_constants), "refitting");
     free(g);
     free(v);
-    sol_table *t = sol_table_new("Constants of the polynomial form: published and refitted to the reference",
+    exp_table *t = exp_table_new("Constants of the polynomial form: published and refitted to the reference",
                                  "constants,b0,b1,b2,b3,b4,b5,d0,d1,d2,d3,d4,d5,d6");
     const sol_dfg_polynomial *sets[2] = {&sol_dfg_polynomial_narkowicz, &refit_constants};
     for (int k = 0; k < 2; ++k) {
         const sol_dfg_polynomial *p = sets[k];
-        sol_table_row(t, "%s|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f",
+        exp_table_row(t, "%s|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f",
                       k ? "sol refit" : "Narkowicz", p->bias[0], p->bias[1], p->bias[2], p->bias[3], p->bias[4],
                       p->bias[5], p->delta[0], p->delta[1], p->delta[2], p->delta[3], p->delta[4], p->delta[5],
                       p->delta[6]);
     }
-    sol_table_write(t, exp, "refit_constants");
+    exp_table_write(t, exp, "refit_constants");
 }
 
 /* ---- timing ---- */
@@ -179,18 +179,18 @@ static void fill_points(timing_ctx *c)
 }
 
 /* 1. Reference convergence: error of the quadrature at `samples` against a much finer one. */
-static void convergence(const sol_exp *exp, int check_n, int fine_samples)
+static void convergence(const exp_run *exp, int check_n, int fine_samples)
 {
     static const int counts[] = {4, 8, 16, 32, 64, 128, 256, 512};
     grid fine = grid_alloc(check_n);
     grid_reference(&fine, fine_samples);
-    sol_table *t = sol_table_new("DFG reference quadrature: samples per axis vs error and time",
+    exp_table *t = exp_table_new("DFG reference quadrature: samples per axis vs error and time",
                                  "samples per axis,max abs error (scale),max abs error (bias),ns per texel");
     timing_ctx *c = calloc(1, sizeof *c);
     if (!c)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     fill_points(c);
-    FILE *csv = sol_exp_open(exp, "convergence_points.csv");
+    FILE *csv = exp_open(exp, "convergence_points.csv");
     fprintf(csv, "samples,max_err,ns\n");
     for (size_t k = 0; k < sizeof counts / sizeof *counts; ++k) {
         grid g = grid_alloc(check_n);
@@ -201,26 +201,26 @@ static void convergence(const sol_exp *exp, int check_n, int fine_samples)
             mb = fmax(mb, fabs(g.bias[i] - fine.bias[i]));
         }
         c->samples = counts[k];
-        double ns = sol_time_per_item_ns(run_quadrature, c, 16, 5);
-        sol_table_row(t, "%d|%.2e|%.2e|%.0f", counts[k], ms, mb, ns);
+        double ns = exp_time_per_item_ns(run_quadrature, c, 16, 5);
+        exp_table_row(t, "%d|%.2e|%.2e|%.0f", counts[k], ms, mb, ns);
         fprintf(csv, "%d,%.6e,%.3f\n", counts[k], fmax(ms, mb), ns);
         grid_free(&g);
     }
     fclose(csv);
-    sol_table_write(t, exp, "convergence");
+    exp_table_write(t, exp, "convergence");
     free(c);
     grid_free(&fine);
 }
 
-static void error_row(sol_table *t, const char *name, const error_stats *e, double ns)
+static void error_row(exp_table *t, const char *name, const error_stats *e, double ns)
 {
-    sol_table_row(t, "%s|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.2f", name, e->max_scale, e->mean_scale, e->max_bias,
+    exp_table_row(t, "%s|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.4f|%.2f", name, e->max_scale, e->mean_scale, e->max_bias,
                   e->mean_bias, e->max_f004, e->mean_f004, e->max_f1, e->mean_f1, ns);
 }
 
-static void write_map(const sol_exp *exp, const char *file, const grid *ref, const double *map)
+static void write_map(const exp_run *exp, const char *file, const grid *ref, const double *map)
 {
-    FILE *f = sol_exp_open(exp, file);
+    FILE *f = exp_open(exp, file);
     for (int y = 0; y < ref->n; ++y) {
         for (int x = 0; x < ref->n; ++x)
             fprintf(f, "%.5f %.5f %.6e\n", (x + 0.5) / ref->n, (y + 0.5) / ref->n, map[y * ref->n + x]);
@@ -230,20 +230,20 @@ static void write_map(const sol_exp *exp, const char *file, const grid *ref, con
 }
 
 /* LUT rows of the approximation table, and error_vs_time.csv (the LUT size is the accuracy knob). */
-static void lut_rows(const sol_exp *exp, timing_ctx *c, const grid *ref, int lut_samples, sol_table *t)
+static void lut_rows(const exp_run *exp, timing_ctx *c, const grid *ref, int lut_samples, exp_table *t)
 {
-    FILE *pts = sol_exp_open(exp, "error_vs_time.csv");
+    FILE *pts = exp_open(exp, "error_vs_time.csv");
     fprintf(pts, "lut_size,max_f004,mean_f004,ns\n");
     static const int lut_sizes[] = {8, 16, 32, 64, 128};
     for (size_t k = 0; k < sizeof lut_sizes / sizeof *lut_sizes; ++k) {
         if (exp->quick && lut_sizes[k] > 32)
             break;
         sol_dfg_lut lut = {0};
-        sol_exp_check(sol_dfg_lut_build(lut_sizes[k], lut_samples, &lut), "building a DFG LUT");
+        exp_check(sol_dfg_lut_build(lut_sizes[k], lut_samples, &lut), "building a DFG LUT");
         error_stats e = grid_errors(ref, NULL, &lut, NULL, 0.0);
         c->fit = NULL;
         c->lut = &lut;
-        double ns = sol_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
+        double ns = exp_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
         char name[64];
         snprintf(name, sizeof name, "LUT %dx%d", lut_sizes[k], lut_sizes[k]);
         error_row(t, name, &e, ns);
@@ -260,13 +260,13 @@ typedef struct fit_results {
     double *map_poly, *map_laz; /* signed F0=0.04 error per grid point, for the maps */
 } fit_results;
 
-static void fit_rows(const sol_exp *exp, timing_ctx *c, const grid *ref, sol_table *t, fit_results *f)
+static void fit_rows(const exp_run *exp, timing_ctx *c, const grid *ref, exp_table *t, fit_results *f)
 {
     size_t n = (size_t)ref->n * ref->n;
     f->map_poly = malloc(sizeof(double) * n);
     f->map_laz = malloc(sizeof(double) * n);
     if (!f->map_poly || !f->map_laz)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     f->poly = grid_errors(ref, sol_dfg_fit_polynomial, NULL, f->map_poly, 0.0);
     f->laz = grid_errors(ref, sol_dfg_fit_lazarov, NULL, f->map_laz, 0.0);
     refit(exp, ref);
@@ -276,9 +276,9 @@ static void fit_rows(const sol_exp *exp, timing_ctx *c, const grid *ref, sol_tab
     f->laz_away = grid_errors(ref, sol_dfg_fit_lazarov, NULL, NULL, 0.1);
     c->lut = NULL;
     c->fit = sol_dfg_fit_polynomial;
-    f->ns_poly = sol_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
+    f->ns_poly = exp_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
     c->fit = sol_dfg_fit_lazarov;
-    f->ns_laz = sol_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
+    f->ns_laz = exp_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
     error_row(t, "Narkowicz polynomial", &f->poly, f->ns_poly);
     error_row(t, "Narkowicz-Lazarov (GGX refit)", &f->laz, f->ns_laz);
     error_row(t, "polynomial form, sol refit (least squares)", &f->own, f->ns_poly);
@@ -287,11 +287,11 @@ static void fit_rows(const sol_exp *exp, timing_ctx *c, const grid *ref, sol_tab
 }
 
 /* Error maps of both fits, LUT error vs size against the fits' levels, quadrature convergence. */
-static void plots(const sol_exp *exp, const grid *ref, const fit_results *f)
+static void plots(const exp_run *exp, const grid *ref, const fit_results *f)
 {
     write_map(exp, "error_map_polynomial.dat", ref, f->map_poly);
     write_map(exp, "error_map_lazarov.dat", ref, f->map_laz);
-    sol_plot(exp, "error_maps",
+    exp_plot(exp, "error_maps",
              "set multiplot layout 1,2\n"
              "set xlabel 'gloss'\nset ylabel 'n.v'\nset cblabel 'error of F0*scale+bias, F0=0.04'\n"
              "set palette defined (-1 'blue', 0 'white', 1 'red')\nset cbrange [-%g:%g]\n"
@@ -300,7 +300,7 @@ static void plots(const sol_exp *exp, const grid *ref, const fit_results *f)
              "set title 'Lazarov form, GGX refit'\nplot 'error_map_lazarov.dat' using 1:2:3 with image notitle\n"
              "unset multiplot\n",
              fmax(f->poly.max_f004, f->laz.max_f004), fmax(f->poly.max_f004, f->laz.max_f004));
-    sol_plot(exp, "error_vs_time",
+    exp_plot(exp, "error_vs_time",
              "set datafile separator comma\nset logscale xy\nset key outside right\nset grid\n"
              "set xlabel 'LUT texels per side (ns per lookup: see the table)'\n"
              "set ylabel 'abs error of F0*scale+bias, F0=0.04'\nset xrange [6:160]\n"
@@ -309,21 +309,21 @@ static void plots(const sol_exp *exp, const grid *ref, const fit_results *f)
              "%g with lines dt 2 lc rgb 'red' title 'polynomial, max', %g with lines dt 3 lc rgb 'red' title 'polynomial, mean', "
              "%g with lines dt 2 lc rgb 'blue' title 'Lazarov refit, max', %g with lines dt 3 lc rgb 'blue' title 'Lazarov refit, mean'\n",
              f->poly.max_f004, f->poly.mean_f004, f->laz.max_f004, f->laz.mean_f004);
-    sol_plot(exp, "convergence",
+    exp_plot(exp, "convergence",
              "set datafile separator comma\nset logscale xy\nset xlabel 'quadrature samples per axis'\n"
              "set ylabel 'max abs error vs the finest grid'\nset grid\n"
              "plot 'convergence_points.csv' every ::1 using 1:2 with linespoints pt 7 title 'scale/bias'\n");
 }
 
 /* S4: the polynomial is 'hard to distinguish from reference' if F0*scale+bias is within 0.02. */
-static void claim_s4(const sol_exp *exp, const fit_results *f, int ref_n, int ref_samples)
+static void claim_s4(const exp_run *exp, const fit_results *f, int ref_n, int ref_samples)
 {
     char sol_fig[256];
     snprintf(sol_fig, sizeof sol_fig, "max |err| F0=0.04: poly %.4f, Lazarov %.4f; mean %.4f, %.4f",
              f->poly.max_f004, f->laz.max_f004, f->poly.mean_f004, f->laz.mean_f004);
     int ok = f->poly.max_f004 <= 0.02 && f->poly.max_f1 <= 0.02;
-    sol_claim(exp, "S4", "polynomial fit 'hard to distinguish from reference'", sol_fig,
-              "max abs error of F0*scale+bias <= 0.02 for F0 = 0.04 and 1", ok ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "S4", "polynomial fit 'hard to distinguish from reference'", sol_fig,
+              "max abs error of F0*scale+bias <= 0.02 for F0 = 0.04 and 1", ok ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "%dx%d gloss x n.v grid, reference by %dx%d-sample quadrature; polynomial max error F0=1 %.4f "
               "(worst F0=0.04 point at gloss %.3f, n.v %.3f; for n.v >= 0.1 max %.4f); Lazarov refit max F0=1 %.4f; "
               "mean errors ~%.0f/255; cost %.1f vs %.1f ns; the same form refitted here: max %.4f (F0=0.04)",
@@ -334,8 +334,8 @@ static void claim_s4(const sol_exp *exp, const fit_results *f, int ref_n, int re
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "s4_dfg_fit", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "s4_dfg_fit", argc, argv);
     /* 100 points per axis: not the texel centres of any LUT size below, so LUT errors are real. */
     const int ref_n = exp.quick ? 25 : 100, ref_samples = exp.quick ? 64 : 128;
     const int lut_samples = exp.quick ? 32 : 64; /* the texel values of the LUTs under test */
@@ -348,16 +348,16 @@ int main(int argc, char **argv)
 
     timing_ctx *c = calloc(1, sizeof *c);
     if (!c)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     fill_points(c);
 
-    sol_table *t = sol_table_new(
+    exp_table *t = exp_table_new(
         "DFG approximations vs the reference (abs errors over the gloss x n.v grid)",
         "method,max scale,mean scale,max bias,mean bias,max F0=0.04,mean F0=0.04,max F0=1,mean F0=1,ns per eval");
     lut_rows(&exp, c, &ref, lut_samples, t);
     fit_results fits;
     fit_rows(&exp, c, &ref, t, &fits);
-    sol_table_write(t, &exp, "approximation_errors");
+    exp_table_write(t, &exp, "approximation_errors");
 
     if (!exp.bench) {
         plots(&exp, &ref, &fits);

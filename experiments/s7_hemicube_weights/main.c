@@ -10,7 +10,7 @@
  *    closed form and by summing texels, and the share it misses; the same as a function of FOV.
  * 4. What renormalising the weights (his choice for the missing samples) does to irradiance
  *    from non-uniform environments. */
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_lighting.h"
 
 #include <stdlib.h>
@@ -21,7 +21,7 @@ typedef struct sums {
 
 static sums plane_sums(int size, double half_extent, sol_texel_weight *w)
 {
-    sol_exp_check(sol_plane_weights(size, half_extent, w), "plane weights");
+    exp_check(sol_plane_weights(size, half_extent, w), "plane weights");
     sums s = {0, 0, 0};
     for (size_t i = 0; i < (size_t)size * size; ++i) {
         s.solid_angle += w[i].solid_angle;
@@ -44,24 +44,24 @@ static void run_hemicube(void *p)
     c->sink += a + b + e;
 }
 
-static void hemicube_table(const sol_exp *exp)
+static void hemicube_table(const exp_run *exp)
 {
     static const int sizes[] = {4, 8, 16, 32, 64, 128, 256, 512};
-    sol_table *t = sol_table_new("Hemicube weights: sums against 2 pi (solid angle) and pi (cosine-weighted)",
+    exp_table *t = exp_table_new("Hemicube weights: sums against 2 pi (solid angle) and pi (cosine-weighted)",
                                  "texels per face side,solid angle - 2pi,centre-cosine sum / pi - 1,exact cosine sum - pi,ns per texel");
-    FILE *csv = sol_exp_open(exp, "hemicube_convergence.csv");
+    FILE *csv = exp_open(exp, "hemicube_convergence.csv");
     fprintf(csv, "size,centre_cosine_rel_error,ns\n");
     for (size_t k = 0; k < sizeof sizes / sizeof *sizes; ++k) {
         hemicube_ctx c = {sizes[k], 0.0};
         double a, b, e;
-        sol_exp_check(sol_hemicube_weight_sums(sizes[k], &a, &b, &e), "hemicube sums");
+        exp_check(sol_hemicube_weight_sums(sizes[k], &a, &b, &e), "hemicube sums");
         size_t texels = 3u * (size_t)sizes[k] * (size_t)sizes[k]; /* front + 4 half faces */
-        double ns = sol_time_per_item_ns(run_hemicube, &c, texels, sizes[k] >= 256 ? 3 : 9);
-        sol_table_row(t, "%d|%.2e|%.3e|%.2e|%.1f", sizes[k], a - 2.0 * M_PI, b / M_PI - 1.0, e - M_PI, ns);
+        double ns = exp_time_per_item_ns(run_hemicube, &c, texels, sizes[k] >= 256 ? 3 : 9);
+        exp_table_row(t, "%d|%.2e|%.3e|%.2e|%.1f", sizes[k], a - 2.0 * M_PI, b / M_PI - 1.0, e - M_PI, ns);
         fprintf(csv, "%d,%.6e,%.3f\n", sizes[k], fabs(b / M_PI - 1.0), ns);
     }
     fclose(csv);
-    sol_table_write(t, exp, "hemicube_sums");
+    exp_table_write(t, exp, "hemicube_sums");
 }
 
 /* Irradiance (about +z) from radiance L(cos theta), estimated from texel centres with the exact
@@ -99,27 +99,27 @@ static double sky_low_band(double c)
 static const double HALF_EXTENT = 2.0;
 
 /* 3. Single plane: texel sums at growing sizes (up to `big`), then the closed forms. */
-static void single_plane_table(sol_exp *exp, sol_texel_weight *w, int big, double omega_plane, double cos_plane)
+static void single_plane_table(exp_run *exp, sol_texel_weight *w, int big, double omega_plane, double cos_plane)
 {
-    sol_table *t = sol_table_new("Single plane of half extent 2 (126.87 degrees): what it captures",
+    exp_table *t = exp_table_new("Single plane of half extent 2 (126.87 degrees): what it captures",
                                  "texels per side,solid angle (sr),share of 2pi,cosine-weighted (centre cos),cosine-weighted (exact),share of pi,missed share of pi");
     static const int sizes[] = {16, 64, 256, 1024};
     for (size_t k = 0; k < sizeof sizes / sizeof *sizes && sizes[k] <= big; ++k) {
         sums s = plane_sums(sizes[k], HALF_EXTENT, w);
-        sol_table_row(t, "%d|%.6f|%.4f|%.6f|%.6f|%.4f|%.4f", sizes[k], s.solid_angle, s.solid_angle / (2 * M_PI),
+        exp_table_row(t, "%d|%.6f|%.4f|%.6f|%.6f|%.4f|%.4f", sizes[k], s.solid_angle, s.solid_angle / (2 * M_PI),
                       s.cosine_at_centre, s.cosine_exact, s.cosine_exact / M_PI, 1.0 - s.cosine_exact / M_PI);
     }
-    sol_table_row(t, "closed form|%.6f|%.4f|-|%.6f|%.4f|%.4f", omega_plane, omega_plane / (2 * M_PI), cos_plane,
+    exp_table_row(t, "closed form|%.6f|%.4f|-|%.6f|%.4f|%.4f", omega_plane, omega_plane / (2 * M_PI), cos_plane,
                   cos_plane / M_PI, 1.0 - cos_plane / M_PI);
-    sol_table_write(t, exp, "single_plane");
+    exp_table_write(t, exp, "single_plane");
 }
 
 /* 4. Renormalised irradiance from non-uniform skies (plane of `big` texels, centre radiance).
  * Returns the relative error for the horizon-bright sky, quoted in the claim. */
-static double renormalised_irradiance_table(sol_exp *exp, sol_texel_weight *w, int big)
+static double renormalised_irradiance_table(exp_run *exp, sol_texel_weight *w, int big)
 {
     plane_sums(big, HALF_EXTENT, w);
-    sol_table *r = sol_table_new("Irradiance with the single plane's weights renormalised (as in the note)",
+    exp_table *r = exp_table_new("Irradiance with the single plane's weights renormalised (as in the note)",
                                  "environment,exact E,single-plane E,relative error");
     struct {
         const char *name;
@@ -132,18 +132,18 @@ static double renormalised_irradiance_table(sol_exp *exp, sol_texel_weight *w, i
     double horizon_error = 0.0;
     for (size_t k = 0; k < sizeof skies / sizeof *skies; ++k) {
         double e = skies[k].radiance ? renormalised_irradiance(w, big, HALF_EXTENT, skies[k].radiance) : M_PI;
-        sol_table_row(r, "%s|%.5f|%.5f|%+.4f", skies[k].name, skies[k].exact, e, e / skies[k].exact - 1.0);
+        exp_table_row(r, "%s|%.5f|%.5f|%+.4f", skies[k].name, skies[k].exact, e, e / skies[k].exact - 1.0);
         if (k == 2)
             horizon_error = e / skies[k].exact - 1.0;
     }
-    sol_table_write(r, exp, "renormalised_irradiance");
+    exp_table_write(r, exp, "renormalised_irradiance");
     return horizon_error;
 }
 
 /* Captured shares against the field of view (closed forms), with the note's FOV marked. */
-static void capture_vs_fov_plot(sol_exp *exp, double fov_deg)
+static void capture_vs_fov_plot(exp_run *exp, double fov_deg)
 {
-    FILE *f = sol_exp_open(exp, "capture_vs_fov.csv");
+    FILE *f = exp_open(exp, "capture_vs_fov.csv");
     fprintf(f, "fov_deg,solid_angle_share,cosine_share\n");
     for (int i = 1; i <= 170; ++i) {
         double a = tan(0.5 * i * M_PI / 180.0);
@@ -151,7 +151,7 @@ static void capture_vs_fov_plot(sol_exp *exp, double fov_deg)
                 4.0 * sol_plane_cosine_area(a, a) / M_PI);
     }
     fclose(f);
-    sol_plot(exp, "capture_vs_fov",
+    exp_plot(exp, "capture_vs_fov",
              "set datafile separator comma\nset xlabel 'field of view of the single plane (degrees)'\n"
              "set ylabel 'share of the hemisphere captured'\nset key top left\nset grid\nset yrange [0:1]\n"
              "set arrow from %.4f,0 to %.4f,1 nohead dt 2\n"
@@ -162,38 +162,38 @@ static void capture_vs_fov_plot(sol_exp *exp, double fov_deg)
 }
 
 /* Plot of the table hemicube_table wrote (hemicube_convergence.csv). */
-static void hemicube_convergence_plot(sol_exp *exp)
+static void hemicube_convergence_plot(exp_run *exp)
 {
-    sol_plot(exp, "hemicube_convergence",
+    exp_plot(exp, "hemicube_convergence",
              "set datafile separator comma\nset logscale xy\nset grid\nset xlabel 'texels per hemicube face side'\n"
              "set ylabel '|sum of centre-cosine weights / pi - 1|'\n"
              "plot 'hemicube_convergence.csv' every ::1 using 1:2 with linespoints pt 7 title 'centre-cosine weights'\n");
 }
 
 /* S7 claim 1: the ElementArea texel solid angles sum to the hemisphere exactly. */
-static void claim_element_area(sol_exp *exp)
+static void claim_element_area(exp_run *exp)
 {
     double a, b, e;
-    sol_exp_check(sol_hemicube_weight_sums(64, &a, &b, &e), "hemicube sums");
+    exp_check(sol_hemicube_weight_sums(64, &a, &b, &e), "hemicube sums");
     char fig[256];
     snprintf(fig, sizeof fig, "5-face sums: solid angle 2pi%+.1e, exact cosine pi%+.1e; centre-cosine pi x (1%+.1e) at 64^2",
              a - 2 * M_PI, e - M_PI, b / M_PI - 1.0);
     int weights_ok = fabs(a - 2 * M_PI) < 1e-9 && fabs(e - M_PI) < 1e-9;
-    sol_claim(exp, "S7", "texel solid angle by the ElementArea formula", fig, "sums within 1e-9 of 2pi and pi",
-              weights_ok ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "S7", "texel solid angle by the ElementArea formula", fig, "sums within 1e-9 of 2pi and pi",
+              weights_ok ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "ElementArea is exact (sums reach 2pi to rounding); the cosine at the texel centre is an approximation "
               "that over/under-weights by %.1e of pi at 64 texels per side, gone after his renormalisation",
               b / M_PI - 1.0);
 }
 
 /* S7 claim 2: the single plane's field of view and what it misses. */
-static void claim_single_plane(sol_exp *exp, double fov_deg, double omega_plane, double cos_plane, double horizon_error)
+static void claim_single_plane(exp_run *exp, double fov_deg, double omega_plane, double cos_plane, double horizon_error)
 {
     char fig[256];
     snprintf(fig, sizeof fig, "2 atan(2) = %.4f deg; captures %.1f%% of the solid angle, %.1f%% of the cosine-weighted hemisphere",
              fov_deg, 100.0 * omega_plane / (2 * M_PI), 100.0 * cos_plane / M_PI);
-    sol_claim(exp, "S7", "single plane, ~126.87 deg FOV (double side length)", fig, "FOV within 0.01 deg",
-              fabs(fov_deg - 126.87) < 0.01 ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "S7", "single plane, ~126.87 deg FOV (double side length)", fig, "FOV within 0.01 deg",
+              fabs(fov_deg - 126.87) < 0.01 ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the plane misses %.1f%% of the irradiance of a uniform sky (renormalising the weights restores it); "
               "for a horizon-bright sky (L = 1 - cos) the renormalised irradiance is off by %+.1f%%",
               100.0 * (1.0 - cos_plane / M_PI), 100.0 * horizon_error);
@@ -201,8 +201,8 @@ static void claim_single_plane(sol_exp *exp, double fov_deg, double omega_plane,
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "s7_hemicube_weights", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "s7_hemicube_weights", argc, argv);
 
     hemicube_table(&exp);
     if (exp.bench)
@@ -215,7 +215,7 @@ int main(int argc, char **argv)
     const int big = exp.quick ? 256 : 1024;
     sol_texel_weight *w = malloc(sizeof *w * (size_t)big * big);
     if (!w)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     single_plane_table(&exp, w, big, omega_plane, cos_plane);
     double horizon_error = renormalised_irradiance_table(&exp, w, big);
     free(w);

@@ -9,7 +9,7 @@
  * 3. Straight shadow edges at several angles: max difference and the 10-90% width of the penumbra
  *    (the "sharpening").
  * 4. Time per filtered pixel of the three methods (CPU emulation of the taps). */
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_lighting.h"
 
 #include <stdlib.h>
@@ -21,15 +21,15 @@ static const char *method_name(sol_pcf_method m)
 }
 
 /* 1. Effective 1D weights over the offset f. */
-static void weights_curves(const sol_exp *exp, double *max_1d_diff)
+static void weights_curves(const exp_run *exp, double *max_1d_diff)
 {
-    FILE *f = sol_exp_open(exp, "weights_1d.csv");
+    FILE *f = exp_open(exp, "weights_1d.csv");
     fprintf(f, "f,box0,box1,fast0,fast1\n");
     *max_1d_diff = 0.0;
     for (int i = 0; i <= 200; ++i) {
         double t = i / 200.0, we[4], wf[4];
-        sol_exp_check(sol_pcf_weights_1d(SOL_PCF_BOX_EXACT, t, we), "weights");
-        sol_exp_check(sol_pcf_weights_1d(SOL_PCF_BILINEAR4_FAST, t, wf), "weights");
+        exp_check(sol_pcf_weights_1d(SOL_PCF_BOX_EXACT, t, we), "weights");
+        exp_check(sol_pcf_weights_1d(SOL_PCF_BILINEAR4_FAST, t, wf), "weights");
         fprintf(f, "%.4f,%.6f,%.6f,%.6f,%.6f\n", t, we[0] / 3, we[1] / 3, wf[0] / 3, wf[1] / 3);
         for (int k = 0; k < 4; ++k)
             *max_1d_diff = fmax(*max_1d_diff, fabs(wf[k] - we[k]) / 3);
@@ -46,7 +46,7 @@ static double exhaustive_patterns(int offsets, sol_pcf_method method, double *wo
     const int count = offsets * offsets;
     double *per_offset = calloc((size_t)count, sizeof *per_offset);
     if (!per_offset)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
 #pragma omp parallel for schedule(dynamic, 1)
     for (int k = 0; k < count; ++k) {
         double fx = (double)(k % offsets) / offsets, fy = (double)(k / offsets) / offsets, local = 0.0; /* includes 0.5 */
@@ -55,8 +55,8 @@ static double exhaustive_patterns(int offsets, sol_pcf_method method, double *wo
             for (int b = 0; b < 16; ++b)
                 map[b] = (pattern >> b) & 1 ? 1.0f : 0.0f; /* 1 = lit for a receiver at 0.5 */
             double box, approx;
-            sol_exp_check(sol_pcf_filter(map, 4, 4, 1.5 + fx, 1.5 + fy, 0.5, SOL_PCF_BOX_EXACT, &box), "pcf");
-            sol_exp_check(sol_pcf_filter(map, 4, 4, 1.5 + fx, 1.5 + fy, 0.5, method, &approx), "pcf");
+            exp_check(sol_pcf_filter(map, 4, 4, 1.5 + fx, 1.5 + fy, 0.5, SOL_PCF_BOX_EXACT, &box), "pcf");
+            exp_check(sol_pcf_filter(map, 4, 4, 1.5 + fx, 1.5 + fy, 0.5, method, &approx), "pcf");
             local = fmax(local, fabs(approx - box));
         }
         per_offset[k] = local;
@@ -111,8 +111,8 @@ static edge_stats edge_experiment(double deg, int lines, FILE *profile)
         for (int k = 0; k < STEPS; ++k) {
             double d = -range + step * k;
             double x = c + d * nx - along * ny, y = c + d * ny + along * nx;
-            sol_exp_check(sol_pcf_filter(map, EDGE_MAP, EDGE_MAP, x, y, 0.5, SOL_PCF_BOX_EXACT, &box[k]), "pcf");
-            sol_exp_check(sol_pcf_filter(map, EDGE_MAP, EDGE_MAP, x, y, 0.5, SOL_PCF_BILINEAR4_FAST, &fast[k]), "pcf");
+            exp_check(sol_pcf_filter(map, EDGE_MAP, EDGE_MAP, x, y, 0.5, SOL_PCF_BOX_EXACT, &box[k]), "pcf");
+            exp_check(sol_pcf_filter(map, EDGE_MAP, EDGE_MAP, x, y, 0.5, SOL_PCF_BILINEAR4_FAST, &fast[k]), "pcf");
             s.max_diff = fmax(s.max_diff, fabs(fast[k] - box[k]));
             if (profile && l == lines / 2)
                 fprintf(profile, "%.4f,%.6f,%.6f\n", d, box[k], fast[k]);
@@ -147,12 +147,12 @@ static void run_filter(void *p)
     c->sink += acc;
 }
 
-static void timing_table(const sol_exp *exp)
+static void timing_table(const exp_run *exp)
 {
     timing_ctx *c = calloc(1, sizeof *c);
     float *map = malloc(sizeof *map * TIMING_MAP * TIMING_MAP);
     if (!c || !map)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (int i = 0; i < TIMING_MAP * TIMING_MAP; ++i) { /* a blocky pattern of lit and shadowed texels */
         int x = i % TIMING_MAP, y = i / TIMING_MAP;
         map[i] = ((x / 7 + y / 5) % 3) ? 1.0f : 0.0f;
@@ -163,21 +163,21 @@ static void timing_table(const sol_exp *exp)
         c->y[i] *= TIMING_MAP;
     }
     c->map = map;
-    sol_table *t = sol_table_new("Time per filtered pixel (CPU emulation of the taps)", "method,fetches,ns per pixel");
+    exp_table *t = exp_table_new("Time per filtered pixel (CPU emulation of the taps)", "method,fetches,ns per pixel");
     for (int m = 0; m < SOL_PCF_METHOD_COUNT; ++m) {
         c->method = (sol_pcf_method)m;
-        double ns = sol_time_per_item_ns(run_filter, c, TIMING_POINTS, 11);
-        sol_table_row(t, "%s|%s|%.1f", method_name((sol_pcf_method)m), m ? "4 bilinear taps" : "16 point compares", ns);
+        double ns = exp_time_per_item_ns(run_filter, c, TIMING_POINTS, 11);
+        exp_table_row(t, "%s|%s|%.1f", method_name((sol_pcf_method)m), m ? "4 bilinear taps" : "16 point compares", ns);
     }
-    sol_table_write(t, exp, "timing");
+    exp_table_write(t, exp, "timing");
     free(map);
     free(c);
 }
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "s8_pcf_bilinear", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "s8_pcf_bilinear", argc, argv);
     timing_table(&exp);
     if (exp.bench)
         return 0;
@@ -200,38 +200,38 @@ int main(int argc, char **argv)
             for (int a = 0; a < 4; ++a)
                 analytic += fmax(0.0, wf[a] * wf[b] - we[a] * we[b]) / 9.0;
     }
-    sol_table *p = sol_table_new("Worst case over all 65536 shadow patterns of the 4x4 texels",
+    exp_table *p = exp_table_new("Worst case over all 65536 shadow patterns of the 4x4 texels",
                                  "taps,max abs difference to the box,at offset (fx; fy)");
-    sol_table_row(p, "exactly placed (divisions)|%.2e|(%.3f; %.3f)", worst_exact_taps, fx_e, fy_e);
-    sol_table_row(p, "Tesseract fast|%.4f|(%.3f; %.3f)", worst_fast, fx_f, fy_f);
-    sol_table_row(p, "fast, from the weights at f = (0.5; 0.5)|%.4f|(0.500; 0.500)", analytic);
-    sol_table_row(p, "fast, 1D weight difference (max over f)|%.4f|-", max_1d);
-    sol_table_write(p, &exp, "worst_patterns");
+    exp_table_row(p, "exactly placed (divisions)|%.2e|(%.3f; %.3f)", worst_exact_taps, fx_e, fy_e);
+    exp_table_row(p, "Tesseract fast|%.4f|(%.3f; %.3f)", worst_fast, fx_f, fy_f);
+    exp_table_row(p, "fast, from the weights at f = (0.5; 0.5)|%.4f|(0.500; 0.500)", analytic);
+    exp_table_row(p, "fast, 1D weight difference (max over f)|%.4f|-", max_1d);
+    exp_table_write(p, &exp, "worst_patterns");
 
     static const double angles[] = {0.0, 10.0, 22.5, 30.0, 45.0};
     const int lines = exp.quick ? 8 : 64;
-    sol_table *e = sol_table_new("Straight shadow edges: fast 4-tap filter vs the 3x3 box",
+    exp_table *e = exp_table_new("Straight shadow edges: fast 4-tap filter vs the 3x3 box",
                                  "edge angle (deg),max abs difference,10-90% width box (texels),10-90% width fast,width ratio");
-    FILE *profile = sol_exp_open(&exp, "edge_profile.csv");
+    FILE *profile = exp_open(&exp, "edge_profile.csv");
     fprintf(profile, "d,box,fast\n");
     double edge_max = 0.0, ratio_min = 1.0;
     for (size_t k = 0; k < sizeof angles / sizeof *angles; ++k) {
         edge_stats s = edge_experiment(angles[k], lines, k == 0 ? profile : NULL);
         double ratio = s.width_fast / s.width_box;
-        sol_table_row(e, "%.1f|%.4f|%.3f|%.3f|%.3f", angles[k], s.max_diff, s.width_box, s.width_fast, ratio);
+        exp_table_row(e, "%.1f|%.4f|%.3f|%.3f|%.3f", angles[k], s.max_diff, s.width_box, s.width_fast, ratio);
         edge_max = fmax(edge_max, s.max_diff);
         ratio_min = fmin(ratio_min, ratio);
     }
     fclose(profile);
-    sol_table_write(e, &exp, "edges");
+    exp_table_write(e, &exp, "edges");
 
-    sol_plot(&exp, "weights_1d",
+    exp_plot(&exp, "weights_1d",
              "set datafile separator comma\nset xlabel 'sub-texel offset f'\nset ylabel 'weight (of 1)'\nset key outside\nset grid\n"
              "plot 'weights_1d.csv' every ::1 using 1:2 with lines lw 2 title 'box: outer texel (1-f)/3', "
              "'' every ::1 using 1:3 with lines lw 2 title 'box: inner texel 1/3', "
              "'' every ::1 using 1:4 with lines lw 2 dt 2 title 'fast: outer texel', "
              "'' every ::1 using 1:5 with lines lw 2 dt 2 title 'fast: inner texel'\n");
-    sol_plot(&exp, "edge_profile",
+    exp_plot(&exp, "edge_profile",
              "set datafile separator comma\nset xlabel 'distance across an axis-aligned shadow edge (texels)'\n"
              "set ylabel 'filtered lit fraction'\nset key top left\nset grid\n"
              "plot 'edge_profile.csv' every ::1 using 1:2 with lines lw 2 title '3x3 weighted box', "
@@ -242,9 +242,9 @@ int main(int argc, char **argv)
     snprintf(fig, sizeof fig, "edges: max diff %.3f, penumbra width x%.3f; any pattern: max diff %.3f", edge_max, ratio_min,
              worst_fast);
     int slight = edge_max <= 0.1 && ratio_min >= 0.85;
-    sol_claim(&exp, "S8", "4 bilinear taps = 3x3 weighted box with 'a slight sharpening'", fig,
+    exp_claim(&exp, "S8", "4 bilinear taps = 3x3 weighted box with 'a slight sharpening'", fig,
               "straight-edge difference <= 0.1 and 10-90% width >= 0.85 of the box's",
-              slight ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+              slight ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the fast taps move weight from the outer to the inner texels (inner (2-f)(1+f)/2 >= 1), so edges get "
               "steeper; exactly placed taps match the box to %.0e; worst 0/1 pattern (not an edge) differs by %.3f",
               worst_exact_taps > 0 ? worst_exact_taps : 1e-16, worst_fast);

@@ -53,7 +53,7 @@ static tex_input *grow(tex_input **set, int *count)
 {
     *set = realloc(*set, sizeof **set * (size_t)(*count + 1));
     if (!*set)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     tex_input *t = &(*set)[(*count)++];
     memset(t, 0, sizeof *t);
     return t;
@@ -63,7 +63,7 @@ static tex_input *grow(tex_input **set, int *count)
 static void synth(tex_input *t, int size, int noise, double lo, double hi, double skew, uint32_t seed)
 {
     static const double tint[3] = {1.0, 0.93, 0.85};
-    sol_exp_check(sol_image_alloc(&t->linear, size, size, 3), "allocating a texture");
+    exp_check(sol_image_alloc(&t->linear, size, size, 3), "allocating a texture");
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
             double u = noise ? value_noise(x, y, seed) : (x + 0.5) / size;
@@ -92,7 +92,7 @@ static int load_game(tex_input *t, const char *file, int size, double scale)
     }
     size = size < src.width / 2 ? size : src.width / 2; /* top-left crop, at most the whole file */
     size = size < src.height / 2 ? size : src.height / 2;
-    sol_exp_check(sol_image_alloc(&t->linear, size, size, 3), "allocating a texture");
+    exp_check(sol_image_alloc(&t->linear, size, size, 3), "allocating a texture");
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x)
             for (int c = 0; c < 3; ++c) {

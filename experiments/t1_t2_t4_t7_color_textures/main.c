@@ -5,8 +5,8 @@
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, "t1_t2_t4_t7_color_textures", argc, argv);
+    exp_run exp;
+    exp_init(&exp, "t1_t2_t4_t7_color_textures", argc, argv);
     if (!exp.bench) {
         run_storage_rule(&exp);
         run_bright_gradient(&exp);

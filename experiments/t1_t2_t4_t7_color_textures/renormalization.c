@@ -23,7 +23,7 @@ enum { LIGHTS = sizeof lights / sizeof lights[0], LIGHT_16 = 2 };
 static sol_image image_like(const sol_image *src)
 {
     sol_image out = {0};
-    sol_exp_check(sol_image_alloc(&out, src->width, src->height, src->channels), "allocating an image");
+    exp_check(sol_image_alloc(&out, src->width, src->height, src->channels), "allocating an image");
     memcpy(out.data, src->data, sizeof *src->data * (size_t)src->width * src->height * src->channels);
     return out;
 }
@@ -49,16 +49,16 @@ static sol_image through_bc1(const sol_image *stored, int renorm)
     sol_image in = image_like(stored), out;
     sol_renorm range;
     if (renorm) {
-        sol_exp_check(sol_renorm_fit(&in, &range), "renorm fit");
-        sol_exp_check(sol_renorm_apply(&range, &in), "renorm apply");
+        exp_check(sol_renorm_fit(&in, &range), "renorm fit");
+        exp_check(sol_renorm_apply(&range, &in), "renorm apply");
     }
     uint8_t *blocks = malloc(sol_bc1_size(in.width, in.height));
     if (!blocks)
-        sol_exp_die("out of memory");
-    sol_exp_check(sol_bc1_encode(&in, NULL, blocks), "BC1 encode");
-    sol_exp_check(sol_bc1_decode(blocks, in.width, in.height, &out), "BC1 decode");
+        exp_die("out of memory");
+    exp_check(sol_bc1_encode(&in, NULL, blocks), "BC1 encode");
+    exp_check(sol_bc1_decode(blocks, in.width, in.height, &out), "BC1 decode");
     if (renorm)
-        sol_exp_check(sol_renorm_undo(&range, &out), "renorm undo");
+        exp_check(sol_renorm_undo(&range, &out), "renorm undo");
     free(blocks);
     sol_image_free(&in);
     return out;
@@ -98,8 +98,8 @@ static void renorm_histogram(const sol_image *stored, int *levels, double *max_g
 {
     sol_image in = image_like(stored);
     sol_renorm range;
-    sol_exp_check(sol_renorm_fit(&in, &range), "renorm fit");
-    sol_exp_check(sol_renorm_apply(&range, &in), "renorm apply");
+    exp_check(sol_renorm_fit(&in, &range), "renorm fit");
+    exp_check(sol_renorm_apply(&range, &in), "renorm apply");
     static char seen[65536];
     memset(seen, 0, sizeof seen);
     for (size_t i = 1; i < values(&in); i += 3)
@@ -117,13 +117,13 @@ static void renorm_histogram(const sol_image *stored, int *levels, double *max_g
     sol_image_free(&in);
 }
 
-static void write_figure(const sol_exp *exp, const char *file, const sol_image *ref, const sol_image *plain, const sol_image *renorm,
+static void write_figure(const exp_run *exp, const char *file, const sol_image *ref, const sol_image *plain, const sol_image *renorm,
                          double light)
 {
     const int size = ref->width < 128 ? ref->width : 128, scale = 2;
     const sol_image *panels[3] = {ref, plain, renorm};
     sol_image fig = {0};
-    sol_exp_check(sol_image_alloc(&fig, 3 * size * scale, size * scale, 3), "allocating the figure");
+    exp_check(sol_image_alloc(&fig, 3 * size * scale, size * scale, 3), "allocating the figure");
     for (int p = 0; p < 3; ++p)
         for (int y = 0; y < size * scale; ++y)
             for (int x = 0; x < size * scale; ++x)
@@ -131,7 +131,7 @@ static void write_figure(const sol_exp *exp, const char *file, const sol_image *
                     double lin = sol_srgb_decode(sol_image_pixel(panels[p], x / scale, y / scale)[c]);
                     sol_image_pixel(&fig, p * size * scale + x, y)[c] = (float)(display255(lin, light) / 255.0);
                 }
-    sol_exp_check(sol_png_write(sol_exp_path(exp, file), &fig, 8), "writing the figure");
+    exp_check(sol_png_write(exp_path(exp, file), &fig, 8), "writing the figure");
     sol_image_free(&fig);
 }
 
@@ -176,14 +176,14 @@ static void run_encode(void *ctx)
         return;
     }
     sol_bc1_options o = {.effort = j->enc->effort, .iterations = j->enc->iterations};
-    sol_exp_check(sol_bc1_encode(j->input, &o, j->blocks), "BC1 encode");
+    exp_check(sol_bc1_encode(j->input, &o, j->blocks), "BC1 encode");
 }
 
 /* RMS error in 8-bit units of the decoded blocks against the float (16-bit) target. */
 static double stored_rms(const uint8_t *blocks, const sol_image *target)
 {
     sol_image dec;
-    sol_exp_check(sol_bc1_decode(blocks, target->width, target->height, &dec), "BC1 decode");
+    exp_check(sol_bc1_decode(blocks, target->width, target->height, &dec), "BC1 decode");
     double sq = 0.0;
     for (int y = 0; y < target->height; ++y)
         for (int x = 0; x < target->width; ++x)
@@ -195,7 +195,7 @@ static double stored_rms(const uint8_t *blocks, const sol_image *target)
     return sqrt(sq / (3.0 * target->width * target->height));
 }
 
-static void compare_encoders(const sol_exp *exp, sol_image *targets, int count)
+static void compare_encoders(const exp_run *exp, sol_image *targets, int count)
 {
     double rms[ENCODERS] = {0}, ns[ENCODERS] = {0};
     size_t texels = 0;
@@ -209,7 +209,7 @@ static void compare_encoders(const sol_exp *exp, sol_image *targets, int count)
         sol_image in8 = image_like(target);
         uint8_t *rgba = malloc(4 * n), *blocks = malloc(sol_bc1_size(target->width, target->height));
         if (!rgba || !blocks)
-            sol_exp_die("out of memory");
+            exp_die("out of memory");
         for (size_t i = 0; i < n; ++i) {
             for (int c = 0; c < 3; ++c) {
                 rgba[4 * i + c] = (uint8_t)sol_unorm_encode(target->data[3 * i + c], 8);
@@ -219,7 +219,7 @@ static void compare_encoders(const sol_exp *exp, sol_image *targets, int count)
         }
         for (int e = 0; e < ENCODERS; ++e) {
             encode_job job = {&encoders[e], encoders[e].input8 ? &in8 : target, rgba, blocks};
-            double per = sol_time_per_item_ns(run_encode, &job, n, exp->quick ? 1 : 3);
+            double per = exp_time_per_item_ns(run_encode, &job, n, exp->quick ? 1 : 3);
             ns[e] += per * (double)n / (double)texels;
             double r = stored_rms(blocks, target);
             rms[e] += r * r * (double)n / (double)texels;
@@ -229,37 +229,37 @@ static void compare_encoders(const sol_exp *exp, sol_image *targets, int count)
         free(blocks);
     }
     omp_set_num_threads(threads);
-    sol_table *tab = sol_table_new("BC1 encoders on the renormalised dark textures (one thread): RMS error vs the "
+    exp_table *tab = exp_table_new("BC1 encoders on the renormalised dark textures (one thread): RMS error vs the "
                                    "16-bit target in 8-bit units, and time",
                                    "encoder,RMS error,ns per texel");
-    FILE *f = sol_exp_open(exp, "encoder_points.csv");
+    FILE *f = exp_open(exp, "encoder_points.csv");
     fputs("encoder,rms,ns_per_texel,is_squish\n", f);
     for (int e = 0; e < ENCODERS; ++e) {
-        sol_table_row(tab, "%s|%.4f|%.1f", encoders[e].name, sqrt(rms[e]), ns[e]);
+        exp_table_row(tab, "%s|%.4f|%.1f", encoders[e].name, sqrt(rms[e]), ns[e]);
         fprintf(f, "\"%s\",%.5f,%.3f,%d\n", encoders[e].name, sqrt(rms[e]), ns[e], encoders[e].squish_effort >= 0);
     }
     fclose(f);
-    sol_table_write(tab, exp, "encoders");
+    exp_table_write(tab, exp, "encoders");
     if (!exp->bench)
-        sol_plot(exp, "encoders",
+        exp_plot(exp, "encoders",
                  "set datafile separator comma\nset grid\nset logscale x\nset key top right\n"
                  "set xlabel 'ns per texel (one thread)'\nset ylabel 'RMS error (8-bit units)'\n"
                  "plot 'encoder_points.csv' skip 1 using ($4==0?$3:1/0):2 with points pt 7 ps 1.2 title 'sol', "
                  "'' skip 1 using ($4==1?$3:1/0):2 with points pt 5 ps 1.2 title 'libsquish'");
 }
 
-void run_renormalization(const sol_exp *exp)
+void run_renormalization(const exp_run *exp)
 {
     tex_input *set;
     int count = inputs_dark_set(&set, exp->quick);
     sol_image *renorm_targets = calloc((size_t)count, sizeof *renorm_targets);
     if (!renorm_targets)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (int t = 0; t < count; ++t) {
         sol_image s = stored_of(&set[t].linear, 0);
         sol_renorm range;
-        sol_exp_check(sol_renorm_fit(&s, &range), "renorm fit");
-        sol_exp_check(sol_renorm_apply(&range, &s), "renorm apply");
+        exp_check(sol_renorm_fit(&s, &range), "renorm fit");
+        exp_check(sol_renorm_apply(&range, &s), "renorm apply");
         renorm_targets[t] = s;
     }
     compare_encoders(exp, renorm_targets, count < 4 ? count : 4); /* timing: the first four textures */
@@ -271,11 +271,11 @@ void run_renormalization(const sol_exp *exp)
         return;
     }
 
-    sol_table *t2 = sol_table_new("T2: dark textures through BC1 under a light scale, without and with renormalisation "
+    exp_table *t2 = exp_table_new("T2: dark textures through BC1 under a light scale, without and with renormalisation "
                                   "(display codes; green-channel levels)",
                                   "texture,light,RMS plain,RMS renorm,max plain,max renorm,log2 RMS plain,"
                                   "log2 RMS renorm,levels reference,levels plain,levels renorm");
-    sol_table *t1 = sol_table_new("T1: renormalising a 16-bit vs an 8-bit source (light x16)",
+    exp_table *t1 = exp_table_new("T1: renormalising a 16-bit vs an 8-bit source (light x16)",
                                   "texture,source bits,renormalised green levels (16-bit src),(8-bit src),"
                                   "largest gap 8-bit src (1/255),RMS 16-bit renorm,RMS 8-bit renorm,RMS 8-bit plain");
     int t2_wins = 0, t2_cases = 0, t1_worse = 0, game_figure = 0;
@@ -287,7 +287,7 @@ void run_renormalization(const sol_exp *exp)
         for (int l = 0; l < LIGHTS; ++l) {
             lit_error a = lit_compare(&plain, &ref, lights[l]), b = lit_compare(&renorm, &ref, lights[l]);
             lit_error r = lit_compare(&ref, &ref, lights[l]);
-            sol_table_row(t2, "%s|x%.0f|%.3f|%.3f|%.1f|%.1f|%.4f|%.4f|%d|%d|%d", set[k].name, lights[l], a.rms, b.rms,
+            exp_table_row(t2, "%s|x%.0f|%.3f|%.3f|%.1f|%.1f|%.4f|%.4f|%d|%d|%d", set[k].name, lights[l], a.rms, b.rms,
                           a.max, b.max, a.log_rms, b.log_rms, r.levels, a.levels, b.levels);
             if (lights[l] >= 8.0) {
                 ++t2_cases;
@@ -301,7 +301,7 @@ void run_renormalization(const sol_exp *exp)
         renorm_histogram(&src8, &levels8, &gap8);
         lit_error e16 = lit_compare(&renorm, &ref, lights[LIGHT_16]), e8 = lit_compare(&renorm8, &ref, lights[LIGHT_16]);
         lit_error p8 = lit_compare(&plain8, &ref, lights[LIGHT_16]);
-        sol_table_row(t1, "%s|%d|%d|%d|%.2f|%.3f|%.3f|%.3f", set[k].name, set[k].source_bits, levels16, levels8, gap8,
+        exp_table_row(t1, "%s|%d|%d|%d|%.2f|%.3f|%.3f|%.3f", set[k].name, set[k].source_bits, levels16, levels8, gap8,
                       e16.rms, e8.rms, p8.rms);
         t1_worse += e8.rms > e16.rms;
         t1_ratio_sum += log(e8.rms / e16.rms);
@@ -313,15 +313,15 @@ void run_renormalization(const sol_exp *exp)
         for (int i = 0; i < 6; ++i)
             sol_image_free(all[i]);
     }
-    sol_table_write(t2, exp, "t2_renormalization");
-    sol_table_write(t1, exp, "t1_source_bits");
+    exp_table_write(t2, exp, "t2_renormalization");
+    exp_table_write(t1, exp, "t1_source_bits");
     char fig[256];
     snprintf(fig, sizeof fig, "renormalised BC1 has lower display RMS in %d of %d (texture, light >= x8) cases; "
                               "geometric-mean error ratio plain/renorm %.2f",
              t2_wins, t2_cases, geometric_mean(ratio_sum, t2_cases));
-    sol_claim(exp, "T2", "renormalisation before DXT1 significantly reduces banding and color deviation of dark textures "
+    exp_claim(exp, "T2", "renormalisation before DXT1 significantly reduces banding and color deviation of dark textures "
                          "under strong light",
-              fig, "qualitative: lower error in every case", t2_wins == t2_cases ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+              fig, "qualitative: lower error in every case", t2_wins == t2_cases ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "%d dark textures (3 synthetic 16-bit, the rest colobot-common-textures game textures darkened in float), "
               "sRGB storage, sol's cluster-fit BC1, lights x8-x64, display sRGB(min(1, light albedo)); figure "
               "renormalization_x16.png: reference, plain BC1, renormalised BC1",
@@ -329,8 +329,8 @@ void run_renormalization(const sol_exp *exp)
     snprintf(fig, sizeof fig, "8-bit source renormalised: larger error than 16-bit source in %d of %d textures "
                               "(geometric-mean ratio %.2f at x16)",
              t1_worse, count, geometric_mean(t1_ratio_sum, count));
-    sol_claim(exp, "T1", "renormalising an 8 b/ch source quantises the histogram: larger distortion through 5:6:5", fig,
-              "qualitative: larger error in every case", t1_worse == count ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "T1", "renormalising an 8 b/ch source quantises the histogram: larger distortion through 5:6:5", fig,
+              "qualitative: larger error in every case", t1_worse == count ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the 8-bit source's renormalised histogram keeps only its few 8-bit levels with gaps (table t1_source_bits)");
     inputs_free(set, count);
 }

@@ -25,12 +25,12 @@ static double round_trip(int store, double x)
     double back;
     switch (store) {
     case STORE_GAMMA:
-        sol_exp_check(sol_transfer_quantize8(&srgb, x, &code), "quantize");
-        sol_exp_check(sol_transfer_dequantize8(&srgb, code, &back), "dequantize");
+        exp_check(sol_transfer_quantize8(&srgb, x, &code), "quantize");
+        exp_check(sol_transfer_dequantize8(&srgb, code, &back), "dequantize");
         return back;
     case STORE_LINEAR: return sol_unorm_decode(sol_unorm_encode(x, 8), 8);
     default: /* Xbox 360: PWL gamma texel, de-gammaed into the 8-bit texture cache (T6) */
-        sol_exp_check(sol_transfer_quantize8(&pwl, x, &code), "quantize");
+        exp_check(sol_transfer_quantize8(&pwl, x, &code), "quantize");
         return sol_x360_cache_degamma8(code) / 255.0;
     }
 }
@@ -52,8 +52,8 @@ static tex_result measure(const tex_input *t, double median_consistent, double m
     double exposure = mean > 0.0 ? 0.18 / mean : 1.0;
     sol_storage_options cons = {.median = median_consistent}, talk = {.median = median_talk};
     sol_storage unused;
-    sol_exp_check(sol_storage_classify(im, &cons, &unused, &r.frac_consistent), "classify");
-    sol_exp_check(sol_storage_classify(im, &talk, &unused, &r.frac_talk), "classify");
+    exp_check(sol_storage_classify(im, &cons, &unused, &r.frac_consistent), "classify");
+    exp_check(sol_storage_classify(im, &talk, &unused, &r.frac_talk), "classify");
     for (size_t i = 0; i < n; ++i) {
         double x = im->data[i];
         for (int s = 0; s < STORES; ++s) {
@@ -93,29 +93,29 @@ static void best_threshold(const tex_result *r, int count, int metric, int use_t
     }
 }
 
-void run_storage_rule(const sol_exp *exp)
+void run_storage_rule(const exp_run *exp)
 {
     tex_input *set;
     int count = inputs_storage_set(&set, exp->quick);
     sol_transfer power = {SOL_TRANSFER_POWER, 2.2};
     double median, unused;
-    sol_exp_check(sol_transfer_equal_density(&power, 0.0, &median, &unused), "equal density");
+    exp_check(sol_transfer_equal_density(&power, 0.0, &median, &unused), "equal density");
     const double median_talk = 5.0 / 11.0;
     tex_result *r = calloc((size_t)count, sizeof *r);
     if (!r)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
 #pragma omp parallel for schedule(dynamic)
     for (int i = 0; i < count; ++i)
         r[i] = measure(&set[i], median, median_talk);
 
-    sol_table *t = sol_table_new("Per texture: share of values above the median and 8-bit RMS error per storage",
+    exp_table *t = exp_table_new("Per texture: share of values above the median and 8-bit RMS error per storage",
                                  "texture,source bits,above 60/255,above 116/255,lin RMS gamma,lin RMS linear,"
                                  "lin RMS X360 cache,disp RMS gamma,disp RMS linear,disp RMS X360 cache");
-    FILE *f = sol_exp_open(exp, "storage_points.csv");
+    FILE *f = exp_open(exp, "storage_points.csv");
     fputs("frac_consistent,frac_talk,log2_ratio_linear_metric,log2_ratio_display_metric\n", f);
     int x360_linear_wins = 0, game = 0;
     for (int i = 0; i < count; ++i) {
-        sol_table_row(t, "%s|%d|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f", set[i].name, set[i].source_bits,
+        exp_table_row(t, "%s|%d|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f|%.3f", set[i].name, set[i].source_bits,
                       r[i].frac_consistent, r[i].frac_talk, r[i].rms[0][0], r[i].rms[0][1], r[i].rms[0][2],
                       r[i].rms[1][0], r[i].rms[1][1], r[i].rms[1][2]);
         fprintf(f, "%.4f,%.4f,%.4f,%.4f\n", r[i].frac_consistent, r[i].frac_talk,
@@ -125,9 +125,9 @@ void run_storage_rule(const sol_exp *exp)
         x360_linear_wins += r[i].rms[METRIC_DISPLAY][STORE_LINEAR] < r[i].rms[METRIC_DISPLAY][STORE_X360_CACHE];
     }
     fclose(f);
-    sol_table_write(t, exp, "storage_per_texture");
+    exp_table_write(t, exp, "storage_per_texture");
 
-    sol_table *b = sol_table_new("Best threshold on the share above the median vs the talk's 75%",
+    exp_table *b = exp_table_new("Best threshold on the share above the median vs the talk's 75%",
                                  "error measured in,median,best threshold from,to,textures right at best,"
                                  "right at 75%,textures");
     int hits_at[METRICS][2], best[METRICS][2];
@@ -135,11 +135,11 @@ void run_storage_rule(const sol_exp *exp)
     for (int m = 0; m < METRICS; ++m)
         for (int k = 0; k < 2; ++k) {
             best_threshold(r, count, m, k, &lo[m][k], &hi[m][k], &best[m][k], &hits_at[m][k]);
-            sol_table_row(b, "%s|%s|%.3f|%.3f|%d|%d|%d", metric_name[m], k ? "talk 116/255" : "equal density 60/255",
+            exp_table_row(b, "%s|%s|%.3f|%.3f|%d|%d|%d", metric_name[m], k ? "talk 116/255" : "equal density 60/255",
                           lo[m][k], hi[m][k], best[m][k], hits_at[m][k], count);
         }
-    sol_table_write(b, exp, "storage_threshold");
-    sol_plot(exp, "storage_rule",
+    exp_table_write(b, exp, "storage_threshold");
+    exp_plot(exp, "storage_rule",
              "set datafile separator comma\nset grid\nset key top left\n"
              "set xlabel 'share of values above the median'\nset ylabel 'log2(RMS gamma / RMS linear)'\n"
              "set arrow from 0.75,graph 0 to 0.75,graph 1 nohead dt 2 lc rgb 'gray'\n"
@@ -156,9 +156,9 @@ void run_storage_rule(const sol_exp *exp)
              hits_at[0][0], count, best[0][0], lo[0][0]);
     /* The talk pairs 75% with its 116/255 median: the rule reproduces only if that pair is near-best. */
     int talk_pair_holds = hits_at[1][1] >= best[1][1] - count / 20;
-    sol_claim(exp, "T4", "store linear if > 75% of texels are above the median", fig,
+    exp_claim(exp, "T4", "store linear if > 75% of texels are above the median", fig,
               "75% right within 5% of the textures of the best threshold",
-              talk_pair_holds ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+              talk_pair_holds ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "%d textures (%d game textures from colobot-common-textures, 8-bit sources averaged 2x2 in linear); with "
               "the talk's 116/255 median the best threshold is near 0 (any share above 116/255 favours linear), with the "
               "consistent 60/255 median and a display error metric 75%% is close to the best threshold; in linear light "
@@ -214,46 +214,46 @@ static band_stats banding(int store, int width, double lo, double hi, float *row
     return s;
 }
 
-void run_bright_gradient(const sol_exp *exp)
+void run_bright_gradient(const exp_run *exp)
 {
     const int width = 512, strip = 40;
     const double lo = 0.5, hi = 0.9; /* linear; above both medians (60/255 and the talk's 116/255) */
     const int stores[4] = {GRAD_SOURCE, STORE_GAMMA, STORE_LINEAR, STORE_X360_CACHE};
     const char *names[4] = {"16 b/ch source", "gamma (sRGB) 8-bit", "linear 8-bit", "Xbox 360 PWL via 8-bit cache"};
     sol_image fig = {0};
-    sol_exp_check(sol_image_alloc(&fig, width, 4 * strip, 1), "allocating the figure");
+    exp_check(sol_image_alloc(&fig, width, 4 * strip, 1), "allocating the figure");
     float *row = malloc(sizeof *row * width);
     if (!row)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     /* strip 0: the source as it is (not contrasted), as on the slide */
     for (int i = 0; i < width; ++i)
         row[i] = (float)sol_srgb_encode(gradient_value(i, width, lo, hi));
     for (int y = 0; y < strip; ++y)
         for (int i = 0; i < width; ++i)
             sol_image_pixel(&fig, i, y)[0] = row[i];
-    sol_table *t = sol_table_new("Bright gradient (linear 0.5 to 0.9, 512 texels), contrast stretched to the display",
+    exp_table *t = exp_table_new("Bright gradient (linear 0.5 to 0.9, 512 texels), contrast stretched to the display",
                                  "storage,distinct display levels,max step (codes),RMS error (codes),max error (codes)");
     band_stats st[4];
     for (int k = 0; k < 4; ++k) {
         st[k] = banding(stores[k], width, lo, hi, row);
-        sol_table_row(t, "%s|%d|%.2f|%.2f|%.2f", names[k], st[k].levels, st[k].max_step, st[k].rms, st[k].max);
+        exp_table_row(t, "%s|%d|%.2f|%.2f|%.2f", names[k], st[k].levels, st[k].max_step, st[k].rms, st[k].max);
         if (k == 3)
             continue;
         for (int y = 0; y < strip; ++y)
             for (int i = 0; i < width; ++i)
                 sol_image_pixel(&fig, i, (k + 1) * strip + y)[0] = row[i];
     }
-    sol_table_write(t, exp, "bright_gradient");
+    exp_table_write(t, exp, "bright_gradient");
     if (!exp->bench)
-        sol_exp_check(sol_png_write(sol_exp_path(exp, "bright_gradient.png"), &fig, 8), "writing the figure");
+        exp_check(sol_png_write(exp_path(exp, "bright_gradient.png"), &fig, 8), "writing the figure");
     free(row);
     sol_image_free(&fig);
     char sol_fig[256];
     snprintf(sol_fig, sizeof sol_fig, "contrasted: gamma %d levels, max step %.1f, RMS %.2f; linear %d levels, max step %.1f, RMS %.2f",
              st[1].levels, st[1].max_step, st[1].rms, st[2].levels, st[2].max_step, st[2].rms);
     int reproduced = st[1].levels < st[2].levels && st[1].max_step > st[2].max_step;
-    sol_claim(exp, "T7", "bright gradient bands more stored gamma than linear (contrast exaggerated)", sol_fig,
-              "qualitative", reproduced ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "T7", "bright gradient bands more stored gamma than linear (contrast exaggerated)", sol_fig,
+              "qualitative", reproduced ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "a 16-bit gradient over linear [0.5, 0.9] keeps %d 8-bit codes in sRGB storage and %d in linear; after "
               "stretching [0.5, 0.9] to the display, gamma storage shows wider bands (figure bright_gradient.png: "
               "source, reference stretched, gamma stretched, linear stretched); the Xbox 360 cache path gives %d levels",

@@ -14,7 +14,7 @@ void squish_bc1_encode(const unsigned char *rgba, int width, int height, void *b
 }
 
 #else
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_textures.h"
 
 /* One test texture: RGB values in linear light, [0,1]. */
@@ -35,9 +35,9 @@ void inputs_free(tex_input *set, int count);
 /* Display value (0..255) of a linear value lit by `light` and clamped: sRGB(min(1, light x)) * 255. */
 double display255(double linear, double light);
 
-void run_storage_rule(const sol_exp *exp);   /* T4 */
-void run_bright_gradient(const sol_exp *exp); /* T7 */
-void run_renormalization(const sol_exp *exp); /* T1, T2, the libsquish comparison, effort levels */
+void run_storage_rule(const exp_run *exp);   /* T4 */
+void run_bright_gradient(const exp_run *exp); /* T7 */
+void run_renormalization(const exp_run *exp); /* T1, T2, the libsquish comparison, effort levels */
 #endif
 
 #endif

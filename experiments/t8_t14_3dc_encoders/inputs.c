@@ -3,7 +3,7 @@
  * n = normalize(-dh/du, -dh/dv, 1) with u, v the texel coordinates scaled to [0, 1). */
 #include "inputs.h"
 
-#include "sol_exp.h"
+#include "exp_harness.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -80,7 +80,7 @@ static void height_gradient(input_kind kind, double u, double v, double *gu, dou
 
 void input_normals(input_kind kind, int size, sol_image *out)
 {
-    sol_exp_check(sol_image_alloc(out, size, size, 3), "allocating a %dx%d normal map", size, size);
+    exp_check(sol_image_alloc(out, size, size, 3), "allocating a %dx%d normal map", size, size);
 #pragma omp parallel for schedule(static)
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
@@ -96,7 +96,7 @@ void input_normals(input_kind kind, int size, sol_image *out)
 
 void input_quantize(const sol_image *exact, int bits, sol_image *out)
 {
-    sol_exp_check(sol_image_alloc(out, exact->width, exact->height, 3), "allocating a normal map");
+    exp_check(sol_image_alloc(out, exact->width, exact->height, 3), "allocating a normal map");
     size_t n = (size_t)exact->width * (size_t)exact->height;
     for (size_t i = 0; i < n; ++i) {
         double v[3], len = 0.0;

@@ -4,7 +4,7 @@
  * T14 banding of a specular highlight on a car-hood-like panel; libsquish and nvtt side by side. */
 #include "inputs.h"
 #include "peers.h"
-#include "sol_exp.h"
+#include "exp_harness.h"
 #include "sol_normalmaps.h"
 
 #include <math.h>
@@ -42,7 +42,7 @@ static uint8_t *alloc_blocks(const sol_image *img)
 {
     uint8_t *b = malloc((size_t)img->width * (size_t)img->height);
     if (!b)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     return b;
 }
 
@@ -52,7 +52,7 @@ static unsigned char *to_rgba8(const sol_image *img)
     size_t n = (size_t)img->width * (size_t)img->height;
     unsigned char *rgba = malloc(4 * n);
     if (!rgba)
-        sol_exp_die("out of memory");
+        exp_die("out of memory");
     for (size_t i = 0; i < n; ++i) {
         for (int c = 0; c < 3; ++c)
             rgba[4 * i + c] = (unsigned char)sol_unorm_encode(0.5 * (img->data[3 * i + c] + 1.0), 8);
@@ -64,7 +64,7 @@ static unsigned char *to_rgba8(const sol_image *img)
 static void run_encoder(const encoder *e, const sol_image *src, uint8_t *blocks, sol_bc5_image_stats *st)
 {
     if (e->kind == ENC_SOL) {
-        sol_exp_check(sol_bc5_encode_image(src, &e->options, blocks, st), "encoding with %s", e->name);
+        exp_check(sol_bc5_encode_image(src, &e->options, blocks, st), "encoding with %s", e->name);
         return;
     }
     unsigned char *rgba = to_rgba8(src);
@@ -72,7 +72,7 @@ static void run_encoder(const encoder *e, const sol_image *src, uint8_t *blocks,
                                    : peer_nvtt_bc5(rgba, src->width, src->height, e->quality, blocks);
     free(rgba);
     if (rc)
-        sol_exp_die("%s failed (code %d)", e->name, rc);
+        exp_die("%s failed (code %d)", e->name, rc);
     if (st)
         memset(st, 0, sizeof *st);
 }
@@ -112,7 +112,7 @@ static err_stats angle_stats(const sol_image *ref, const sol_image *img)
 static err_stats decoded_stats(const sol_image *ref, const uint8_t *blocks, sol_bc4_precision prec)
 {
     sol_image dec;
-    sol_exp_check(sol_bc5_decode_image(blocks, ref->width, ref->height, prec, &dec), "decoding");
+    exp_check(sol_bc5_decode_image(blocks, ref->width, ref->height, prec, &dec), "decoding");
     err_stats s = angle_stats(ref, &dec);
     sol_image_free(&dec);
     return s;
@@ -130,14 +130,14 @@ static void block_errors(const sol_image *src, const uint8_t *blocks, double *ou
         for (int p = 0; p < 16; ++p)
             for (int c = 0; c < 3; ++c)
                 n[p][c] = sol_image_pixel(src, 4 * (b % bw) + (p & 3), 4 * (b / bw) + (p >> 2))[c];
-        sol_exp_check(sol_bc5_block_error(&blk, n, SOL_BC4_INTERP_16BIT, SOL_BC5_SUM_SQUARED, &out[b]), "block error");
+        exp_check(sol_bc5_block_error(&blk, n, SOL_BC4_INTERP_16BIT, SOL_BC5_SUM_SQUARED, &out[b]), "block error");
     }
 }
 
 static sol_image crop(const sol_image *img, int size)
 {
     sol_image out;
-    sol_exp_check(sol_image_alloc(&out, size, size, 3), "crop");
+    exp_check(sol_image_alloc(&out, size, size, 3), "crop");
     for (int y = 0; y < size; ++y)
         memcpy(sol_image_pixel(&out, 0, y), sol_image_pixel(img, 0, y), sizeof(float) * 3 * (size_t)size);
     return out;
@@ -190,24 +190,24 @@ static void free_results(results *r)
 
 /* Core-nanoseconds per block: sol's encoders run once on all threads (wall x threads; blocks are
  * independent, so this is their per-core cost); the single-threaded peers are timed with
- * sol_time_per_item_ns (median of 3). */
+ * exp_time_per_item_ns (median of 3). */
 static double time_encoder(const encoder *e, const sol_image *src, uint8_t *blocks)
 {
     size_t nb = (size_t)src->width * (size_t)src->height / 16;
     if (e->kind != ENC_SOL) {
         timed_encode te = {e, src, blocks};
-        return sol_time_per_item_ns(timed_encode_fn, &te, nb, 3);
+        return exp_time_per_item_ns(timed_encode_fn, &te, nb, 3);
     }
-    double t0 = sol_now_ns();
+    double t0 = exp_now_ns();
     run_encoder(e, src, blocks, NULL);
-    return (sol_now_ns() - t0) * omp_get_max_threads() / (double)nb;
+    return (exp_now_ns() - t0) * omp_get_max_threads() / (double)nb;
 }
 
-static void pareto(const sol_exp *exp, const maps *m, results *r)
+static void pareto(const exp_run *exp, const maps *m, results *r)
 {
-    sol_table *t = sol_table_new("Every encoder on the four 16-bit maps: angular error vs encode time",
+    exp_table *t = exp_table_new("Every encoder on the four 16-bit maps: angular error vs encode time",
                                  "encoder,core-ns per block,mean deg,rms deg,max deg");
-    FILE *csv = sol_exp_open(exp, "pareto.dat");
+    FILE *csv = exp_open(exp, "pareto.dat");
     for (int e = 0; e < N_ENC; ++e) {
         double ns = 0.0, s2 = 0.0, s = 0.0, mx = 0.0;
         for (int k = 0; k < INPUT_COUNT; ++k) {
@@ -218,18 +218,18 @@ static void pareto(const sol_exp *exp, const maps *m, results *r)
             s += st.mean;
             s2 += st.rms * st.rms;
             mx = st.max > mx ? st.max : mx;
-            sol_progress("pareto", (size_t)(e * INPUT_COUNT + k + 1), N_ENC * INPUT_COUNT);
+            exp_progress("pareto", (size_t)(e * INPUT_COUNT + k + 1), N_ENC * INPUT_COUNT);
         }
         r->ns_per_block[e] = ns / INPUT_COUNT;
         r->err[e] = (err_stats){s / INPUT_COUNT, sqrt(s2 / INPUT_COUNT), mx};
-        sol_table_row(t, "%s|%.0f|%.4f|%.4f|%.3f", ENCODERS[e].name, r->ns_per_block[e], r->err[e].mean, r->err[e].rms,
+        exp_table_row(t, "%s|%.0f|%.4f|%.4f|%.3f", ENCODERS[e].name, r->ns_per_block[e], r->err[e].mean, r->err[e].rms,
                       r->err[e].max);
         fprintf(csv, "\"%s\" %.6g %.6g\n", ENCODERS[e].name, r->ns_per_block[e], r->err[e].rms);
     }
-    sol_progress_done("pareto");
+    exp_progress_done("pareto");
     fclose(csv);
-    sol_table_write(t, exp, "pareto");
-    sol_plot(exp, "pareto",
+    exp_table_write(t, exp, "pareto");
+    exp_plot(exp, "pareto",
              "set logscale x\nset offsets graph 0, graph 0.2, graph 0.12, graph 0.02\nset xlabel 'encode time per 4x4 block (core-ns)'\n"
              "set ylabel 'RMS angular error (deg), 16-bit interpolation'\nset grid\nset key off\n"
              "plot 'pareto.dat' using 2:3 with points pt 7 ps 1.2, '' using 2:3:1 with labels rotate by 35 left "
@@ -237,9 +237,9 @@ static void pareto(const sol_exp *exp, const maps *m, results *r)
 }
 
 /* ---- T8: source depth ---- */
-static void t8(const sol_exp *exp, const maps *m)
+static void t8(const exp_run *exp, const maps *m)
 {
-    sol_table *t = sol_table_new("T8: 3Dc of a 16-bit vs an 8-bit source map, error against the exact normals",
+    exp_table *t = exp_table_new("T8: 3Dc of a 16-bit vs an 8-bit source map, error against the exact normals",
                                  "map,encoder,source bits,mean deg,rms deg,max deg");
     double ratio_sum = 0.0;
     int worse = 0;
@@ -254,7 +254,7 @@ static void t8(const sol_exp *exp, const maps *m)
                 err_stats st = decoded_stats(&m->exact[k], b, SOL_BC4_INTERP_16BIT);
                 free(b);
                 rms[s] = st.rms;
-                sol_table_row(t, "%s|%s|%d|%.4f|%.4f|%.3f", input_name((input_kind)k), ENCODERS[encs[j]].name,
+                exp_table_row(t, "%s|%s|%d|%.4f|%.4f|%.3f", input_name((input_kind)k), ENCODERS[encs[j]].name,
                               s ? 8 : 16, st.mean, st.rms, st.max);
             }
             if (j == 0) {
@@ -264,61 +264,61 @@ static void t8(const sol_exp *exp, const maps *m)
         }
     for (int k = 0; k < INPUT_COUNT; ++k) {
         err_stats q = angle_stats(&m->exact[k], &m->q8[k]);
-        sol_table_row(t, "%s|none (8-bit source itself)|8|%.4f|%.4f|%.3f", input_name((input_kind)k), q.mean, q.rms,
+        exp_table_row(t, "%s|none (8-bit source itself)|8|%.4f|%.4f|%.3f", input_name((input_kind)k), q.mean, q.rms,
                       q.max);
     }
-    sol_table_write(t, exp, "t8_source_depth");
+    exp_table_write(t, exp, "t8_source_depth");
     char fig[96];
     snprintf(fig, sizeof fig, "RMS(8-bit src)/RMS(16-bit src) = %.2f (mean of 4 maps)", ratio_sum / INPUT_COUNT);
-    sol_claim(exp, "T8", "qualitative: 8 b/ch source much worse", fig, "8-bit source worse on every map, mean RMS ratio >= 1.2",
-              worse == INPUT_COUNT && ratio_sum / INPUT_COUNT >= 1.2 ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+    exp_claim(exp, "T8", "qualitative: 8 b/ch source much worse", fig, "8-bit source worse on every map, mean RMS ratio >= 1.2",
+              worse == INPUT_COUNT && ratio_sum / INPUT_COUNT >= 1.2 ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "common 3Dc encoder, 16-bit interpolation; 8-bit source worse on %d of %d maps; 'much worse' taken as "
               ">= 1.2x RMS: the gap is large only where 3Dc's own error is small (smooth maps, see t8_source_depth)",
               worse, INPUT_COUNT);
 }
 
 /* ---- T9: vs ARGB8, interpolation precision ---- */
-static void t9(const sol_exp *exp, const maps *m, const results *r)
+static void t9(const exp_run *exp, const maps *m, const results *r)
 {
-    sol_table *t = sol_table_new("T9: 3Dc (8 bpp) vs ARGB8 normals (32 bpp), and the decoder's interpolation precision",
+    exp_table *t = exp_table_new("T9: 3Dc (8 bpp) vs ARGB8 normals (32 bpp), and the decoder's interpolation precision",
                                  "map,format,rms deg,max deg");
     int bc5_wins = 0;
     for (int k = 0; k < INPUT_COUNT; ++k) {
         err_stats argb = angle_stats(&m->exact[k], &m->q8[k]);
-        sol_table_row(t, "%s|ARGB8 normalized|%.4f|%.3f", input_name((input_kind)k), argb.rms, argb.max);
+        exp_table_row(t, "%s|ARGB8 normalized|%.4f|%.3f", input_name((input_kind)k), argb.rms, argb.max);
         err_stats b16 = decoded_stats(&m->exact[k], r->blocks[E_ADAPTIVE][k], SOL_BC4_INTERP_16BIT);
-        sol_table_row(t, "%s|3Dc adaptive, 16-bit interpolation|%.4f|%.3f", input_name((input_kind)k), b16.rms, b16.max);
+        exp_table_row(t, "%s|3Dc adaptive, 16-bit interpolation|%.4f|%.3f", input_name((input_kind)k), b16.rms, b16.max);
         err_stats b16on8 = decoded_stats(&m->exact[k], r->blocks[E_ADAPTIVE][k], SOL_BC4_INTERP_8BIT);
-        sol_table_row(t, "%s|same blocks, 8-bit interpolation|%.4f|%.3f", input_name((input_kind)k), b16on8.rms,
+        exp_table_row(t, "%s|same blocks, 8-bit interpolation|%.4f|%.3f", input_name((input_kind)k), b16on8.rms,
                       b16on8.max);
         sol_bc5_options o8 = {.encoder = SOL_BC5_ADAPTIVE, .precision = SOL_BC4_INTERP_8BIT};
         uint8_t *b = alloc_blocks(&m->q16[k]);
-        sol_exp_check(sol_bc5_encode_image(&m->q16[k], &o8, b, NULL), "encoding for 8-bit interpolation");
+        exp_check(sol_bc5_encode_image(&m->q16[k], &o8, b, NULL), "encoding for 8-bit interpolation");
         err_stats b8 = decoded_stats(&m->exact[k], b, SOL_BC4_INTERP_8BIT);
         free(b);
-        sol_table_row(t, "%s|3Dc adaptive encoded for 8-bit interpolation|%.4f|%.3f", input_name((input_kind)k), b8.rms,
+        exp_table_row(t, "%s|3Dc adaptive encoded for 8-bit interpolation|%.4f|%.3f", input_name((input_kind)k), b8.rms,
                       b8.max);
         bc5_wins += b16.rms < argb.rms;
     }
-    sol_table_write(t, exp, "t9_vs_argb8");
+    exp_table_write(t, exp, "t9_vs_argb8");
     char fig[96];
     snprintf(fig, sizeof fig, "3Dc (16-bit interp.) beats ARGB8 on %d of %d maps", bc5_wins, INPUT_COUNT);
-    sol_claim(exp, "T9", "qualitative: 3Dc much better than ARGB8 (16-bit interpolants)", fig,
-              "3Dc lower RMS error on every map", bc5_wins == INPUT_COUNT ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+    exp_claim(exp, "T9", "qualitative: 3Dc much better than ARGB8 (16-bit interpolants)", fig,
+              "3Dc lower RMS error on every map", bc5_wins == INPUT_COUNT ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "3Dc wins where the map is smooth (interpolants between close anchors are finer than 8 bits); on rough "
               "maps its 8 bpp block error exceeds ARGB8's 32 bpp quantisation; best-fit ARGB8 not compared (src/normals "
               "not available when this ran)");
 }
 
 /* ---- T10/T12: common vs optimal per block, difference map ---- */
-static void t10_t12(const sol_exp *exp, const maps *m, const results *r)
+static void t10_t12(const exp_run *exp, const maps *m, const results *r)
 {
-    sol_table *t = sol_table_new("T10/T12: common (separate channels) vs optimal (joint, angular) encoder per block",
+    exp_table *t = exp_table_new("T10/T12: common (separate channels) vs optimal (joint, angular) encoder per block",
                                  "map,blocks,common optimal %,common anchors optimal %,mean gain %,p90 gain %,"
                                  "rms deg common,rms deg optimal");
     int nb = m->size * m->size / 16;
     double *ec = malloc(sizeof *ec * (size_t)nb), *ej = malloc(sizeof *ej * (size_t)nb), *eo = malloc(sizeof *eo * (size_t)nb);
-    FILE *cdf = sol_exp_open(exp, "t12_gain_cdf.dat");
+    FILE *cdf = exp_open(exp, "t12_gain_cdf.dat");
     double total_same = 0.0, total_gain = 0.0;
     for (int k = 0; k < INPUT_COUNT; ++k) {
         block_errors(&m->q16[k], r->blocks[E_COMMON][k], ec);
@@ -344,15 +344,15 @@ static void t10_t12(const sol_exp *exp, const maps *m, const results *r)
         fprintf(cdf, "\n\n");
         err_stats sc = decoded_stats(&m->exact[k], r->blocks[E_COMMON][k], SOL_BC4_INTERP_16BIT);
         err_stats so = decoded_stats(&m->exact[k], r->blocks[E_OPTIMAL][k], SOL_BC4_INTERP_16BIT);
-        sol_table_row(t, "%s|%d|%.1f|%.1f|%.2f|%.2f|%.4f|%.4f", input_name((input_kind)k), nb, 100.0 * same / nb,
+        exp_table_row(t, "%s|%d|%.1f|%.1f|%.2f|%.2f|%.4f|%.4f", input_name((input_kind)k), nb, 100.0 * same / nb,
                       100.0 * same_anchor / nb, mean_gain, gain[(int)(0.9 * (nb - 1))], sc.rms, so.rms);
         total_same += 100.0 * same / nb / INPUT_COUNT;
         total_gain += mean_gain / INPUT_COUNT;
         free(gain);
     }
     fclose(cdf);
-    sol_table_write(t, exp, "t10_t12_common_vs_optimal");
-    sol_plot(exp, "t12_gain_cdf",
+    exp_table_write(t, exp, "t10_t12_common_vs_optimal");
+    exp_plot(exp, "t12_gain_cdf",
              "set xlabel 'per-block error reduction of the optimal encoder over common (%% of sum dN^2)'\n"
              "set ylabel 'fraction of blocks'\nset grid\nset key bottom right\nset logscale x\nset xrange [0.01:100]\n"
              "plot for [i=0:3] 't12_gain_cdf.dat' index i using ($1>0.01?$1:0.01):2 with steps lw 2 title "
@@ -360,9 +360,9 @@ static void t10_t12(const sol_exp *exp, const maps *m, const results *r)
     /* the slide's difference map: green where the optimal encoder's pixel error is smaller, red where
      * larger, intensity 5x the difference in degrees (saturating at 0.2 deg) - on the bumps map */
     sol_image dc, dopt, diff;
-    sol_exp_check(sol_bc5_decode_image(r->blocks[E_COMMON][0], m->size, m->size, 0, &dc), "decode");
-    sol_exp_check(sol_bc5_decode_image(r->blocks[E_OPTIMAL][0], m->size, m->size, 0, &dopt), "decode");
-    sol_exp_check(sol_image_alloc(&diff, m->size, m->size, 3), "diff map");
+    exp_check(sol_bc5_decode_image(r->blocks[E_COMMON][0], m->size, m->size, 0, &dc), "decode");
+    exp_check(sol_bc5_decode_image(r->blocks[E_OPTIMAL][0], m->size, m->size, 0, &dopt), "decode");
+    exp_check(sol_image_alloc(&diff, m->size, m->size, 3), "diff map");
     int better = 0, worse = 0;
     for (int i = 0; i < m->size * m->size; ++i) {
         double n[3] = {m->exact[0].data[3 * i], m->exact[0].data[3 * i + 1], m->exact[0].data[3 * i + 2]};
@@ -374,21 +374,21 @@ static void t10_t12(const sol_exp *exp, const maps *m, const results *r)
         better += d > 0;
         worse += d < 0;
     }
-    sol_exp_check(sol_png_write(sol_exp_path(exp, "t12_difference_map.png"), &diff, 8), "writing the difference map");
+    exp_check(sol_png_write(exp_path(exp, "t12_difference_map.png"), &diff, 8), "writing the difference map");
     sol_image_free(&dc);
     sol_image_free(&dopt);
     sol_image_free(&diff);
     free(ec);
     free(ej);
     free(eo);
-    sol_claim(exp, "T10", "method: joint x/y anchors minimising dN with z rebuilt",
-              "implemented; exact optimum (= brute force in tests)", "method reproduced", SOL_REPRODUCED,
+    exp_claim(exp, "T10", "method: joint x/y anchors minimising dN with z rebuilt",
+              "implemented; exact optimum (= brute force in tests)", "method reproduced", EXP_REPRODUCED,
               "optimal encoder lowers the per-block sum of dN^2 by %.2f%% on average over the four maps", total_gain);
     char fig[128];
     snprintf(fig, sizeof fig, "common = optimum on %.1f%% of blocks; mean gain of optimum %.2f%%", total_same, total_gain);
-    sol_claim(exp, "T12", "qualitative: common close to best, best in many cases", fig,
+    exp_claim(exp, "T12", "qualitative: common close to best, best in many cases", fig,
               "mean gain < 10% and common optimal on >= 25% of blocks",
-              total_gain < 10.0 && total_same >= 25.0 ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+              total_gain < 10.0 && total_same >= 25.0 ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "bumps difference map: optimal better on %d pixels, worse on %d (joint optimum trades pixels)", better,
               worse);
 }
@@ -409,7 +409,7 @@ static void brute_fn(void *ctx)
     }
 }
 
-static void t11(const sol_exp *exp, const maps *m, const results *r)
+static void t11(const exp_run *exp, const maps *m, const results *r)
 {
     /* literal brute force: time per anchor combination on real blocks, times 2^32 combinations */
     brute_ctx bc = {.combos = exp->quick ? 2048 : 16384};
@@ -418,7 +418,7 @@ static void t11(const sol_exp *exp, const maps *m, const results *r)
         for (int p = 0; p < 16; ++p)
             for (int c = 0; c < 3; ++c)
                 bc.n[p][c] = sol_image_pixel(&m->q16[k], 4 * 5 + (p & 3), 4 * 7 + (p >> 2))[c];
-        per_combo += sol_time_per_item_ns(brute_fn, &bc, (size_t)bc.combos, 3) / INPUT_COUNT;
+        per_combo += exp_time_per_item_ns(brute_fn, &bc, (size_t)bc.combos, 3) / INPUT_COUNT;
     }
     const double blocks_1024 = 65536.0, combos = 4294967296.0;
     double brute_s_2cores = per_combo * 1e-9 * combos * blocks_1024 / 2.0;
@@ -430,32 +430,32 @@ static void t11(const sol_exp *exp, const maps *m, const results *r)
     uint8_t *blocks = alloc_blocks(&q);
     sol_bc5_options opt = {.encoder = SOL_BC5_OPTIMAL};
     sol_bc5_image_stats st;
-    double t0 = sol_now_ns();
-    sol_exp_check(sol_bc5_encode_image(&q, &opt, blocks, &st), "optimal encode of the %d^2 hood", big);
-    double hood_s = (sol_now_ns() - t0) * 1e-9;
+    double t0 = exp_now_ns();
+    exp_check(sol_bc5_encode_image(&q, &opt, blocks, &st), "optimal encode of the %d^2 hood", big);
+    double hood_s = (exp_now_ns() - t0) * 1e-9;
     free(blocks);
     sol_image_free(&ex);
     sol_image_free(&q);
 
-    sol_table *t = sol_table_new("T11: encode time per 4x4 block and extrapolated to a 1024x1024 map (65536 blocks)",
+    exp_table *t = exp_table_new("T11: encode time per 4x4 block and extrapolated to a 1024x1024 map (65536 blocks)",
                                  "encoder,map,core-ns per block,1024^2 on 2 cores (s)");
-    sol_table_row(t, "literal brute force (2^32 anchor quadruples)|all|%.3g|%.3g", per_combo * combos,
+    exp_table_row(t, "literal brute force (2^32 anchor quadruples)|all|%.3g|%.3g", per_combo * combos,
                   brute_s_2cores);
     const int encs[3] = {E_COMMON, E_ADAPTIVE, E_OPTIMAL};
     for (int j = 0; j < 3; ++j)
         for (int k = 0; k < INPUT_COUNT; ++k) {
             double ns = r->ns_map[encs[j]][k];
-            sol_table_row(t, "%s|%s|%.0f|%.1f", ENCODERS[encs[j]].name, input_name((input_kind)k), ns,
+            exp_table_row(t, "%s|%s|%.0f|%.1f", ENCODERS[encs[j]].name, input_name((input_kind)k), ns,
                           ns * 1e-9 * blocks_1024 / 2.0);
         }
-    sol_table_row(t, "optimal, measured on the %dx%d hood (%d threads)|hood|%.0f|%.1f", big, big, omp_get_max_threads(),
+    exp_table_row(t, "optimal, measured on the %dx%d hood (%d threads)|hood|%.0f|%.1f", big, big, omp_get_max_threads(),
                   hood_s * 1e9 * omp_get_max_threads() / ((double)big * big / 16), hood_s * (1024.0 * 1024.0) / ((double)big * big));
-    sol_table_write(t, exp, "t11_times");
+    exp_table_write(t, exp, "t11_times");
     char fig[160];
     snprintf(fig, sizeof fig, "brute force ~%.2g years (2 cores, extrapolated); exact B&B: %.1f s measured for 1024^2 hood",
              brute_s_2cores / (365.25 * 86400.0), hood_s * (1024.0 * 1024.0) / ((double)big * big));
-    sol_claim(exp, "T11", "~3 h for one 1024x1024 texture, CUDA on Fermi", fig,
-              "brute force impractical; order of magnitude", SOL_DIFFERS_EXPLAINED,
+    exp_claim(exp, "T11", "~3 h for one 1024x1024 texture, CUDA on Fermi", fig,
+              "brute force impractical; order of magnitude", EXP_DIFFERS_EXPLAINED,
               "a literal search over all 2^32 anchor quadruples per block is far beyond 3 h on any GPU, so the talk's "
               "search was likely restricted; sol's exact branch and bound reaches the same optimum in seconds to minutes "
               "depending on the map (see t11_times)");
@@ -470,7 +470,7 @@ typedef struct t13_crops {
     double *err; /* scratch: per-block errors of the encoding under test */
 } t13_crops;
 
-static void t13_crops_init(const sol_exp *exp, const maps *m, t13_crops *c)
+static void t13_crops_init(const exp_run *exp, const maps *m, t13_crops *c)
 {
     int size = exp->quick ? 32 : 64;
     c->nb = size * size / 16;
@@ -479,7 +479,7 @@ static void t13_crops_init(const sol_exp *exp, const maps *m, t13_crops *c)
         c->src[k] = crop(&m->q16[k], size);
         uint8_t *b = alloc_blocks(&c->src[k]);
         sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL};
-        sol_exp_check(sol_bc5_encode_image(&c->src[k], &o, b, NULL), "optimal");
+        exp_check(sol_bc5_encode_image(&c->src[k], &o, b, NULL), "optimal");
         c->opt_err[k] = malloc(sizeof(double) * (size_t)c->nb);
         block_errors(&c->src[k], b, c->opt_err[k]);
         for (int i = 0; i < c->nb; ++i)
@@ -526,11 +526,11 @@ static double window_point(t13_crops *c, int window, int *at, double *total)
 }
 
 /* Window sweep at threshold 0; returns the talk's +-4 window's blocks at optimum and error left (%). */
-static void t13_window_sweep(const sol_exp *exp, t13_crops *c, double *at4, double *left4)
+static void t13_window_sweep(const exp_run *exp, t13_crops *c, double *at4, double *left4)
 {
-    sol_table *t = sol_table_new("T13: adaptive window (codes around the common anchors), threshold 0",
+    exp_table *t = exp_table_new("T13: adaptive window (codes around the common anchors), threshold 0",
                                  "window,blocks at optimum %,error left %,core-ns per block");
-    FILE *dat = sol_exp_open(exp, "t13_window.dat");
+    FILE *dat = exp_open(exp, "t13_window.dat");
     const int windows[] = {-1, 1, 2, 3, 4, 6, 8, 12, 16};
     for (size_t w = 0; w < sizeof windows / sizeof windows[0]; ++w) {
         int at;
@@ -541,14 +541,14 @@ static void t13_window_sweep(const sol_exp *exp, t13_crops *c, double *at4, doub
             *at4 = pct;
             *left4 = left;
         }
-        sol_table_row(t, "%d|%.1f|%.3f|%.0f", wcodes, pct, left, ns);
+        exp_table_row(t, "%d|%.1f|%.3f|%.0f", wcodes, pct, left, ns);
         fprintf(dat, "%d %.6g %.6g %.6g\n", wcodes, pct, left, ns);
-        sol_progress("T13 window", w + 1, sizeof windows / sizeof windows[0]);
+        exp_progress("T13 window", w + 1, sizeof windows / sizeof windows[0]);
     }
-    sol_progress_done("T13 window");
+    exp_progress_done("T13 window");
     fclose(dat);
-    sol_table_write(t, exp, "t13_window");
-    sol_plot(exp, "t13_window",
+    exp_table_write(t, exp, "t13_window");
+    exp_plot(exp, "t13_window",
              "set xlabel 'window half-width (codes)'\nset ylabel 'blocks at the exact optimum (%%)'\n"
              "set y2label 'error left vs optimum (%% of sum dN^2)'\nset ytics nomirror\nset y2tics\nset grid\n"
              "set key center right\nplot 't13_window.dat' using 1:2 with linespoints lw 2 title 'at optimum', "
@@ -578,9 +578,9 @@ static double threshold_point(t13_crops *c, double threshold_deg, uint64_t *sear
     for (int k = 0; k < INPUT_COUNT; ++k) {
         uint8_t *b = alloc_blocks(&c->src[k]);
         sol_bc5_image_stats st;
-        double t0 = sol_now_ns();
-        sol_exp_check(sol_bc5_encode_image(&c->src[k], &o, b, &st), "adaptive");
-        ns += (sol_now_ns() - t0) * omp_get_max_threads() / c->nb / INPUT_COUNT;
+        double t0 = exp_now_ns();
+        exp_check(sol_bc5_encode_image(&c->src[k], &o, b, &st), "adaptive");
+        ns += (exp_now_ns() - t0) * omp_get_max_threads() / c->nb / INPUT_COUNT;
         *searched += st.searched_blocks;
         block_errors(&c->src[k], b, c->err);
         for (int j = 0; j < c->nb; ++j)
@@ -592,9 +592,9 @@ static double threshold_point(t13_crops *c, double threshold_deg, uint64_t *sear
 
 /* Threshold sweep at the talk's window; returns the overhead vs the common encoder at the largest
  * threshold that keeps the window's gain, and that threshold. */
-static void t13_threshold_sweep(const sol_exp *exp, t13_crops *c, double *overhead_at_talk, double *threshold_at_talk)
+static void t13_threshold_sweep(const exp_run *exp, t13_crops *c, double *overhead_at_talk, double *threshold_at_talk)
 {
-    sol_table *tt = sol_table_new("T13: adaptive threshold (block RMS angle of the common encoding), window 4",
+    exp_table *tt = exp_table_new("T13: adaptive threshold (block RMS angle of the common encoding), window 4",
                                   "threshold deg,searched blocks %,error left %,core-ns per block,overhead vs common %");
     const double thresholds[] = {0.0, 0.05, 0.1, 0.2, 0.3, 0.5, 1.0, 2.0};
     double common_ns = common_ns_per_block(c), left0 = 0.0;
@@ -608,13 +608,13 @@ static void t13_threshold_sweep(const sol_exp *exp, t13_crops *c, double *overhe
             *overhead_at_talk = overhead;
             *threshold_at_talk = thresholds[i];
         }
-        sol_table_row(tt, "%.2f|%.1f|%.3f|%.0f|%.0f", thresholds[i], 100.0 * searched / (c->nb * INPUT_COUNT), left, ns,
+        exp_table_row(tt, "%.2f|%.1f|%.3f|%.0f|%.0f", thresholds[i], 100.0 * searched / (c->nb * INPUT_COUNT), left, ns,
                       overhead);
     }
-    sol_table_write(tt, exp, "t13_threshold");
+    exp_table_write(tt, exp, "t13_threshold");
 }
 
-static void t13(const sol_exp *exp, const maps *m)
+static void t13(const exp_run *exp, const maps *m)
 {
     t13_crops c;
     t13_crops_init(exp, m, &c);
@@ -625,9 +625,9 @@ static void t13(const sol_exp *exp, const maps *m)
     char fig[160];
     snprintf(fig, sizeof fig, "+-4: %.1f%% of blocks at optimum, %.3f%% error left; overhead %.0f%% (threshold %.2f deg)",
              at4, left4, overhead_at_talk, threshold_at_talk);
-    sol_claim(exp, "T13", "window +-4/255 proved enough; overhead minimal", fig,
+    exp_claim(exp, "T13", "window +-4/255 proved enough; overhead minimal", fig,
               "optimum on most blocks, error left < 1%, overhead < 50%",
-              at4 > 50.0 && left4 < 1.0 && overhead_at_talk < 50.0 ? SOL_REPRODUCED : SOL_DIFFERS_EXPLAINED,
+              at4 > 50.0 && left4 < 1.0 && overhead_at_talk < 50.0 ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "overhead relative to sol's common encoder (exact least-squares BC4 per channel) at the largest threshold "
               "that keeps the window's error within 0.1 points of searching every block");
 }
@@ -640,7 +640,7 @@ static void shade(const sol_image *normals, sol_image *out)
     double h[3] = {0.04, 0.03, 1.0}, hl = sqrt(sol_dot3(h, h));
     for (int c = 0; c < 3; ++c)
         h[c] /= hl;
-    sol_exp_check(sol_image_alloc(out, normals->width, normals->height, 1), "shade");
+    exp_check(sol_image_alloc(out, normals->width, normals->height, 1), "shade");
     for (int i = 0; i < normals->width * normals->height; ++i) {
         double n[3] = {normals->data[3 * i], normals->data[3 * i + 1], normals->data[3 * i + 2]};
         double d = sol_dot3(n, h);
@@ -671,15 +671,15 @@ static void banding(const sol_image *ref, const sol_image *img, double *lap_rms,
     *rms = sqrt(s2 / n);
 }
 
-static void t14(const sol_exp *exp)
+static void t14(const exp_run *exp)
 {
     int size = exp->quick ? 128 : 256;
     sol_image ex, q, ref;
     input_normals(INPUT_HOOD, size, &ex);
     input_quantize(&ex, 16, &q);
     shade(&ex, &ref);
-    sol_exp_check(sol_png_write(sol_exp_path(exp, "t14_hood_reference.png"), &ref, 8), "png");
-    sol_table *t = sol_table_new("T14: specular highlight (Blinn-Phong, exponent 500) on the hood panel, per encoder",
+    exp_check(sol_png_write(exp_path(exp, "t14_hood_reference.png"), &ref, 8), "png");
+    exp_table *t = exp_table_new("T14: specular highlight (Blinn-Phong, exponent 500) on the hood panel, per encoder",
                                  "encoder,Laplacian RMS (banding),shading RMS error,normal rms deg");
     const int encs[] = {E_COMMON, E_ADAPTIVE, E_OPTIMAL, 6, 9};
     double lap_common = 0.0, lap_opt = 0.0;
@@ -687,32 +687,32 @@ static void t14(const sol_exp *exp)
         uint8_t *b = alloc_blocks(&q);
         run_encoder(&ENCODERS[encs[j]], &q, b, NULL);
         sol_image dec, img;
-        sol_exp_check(sol_bc5_decode_image(b, size, size, SOL_BC4_INTERP_16BIT, &dec), "decode");
+        exp_check(sol_bc5_decode_image(b, size, size, SOL_BC4_INTERP_16BIT, &dec), "decode");
         shade(&dec, &img);
         double lap, rms;
         banding(&ref, &img, &lap, &rms);
         err_stats st = angle_stats(&ex, &dec);
-        sol_table_row(t, "%s|%.3e|%.3e|%.4f", ENCODERS[encs[j]].name, lap, rms, st.rms);
+        exp_table_row(t, "%s|%.3e|%.3e|%.4f", ENCODERS[encs[j]].name, lap, rms, st.rms);
         if (encs[j] == E_COMMON)
             lap_common = lap;
         if (encs[j] == E_OPTIMAL)
             lap_opt = lap;
         char file[64];
         snprintf(file, sizeof file, "t14_hood_%s.png", encs[j] == E_COMMON ? "common" : encs[j] == E_ADAPTIVE ? "adaptive" : encs[j] == E_OPTIMAL ? "optimal" : encs[j] == 6 ? "squish" : "nvtt");
-        sol_exp_check(sol_png_write(sol_exp_path(exp, file), &img, 8), "png");
+        exp_check(sol_png_write(exp_path(exp, file), &img, 8), "png");
         if (encs[j] == E_OPTIMAL)
-            sol_exp_check(sol_dds_write_bc(sol_exp_path(exp, "hood_optimal_bc5.dds"), b, size, size, 2), "dds");
+            exp_check(sol_dds_write_bc(exp_path(exp, "hood_optimal_bc5.dds"), b, size, size, 2), "dds");
         if (encs[j] == E_COMMON)
-            sol_exp_check(sol_dds_write_bc(sol_exp_path(exp, "hood_common_bc5.dds"), b, size, size, 2), "dds");
+            exp_check(sol_dds_write_bc(exp_path(exp, "hood_common_bc5.dds"), b, size, size, 2), "dds");
         sol_image_free(&dec);
         sol_image_free(&img);
         free(b);
     }
-    sol_table_write(t, exp, "t14_banding");
+    exp_table_write(t, exp, "t14_banding");
     char fig[96];
     snprintf(fig, sizeof fig, "banding (Laplacian RMS) optimal/common = %.3f", lap_opt / lap_common);
-    sol_claim(exp, "T14", "qualitative: improved 3Dc visibly reduces highlight banding", fig,
-              "optimal clearly (>10%) lower banding", lap_opt < 0.9 * lap_common ? SOL_REPRODUCED : SOL_NOT_REPRODUCED,
+    exp_claim(exp, "T14", "qualitative: improved 3Dc visibly reduces highlight banding", fig,
+              "optimal clearly (>10%) lower banding", lap_opt < 0.9 * lap_common ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "smooth hood panel, 16-bit source, 16-bit interpolation; banding measured, not judged by eye");
     sol_image_free(&ex);
     sol_image_free(&q);
@@ -721,8 +721,8 @@ static void t14(const sol_exp *exp)
 
 int main(int argc, char **argv)
 {
-    sol_exp exp;
-    sol_exp_init(&exp, NAME, argc, argv);
+    exp_run exp;
+    exp_init(&exp, NAME, argc, argv);
     maps m;
     make_maps(&m, exp.quick ? 32 : 128);
     results r;
