@@ -4,7 +4,9 @@
 #                    results/ (and the paper)
 #   make test        build and run the Criterion test suite
 #   make bench       accuracy-vs-time benchmarks of every experiment (tables on stdout)
-#   make sanitize    the test suite under AddressSanitizer + UndefinedBehaviorSanitizer
+#   make sanitize    the test suite under AddressSanitizer + UndefinedBehaviorSanitizer (+ leaks)
+#   make valgrind    the test suite under valgrind memcheck (slow; TEST_ARGS='--filter x/*')
+#   make fuzz        every tests/fuzz/fuzz_*.c under libFuzzer for FUZZ_SECONDS each
 #   make run-NAME    one experiment (NAME is a folder of experiments/)
 #   make             the library and every experiment driver
 #
@@ -23,7 +25,7 @@ LDFLAGS ?=
 # NVIDIA Texture Tools are peers for side-by-side comparison; colobot-common-textures ships real
 # game textures for the colour-texture experiments T1-T7).
 TEST_PKGS := gcc g++ make pkg-config libcriterion-dev libceres-dev libgoogle-glog-dev libeigen3-dev \
-             libopenexr-dev libpng-dev
+             libopenexr-dev libpng-dev clang libclang-rt-14-dev libomp-14-dev valgrind
 REPRODUCE_PKGS := $(TEST_PKGS) gnuplot-nox libsquish-dev libnvtt-dev colobot-common-textures texlive-latex-base \
                   texlive-latex-recommended texlive-fonts-recommended latexmk
 
@@ -54,7 +56,7 @@ SOL_BIN := $(BUILD)/sol
 SOL_BIN_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard src/cli/*.c))
 
 .PHONY: all lib experiments test run-tests reproduce run-experiments claims-table paper paper-section bench \
-        sanitize deps-test deps-reproduce clean $(EXPERIMENTS:%=run-%)
+        sanitize valgrind fuzz fuzz-smoke fuzz-build deps-test deps-reproduce clean $(EXPERIMENTS:%=run-%)
 
 all: lib experiments $(SOL_BIN)
 
@@ -134,6 +136,7 @@ deps-reproduce:
 # Sub-makes re-read this file once the packages (and so pkg-config's answers) are there.
 test: deps-test
 	@$(MAKE) --no-print-directory run-tests
+	@$(MAKE) --no-print-directory fuzz-smoke
 
 run-tests: $(TEST_BIN) $(SOL_BIN)
 	$(TEST_BIN)
@@ -173,11 +176,70 @@ bench: deps-reproduce
 	@for e in $(EXPERIMENTS); do echo "## $$e"; $(BUILD)/experiments/$$e/$$e --bench || exit 1; done
 
 # allocator_may_return_null: tests check that impossible allocations return SOL_ERR_NO_MEMORY.
+# Criterion runs every test in a forked child and ignores the child's exit status once the test
+# has reported, so LeakSanitizer's report at the child's exit (exit code 23) never failed the run:
+# the log is kept and any sanitizer report in it fails the target.
 sanitize: deps-test
-	@ASAN_OPTIONS=allocator_may_return_null=1 $(MAKE) --no-print-directory BUILD=$(BUILD)/sanitize \
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/sanitize \
 	  CFLAGS="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
 	  CXXFLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer" \
-	  LDFLAGS="-fsanitize=address,undefined" run-tests
+	  LDFLAGS="-fsanitize=address,undefined" $(BUILD)/sanitize/tests/sol_tests $(BUILD)/sanitize/sol
+	@log=$(BUILD)/sanitize/tests.log; \
+	{ ASAN_OPTIONS=allocator_may_return_null=1:detect_leaks=1 $(BUILD)/sanitize/tests/sol_tests $(TEST_ARGS) 2>&1; \
+	  echo $$? > $$log.rc; } | tee $$log; \
+	if grep -q -E 'ERROR: (Leak|Address)Sanitizer|runtime error:' $$log; then \
+	  echo "sanitize: sanitizer reports in $$log"; exit 1; fi; \
+	exit $$(cat $$log.rc)
+
+# Memcheck follows Criterion's forked children; as above, their exit status is lost, so each
+# process writes its own log and any error or definite/indirect leak in one fails the target.
+VALGRIND_FLAGS := --leak-check=full --errors-for-leak-kinds=definite,indirect --show-leak-kinds=definite,indirect \
+                  --error-exitcode=1 --track-origins=no
+valgrind: deps-test
+	@$(MAKE) --no-print-directory $(TEST_BIN) $(SOL_BIN)
+	@rm -rf $(BUILD)/valgrind && mkdir -p $(BUILD)/valgrind
+	valgrind $(VALGRIND_FLAGS) --log-file=$(BUILD)/valgrind/vg.%p.log $(TEST_BIN) --jobs 1 $(TEST_ARGS); rc=$$?; \
+	bad=$$(grep -l -E 'ERROR SUMMARY: [1-9]' $(BUILD)/valgrind/vg.*.log); \
+	if [ -n "$$bad" ]; then echo "valgrind: errors in"; echo "$$bad"; exit 1; fi; \
+	echo "valgrind: $$(ls $(BUILD)/valgrind | wc -l) processes, no errors"; exit $$rc
+
+# Fuzzing (libFuzzer): every tests/fuzz/fuzz_<name>.c defines LLVMFuzzerTestOneInput and has its
+# seeds in tests/fuzz/corpus/<name>/. The library's C sources are rebuilt with clang, ASan and
+# UBSan in $(BUILD)/fuzz; each target runs FUZZ_SECONDS (make fuzz) or FUZZ_SMOKE_SECONDS (make
+# fuzz-smoke, part of make test) from a scratch copy of its seeds, and any crash, leak, timeout or
+# out-of-memory fails the target (the input is kept in $(BUILD)/fuzz/artifacts/).
+FUZZ_SECONDS ?= 60
+FUZZ_SMOKE_SECONDS ?= 10
+FUZZ_TARGETS := $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+FUZZ_LDLIBS = $(filter-out -lgomp,$(LDLIBS_ALL)) -lstdc++
+FUZZ_FLAGS ?= -timeout=10 -rss_limit_mb=2048
+
+fuzz-build: deps-test
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/fuzz CC=clang CXX=clang++ LIB_CXX= \
+	  CFLAGS="-O1 -g -fsanitize=fuzzer-no-link $(FUZZ_SAN)" $(BUILD)/fuzz/libsol.a
+	@$(MAKE) --no-print-directory $(FUZZ_TARGETS:%=$(BUILD)/fuzz/bin/fuzz_%)
+
+$(BUILD)/fuzz/bin/fuzz_%: tests/fuzz/fuzz_%.c $(BUILD)/fuzz/libsol.a
+	@mkdir -p $(@D)
+	clang $(C_STD) -Wall -Wextra -O1 -g -fsanitize=fuzzer $(FUZZ_SAN) $(CPPFLAGS_ALL) $< $(BUILD)/fuzz/libsol.a \
+	  -o $@ $(FUZZ_LDLIBS)
+
+define fuzz_run
+	@mkdir -p $(BUILD)/fuzz/corpus/$(1) $(BUILD)/fuzz/artifacts
+	@echo "== fuzz $(1): $(2) s"
+	@$(BUILD)/fuzz/bin/fuzz_$(1) $(FUZZ_FLAGS) -max_total_time=$(2) -print_final_stats=1 \
+	  -artifact_prefix=$(BUILD)/fuzz/artifacts/$(1)- $(BUILD)/fuzz/corpus/$(1) tests/fuzz/corpus/$(1) \
+	  > $(BUILD)/fuzz/$(1).log 2>&1 || { tail -40 $(BUILD)/fuzz/$(1).log; echo "fuzz $(1): FAILED, see $(BUILD)/fuzz/$(1).log"; exit 1; }
+	@grep -E 'stat::number_of_executed_units|Done [0-9]+ runs' $(BUILD)/fuzz/$(1).log | sed 's/^/   /'
+
+endef
+
+fuzz: fuzz-build
+	$(foreach t,$(FUZZ_TARGETS),$(call fuzz_run,$(t),$(FUZZ_SECONDS)))
+
+fuzz-smoke: fuzz-build
+	$(foreach t,$(FUZZ_TARGETS),$(call fuzz_run,$(t),$(FUZZ_SMOKE_SECONDS)))
 
 clean:
 	rm -rf $(BUILD) paper/*.aux paper/*.log paper/*.fls paper/*.fdb_latexmk paper/*.out paper/sol.pdf

@@ -7,10 +7,12 @@
  * paths write every channel of a 3- or 4-channel file, NULL pointer or not. */
 #include "sol_core.h"
 
+#include <errno.h>
 #include <openexr.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* Channel names for 1..4 channels, in sol_image's interleaved order. */
 static const char *const channel_names[4][4] = {
@@ -136,8 +138,31 @@ static sol_status decode_image(exr_context_t ctx, exr_attr_box2i_t window, const
     return rv == EXR_ERR_SUCCESS ? SOL_OK : SOL_ERR_FORMAT; /* truncated or corrupt chunks */
 }
 
+/* The header's sizes against the caller's limits, before anything is sized from them (see
+ * sol_exr_read_ex in sol_core.h): sol's own buffers (the image and the decoding planes, 8 bytes
+ * per kept channel and pixel) and the core's chunk buffers (packed and unpacked chunk, twice the
+ * bytes of every channel of the file over width x min(scanlines per chunk, height) pixels; its chunk offset
+ * table, 8 bytes per chunk, is smaller than sol's image). */
+static sol_status check_limits(exr_context_t ctx, const sol_read_limits *limits, const exr_attr_chlist_t *list,
+                               int channels, int64_t width, int64_t height)
+{
+    if (list->num_channels > SOL_EXR_MAX_CHANNELS)
+        return SOL_ERR_LIMIT;
+    int32_t lines_per_chunk = 0;
+    if (exr_get_scanlines_per_chunk(ctx, 0, &lines_per_chunk) != EXR_ERR_SUCCESS || lines_per_chunk < 1)
+        return SOL_ERR_FORMAT;
+    uint64_t file_bytes_per_pixel = 0;
+    for (int i = 0; i < list->num_channels; ++i)
+        file_bytes_per_pixel += list->entries[i].pixel_type == EXR_PIXEL_HALF ? 2u : 4u;
+    sol_status status = sol_read_limits_check(limits, width, height, 1, 8u * (uint64_t)channels);
+    if (status == SOL_OK)
+        status = sol_read_limits_check(limits, width, lines_per_chunk < height ? lines_per_chunk : height, 1,
+                                       2u * file_bytes_per_pixel);
+    return status == SOL_ERR_INVALID_ARG ? SOL_ERR_FORMAT : status;
+}
+
 /* Reads an opened context into a new image; `*out` is written only on success. */
-static sol_status read_context(exr_context_t ctx, sol_image *out)
+static sol_status read_context(exr_context_t ctx, const sol_read_limits *limits, sol_image *out)
 {
     exr_storage_t storage;
     exr_attr_box2i_t window;
@@ -150,8 +175,11 @@ static sol_status read_context(exr_context_t ctx, sol_image *out)
     /* the core takes line strides in bytes as int32_t; a wider plane row cannot be described */
     if (!channels || width < 1 || height < 1 || width > INT32_MAX / (int64_t)sizeof(float) || height > INT32_MAX)
         return SOL_ERR_FORMAT;
+    sol_status status = check_limits(ctx, limits, list, channels, width, height);
+    if (status != SOL_OK)
+        return status;
     sol_image image = {0};
-    sol_status status = sol_image_alloc(&image, (int)width, (int)height, channels);
+    status = sol_image_alloc(&image, (int)width, (int)height, channels);
     if (status == SOL_ERR_INVALID_ARG) /* a data window too large to address is the file's fault */
         return SOL_ERR_FORMAT;
     if (status == SOL_OK)
@@ -179,6 +207,11 @@ static int readable(const char *path)
 
 sol_status sol_exr_read(const char *path, sol_image *out)
 {
+    return sol_exr_read_ex(path, NULL, out);
+}
+
+sol_status sol_exr_read_ex(const char *path, const sol_read_limits *limits, sol_image *out)
+{
     if (!path || !out)
         return SOL_ERR_NULL_ARG;
     if (!readable(path))
@@ -189,7 +222,7 @@ sol_status sol_exr_read(const char *path, sol_image *out)
         exr_finish(&ctx);
         return SOL_ERR_FORMAT;
     }
-    sol_status status = read_context(ctx, out);
+    sol_status status = read_context(ctx, limits, out);
     exr_finish(&ctx);
     return status;
 }
@@ -264,6 +297,31 @@ static exr_result_t write_header(exr_context_t ctx, const sol_image *image, int 
     return rv;
 }
 
+/* The core's custom write hook (openexr_context.h, exr_write_func_ptr_t): positioned writes to
+ * the temporary sol_file_out opened, so the core never names a file itself. */
+static int64_t write_to_fd(exr_const_context_t ctxt, void *userdata, const void *buffer, uint64_t size, uint64_t offset,
+                           exr_stream_error_func_ptr_t error_cb)
+{
+    int fd = *(const int *)userdata;
+    uint64_t done = 0;
+    while (done < size) {
+        if (offset + done > (uint64_t)INT64_MAX)
+            break;
+        ssize_t n = pwrite(fd, (const uint8_t *)buffer + done, (size_t)(size - done), (off_t)(offset + done));
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            break;
+        done += (uint64_t)n;
+    }
+    if (done < size) {
+        if (error_cb)
+            error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed");
+        return -1;
+    }
+    return (int64_t)done;
+}
+
 sol_status sol_exr_write(const char *path, const sol_image *image, int half_precision)
 {
     if (!path || !image || !image->data)
@@ -275,18 +333,25 @@ sol_status sol_exr_write(const char *path, const sol_image *image, int half_prec
     sol_status status = check_exr_values(image, half_precision);
     if (status != SOL_OK)
         return status;
+    sol_file_out out;
+    status = sol_file_out_open(&out, path);
+    if (status != SOL_OK)
+        return status;
+    int fd = fileno(out.file); /* written through write_to_fd only, never through stdio */
     exr_context_initializer_t init = silent_initializer();
+    init.user_data = &fd;
+    init.write_fn = write_to_fd;
     exr_context_t ctx = NULL;
-    if (exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init) != EXR_ERR_SUCCESS) {
-        exr_finish(&ctx);
-        return SOL_ERR_IO;
-    }
-    exr_result_t rv = write_header(ctx, image, half_precision);
+    exr_result_t rv = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = write_header(ctx, image, half_precision);
     if (rv == EXR_ERR_SUCCESS)
         rv = encode_rows(ctx, image);
-    if (exr_finish(&ctx) != EXR_ERR_SUCCESS || rv != EXR_ERR_SUCCESS) {
-        remove(path); /* no half-written file is left behind */
-        return SOL_ERR_IO;
-    }
-    return SOL_OK;
+    if (exr_finish(&ctx) != EXR_ERR_SUCCESS)
+        rv = EXR_ERR_WRITE_IO;
+    /* the temporary becomes `path` only if the core wrote everything, offset tables included */
+    status = sol_file_out_close(&out, rv == EXR_ERR_SUCCESS);
+    if (rv == EXR_ERR_OUT_OF_MEMORY)
+        return SOL_ERR_NO_MEMORY;
+    return rv == EXR_ERR_SUCCESS ? status : SOL_ERR_IO;
 }

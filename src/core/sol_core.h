@@ -13,6 +13,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -84,11 +85,40 @@ static inline int sol_size_mul(size_t *out, size_t a, size_t b)
 sol_status sol_read_limits_check(const sol_read_limits *limits, int64_t width, int64_t height, int64_t depth,
                                  uint64_t bytes_per_pixel);
 
+/* ---- atomic file output (every writer of sol uses it) ----
+ * sol_file_out_open creates a new temporary file "<folder of path>/.sol-tmp-<pid>-<n>" (O_EXCL,
+ * mode 0666 less the umask, as fopen) and opens it for writing in out->file; nothing exists at
+ * `path` yet. sol_file_out_close(out, 1) flushes, fsyncs and closes it and renames it over `path`
+ * (atomic within one file system): SOL_OK only if every step succeeded (so a write error that
+ * stdio buffered, e.g. a full disk, is still reported), else SOL_ERR_IO. sol_file_out_close(out,
+ * 0) discards: closes and removes the temporary and returns SOL_OK. Either way the temporary is
+ * gone afterwards and `*out` is zeroed. A `path` naming an existing device or FIFO (which a
+ * rename cannot replace) is opened and written in place instead; a directory is SOL_ERR_IO.
+ * Errors of open: SOL_ERR_NULL_ARG, SOL_ERR_IO (empty path, folder missing or not writable),
+ * SOL_ERR_NO_MEMORY; `*out` is untouched on error. `path` must stay valid until the close. */
+typedef struct sol_file_out {
+    FILE *file;      /* write here (stdio) */
+    char *temp_path; /* the temporary's name; NULL when writing a device in place */
+    const char *path;
+} sol_file_out;
+sol_status sol_file_out_open(sol_file_out *out, const char *path);
+sol_status sol_file_out_close(sol_file_out *out, int commit);
+
 /* PNG through libpng. Reading accepts gray, gray+alpha, RGB, RGBA and palette files of any bit
- * depth (expanded to 8 or 16 bits, then normalised). Writing quantises each value v in [0,1] to
- * round(v * (2^bits - 1)) with bits 8 or 16; values outside [0,1] give SOL_ERR_OUT_OF_RANGE and
- * NaN/Inf give SOL_ERR_NONFINITE (nothing is written). `bits_out` may be NULL. */
+ * depth (expanded to 8 or 16 bits, then normalised), progressive or Adam7-interlaced. Writing
+ * quantises each value v in [0,1] to round(v * (2^bits - 1)) with bits 8 or 16; values outside
+ * [0,1] give SOL_ERR_OUT_OF_RANGE and NaN/Inf give SOL_ERR_NONFINITE (nothing is written).
+ * `bits_out` may be NULL.
+ * Reading checks the header's width x height against `limits` (sol_png_read: the defaults) before
+ * allocating anything, counting 4 bytes per float value plus, for an interlaced file, the raw
+ * image libpng decodes into (channels * bits/8 bytes per pixel): SOL_ERR_LIMIT. A missing or
+ * unreadable file is SOL_ERR_IO, a malformed, truncated or corrupt one SOL_ERR_FORMAT; whatever
+ * the error, everything the read allocated is freed and `*out` / `*bits_out` are untouched.
+ * Writing goes to a temporary file in the same folder, renamed over `path` on success; on any
+ * error (SOL_ERR_IO for a failed open, write, flush or rename) neither a file at `path` nor the
+ * temporary is left behind. */
 sol_status sol_png_read(const char *path, sol_image *out, int *bits_out);
+sol_status sol_png_read_ex(const char *path, const sol_read_limits *limits, sol_image *out, int *bits_out);
 sol_status sol_png_write(const char *path, const sol_image *image, int bits);
 
 /* OpenEXR through its C core API (scanline files, any compression the core reads).
@@ -97,6 +127,16 @@ sol_status sol_png_write(const char *path, const sol_image *image, int bits);
  * else SOL_ERR_OUT_OF_RANGE) or float, ZIP-compressed. NaN/Inf are refused with
  * SOL_ERR_NONFINITE. */
 sol_status sol_exr_read(const char *path, sol_image *out);
+/* Reading checks the data window against `limits` (sol_exr_read: the defaults) before anything
+ * is sized from it: width x height pixels at 8 bytes per kept channel (sol's image and its
+ * decoding planes), and width x min(scanlines per chunk, height) pixels at twice the bytes of all
+ * the file's channels (the core's chunk buffers); a file with more than SOL_EXR_MAX_CHANNELS
+ * channels is refused too. Any of these gives SOL_ERR_LIMIT; a missing or unreadable file SOL_ERR_IO, a
+ * malformed one SOL_ERR_FORMAT. On every error all memory is freed and `*out` is untouched.
+ * Writing goes to a temporary file in the same folder, renamed over `path` on success (on error
+ * neither `path` nor the temporary is left). */
+#define SOL_EXR_MAX_CHANNELS 1024
+sol_status sol_exr_read_ex(const char *path, const sol_read_limits *limits, sol_image *out);
 sol_status sol_exr_write(const char *path, const sol_image *image, int half_precision);
 
 /* ---- small shared numeric helpers (header-only so hot loops inline them) ---- */

@@ -32,10 +32,12 @@ sol_status sol_dds_write_bc(const char *path, const uint8_t *blocks, int width, 
     put32(h + 80, 0x4u);                                     /* DDPF_FOURCC */
     memcpy(h + 84, channels == 2 ? "ATI2" : "ATI1", 4);
     put32(h + 108, 0x1000u);                                 /* DDSCAPS_TEXTURE */
-    FILE *f = fopen(path, "wb");
-    if (!f)
-        return SOL_ERR_IO;
-    int ok = fwrite(h, 1, sizeof h, f) == sizeof h && fwrite(blocks, 1, bytes, f) == bytes;
-    ok = (fclose(f) == 0) && ok;
-    return ok ? SOL_OK : SOL_ERR_IO;
+    /* a temporary beside `path`, renamed over it only once everything is written (sol_core.h) */
+    sol_file_out out;
+    sol_status status = sol_file_out_open(&out, path);
+    if (status != SOL_OK)
+        return status;
+    int ok = fwrite(h, 1, sizeof h, out.file) == sizeof h && fwrite(blocks, 1, bytes, out.file) == bytes;
+    status = sol_file_out_close(&out, ok);
+    return ok ? status : SOL_ERR_IO;
 }
