@@ -148,18 +148,35 @@ static inline double sol_dot3(const double a[3], const double b[3])
 
 /* Angle between two non-zero vectors in radians, accurate near 0 and pi: atan2(|a x b|, a.b)
  * (acos of a clamped dot loses half the digits for nearly parallel vectors). Unnormalised input
- * is fine; a zero vector gives 0. */
+ * of any finite magnitude is fine (1e-300 and 1e300 alike): each vector is first divided by its
+ * largest absolute component, and |a x b| is taken the same way, so nothing overflows or
+ * underflows. A zero vector gives 0; a NaN or infinite component gives NaN. */
 static inline double sol_angle3(const double a[3], const double b[3])
 {
-    double c0 = a[1] * b[2] - a[2] * b[1], c1 = a[2] * b[0] - a[0] * b[2], c2 = a[0] * b[1] - a[1] * b[0];
-    return atan2(sqrt(c0 * c0 + c1 * c1 + c2 * c2), sol_dot3(a, b));
+    double ma = fmax(fmax(fabs(a[0]), fabs(a[1])), fabs(a[2]));
+    double mb = fmax(fmax(fabs(b[0]), fabs(b[1])), fabs(b[2]));
+    if (!(ma > 0.0) || !(mb > 0.0))
+        /* a zero vector; fmax skipped any NaN, and x * 0 is 0 only for finite x */
+        return a[0] * 0.0 + a[1] * 0.0 + a[2] * 0.0 + b[0] * 0.0 + b[1] * 0.0 + b[2] * 0.0 == 0.0 ? 0.0 : NAN;
+    /* divisions, not a reciprocal: 1/ma overflows for a subnormal ma */
+    double a0 = a[0] / ma, a1 = a[1] / ma, a2 = a[2] / ma, b0 = b[0] / mb, b1 = b[1] / mb, b2 = b[2] / mb;
+    double c0 = a1 * b2 - a2 * b1, c1 = a2 * b0 - a0 * b2, c2 = a0 * b1 - a1 * b0;
+    double mc = fmax(fmax(fabs(c0), fabs(c1)), fabs(c2)), cross = 0.0;
+    if (mc > 0.0) {
+        c0 /= mc, c1 /= mc, c2 /= mc;
+        cross = mc * sqrt(c0 * c0 + c1 * c1 + c2 * c2);
+    }
+    return atan2(cross, a0 * b0 + a1 * b1 + a2 * b2);
 }
 
 /* UNORM quantisation as D3D/GL define it: code = round(clamp(x,0,1) * (2^bits - 1)), and back.
- * NaN encodes as 0 (D3D's float-to-UNORM rule). bits 1..16. */
+ * NaN encodes as 0 (D3D's float-to-UNORM rule). bits 1..32; any other `bits` encodes to 0 and
+ * decodes to 0.0 (there is no such format; no shift past the word is ever made). */
 static inline uint32_t sol_unorm_encode(double x, int bits)
 {
-    double maxcode = (double)((1u << bits) - 1u);
+    if (bits < 1 || bits > 32)
+        return 0;
+    double maxcode = (double)(UINT32_MAX >> (32 - bits));
     if (!(x > 0.0))
         return 0;
     if (x >= 1.0)
@@ -169,7 +186,9 @@ static inline uint32_t sol_unorm_encode(double x, int bits)
 
 static inline double sol_unorm_decode(uint32_t code, int bits)
 {
-    return (double)code / (double)((1u << bits) - 1u);
+    if (bits < 1 || bits > 32)
+        return 0.0;
+    return (double)code / (double)(UINT32_MAX >> (32 - bits));
 }
 
 /* sRGB transfer functions (IEC 61966-2-1): linear <-> encoded, input clamped to [0, 1] (NaN

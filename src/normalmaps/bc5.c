@@ -421,7 +421,7 @@ static void encode_unit(const double n[16][3], const sol_bc5_options *o, search_
         }
         return;
     }
-    int w = o->window == 0 ? 4 : (o->window < 0 ? 0 : o->window);
+    int w = o->window == 0 ? 4 : (o->window < 0 ? 0 : o->window > 255 ? 255 : o->window); /* 255: all codes */
     sol_bc5_range r = {clamp_code(common.x.e0 - w), clamp_code(common.x.e0 + w), clamp_code(common.x.e1 - w),
                        clamp_code(common.x.e1 + w), clamp_code(common.y.e0 - w), clamp_code(common.y.e0 + w),
                        clamp_code(common.y.e1 - w), clamp_code(common.y.e1 + w)};

@@ -96,7 +96,7 @@ typedef struct sol_bc5_options {
     sol_bc5_metric metric;       /* optimal and adaptive minimise this */
     /* Adaptive: each of the four anchors is searched within +-window codes of the common anchor
      * (clamped to 0..255). 0 = default 4 (the talk's [v-4/255, v+4/255]); negative = 0, i.e. only the
-     * common anchors, with joint index choice. */
+     * common anchors, with joint index choice; 255 or more = every code (no int overflow). */
     int window;
     /* Adaptive: search only blocks whose common RMS angular error (sqrt(mean dN^2), or max dN for
      * SOL_BC5_MAX) exceeds this many degrees. 0 = search every block. */

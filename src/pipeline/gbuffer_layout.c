@@ -95,6 +95,12 @@ sol_status sol_gbuffer_bytes(const sol_gbuffer_layout *layout, int width, int he
     sol_status status = sol_gbuffer_bits_per_pixel(layout, &bits);
     if (status != SOL_OK)
         return status;
-    *bytes = (uint64_t)width * (uint64_t)height * (uint64_t)samples * bits / 8u;
+    /* bytes = p * bits / 8 with p = w*h*samples < 2^65: split p = 8q + r so that nothing wraps
+     * past 2^64 unless the answer itself does */
+    uint64_t wh = (uint64_t)width * (uint64_t)height; /* < 2^62 */
+    uint64_t q = wh / 8u * (uint64_t)samples + wh % 8u * (uint64_t)samples / 8u, r = wh % 8u * (uint64_t)samples % 8u;
+    if (bits && q > (UINT64_MAX - (uint64_t)r * bits / 8u) / bits)
+        return SOL_ERR_OUT_OF_RANGE;
+    *bytes = q * bits + (uint64_t)r * bits / 8u;
     return SOL_OK;
 }

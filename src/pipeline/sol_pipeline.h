@@ -67,7 +67,10 @@ sol_status sol_gbuffer_bits_per_pixel(const sol_gbuffer_layout *layout, unsigned
 
 /* Bytes the G-buffer occupies (and is written once per frame) at width x height with `samples`
  * MSAA samples per pixel (1, 2, 4 or 8): every sample stores the whole layout, which is why the
- * talk calls MSAA with a G-buffer super-sampling in bandwidth. */
+ * talk calls MSAA with a G-buffer super-sampling in bandwidth. bytes = floor(w*h*samples*bits/8),
+ * computed exactly for any int sizes. Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (size <= 0,
+ * other sample counts, a bad layout), SOL_ERR_OUT_OF_RANGE (the answer exceeds 2^64 - 1, e.g.
+ * INT_MAX x INT_MAX x 8 samples); `*bytes` is written only on success. */
 sol_status sol_gbuffer_bytes(const sol_gbuffer_layout *layout, int width, int height, int samples, uint64_t *bytes);
 
 #ifdef __cplusplus

@@ -70,11 +70,11 @@ sol_status sol_cbuffer_build(const float *depth, int width, int height, const so
     b.block = block;
     b.full_width = width;
     b.full_height = height;
-    b.width[0] = (width + block - 1) / block;
-    b.height[0] = (height + block - 1) / block;
+    b.width[0] = (width - 1) / block + 1; /* ceil(width / block); width + block - 1 overflows int */
+    b.height[0] = (height - 1) / block + 1;
     for (b.levels = 1; b.width[b.levels - 1] > 1 || b.height[b.levels - 1] > 1; ++b.levels) {
         if (b.levels == SOL_CBUFFER_MAX_LEVELS)
-            return SOL_ERR_INVALID_ARG; /* unreachable for int sizes: 2^23 > any width / block */
+            return SOL_ERR_LIMIT; /* level 0 wider or taller than 2^23 texels (see the header) */
         b.width[b.levels] = half_up(b.width[b.levels - 1]);
         b.height[b.levels] = half_up(b.height[b.levels - 1]);
     }
@@ -125,8 +125,9 @@ static int texel_occludes(query *q, int l, int tx, int ty)
         return 1; /* everything stored here is nearer than the box's nearest point */
     if (q->znear < b->zmin[l][i] || l <= q->stop_level)
         return 0; /* in front of everything here, or undecided with no finer level allowed */
-    const int span = b->block << (l - 1); /* child texel size in full-resolution pixels */
-    int cx0 = q->px0 / span, cx1 = q->px1 / span, cy0 = q->py0 / span, cy1 = q->py1 / span;
+    /* child texel size in full-resolution pixels; 64-bit: block << level can pass INT_MAX */
+    const int64_t span = (int64_t)b->block << (l - 1);
+    int cx0 = (int)(q->px0 / span), cx1 = (int)(q->px1 / span), cy0 = (int)(q->py0 / span), cy1 = (int)(q->py1 / span);
     for (int cy = 2 * ty; cy <= 2 * ty + 1 && cy < b->height[l - 1]; ++cy)
         for (int cx = 2 * tx; cx <= 2 * tx + 1 && cx < b->width[l - 1]; ++cx)
             if (cx >= cx0 && cx <= cx1 && cy >= cy0 && cy <= cy1 && !texel_occludes(q, l - 1, cx, cy))
@@ -165,7 +166,7 @@ sol_status sol_cbuffer_test(const sol_cbuffer *buffer, const sol_screen_bounds *
     /* Start level: the finest one where the rectangle spans at most 2 texels on each axis. */
     int start = 0;
     while (start + 1 < buffer->levels) {
-        int span = buffer->block << start;
+        int64_t span = (int64_t)buffer->block << start;
         if (q.px1 / span - q.px0 / span <= 1 && q.py1 / span - q.py0 / span <= 1)
             break;
         ++start;
@@ -174,10 +175,10 @@ sol_status sol_cbuffer_test(const sol_cbuffer *buffer, const sol_screen_bounds *
     /* The float znear is rounded down so the float comparisons stay conservative. */
     if ((double)q.znear > bounds->znear)
         q.znear = nextafterf(q.znear, -INFINITY);
-    const int span = buffer->block << start;
+    const int64_t span = (int64_t)buffer->block << start;
     int hidden = 1;
-    for (int ty = q.py0 / span; hidden && ty <= q.py1 / span; ++ty)
-        for (int tx = q.px0 / span; hidden && tx <= q.px1 / span; ++tx)
+    for (int ty = (int)(q.py0 / span); hidden && ty <= (int)(q.py1 / span); ++ty)
+        for (int tx = (int)(q.px0 / span); hidden && tx <= (int)(q.px1 / span); ++tx)
             hidden = texel_occludes(&q, start, tx, ty);
     *occluded = hidden;
     if (texels_visited)

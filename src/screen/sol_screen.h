@@ -99,8 +99,12 @@ typedef struct sol_cbuffer {
 } sol_cbuffer;
 
 /* Builds the hierarchy from a full-resolution depth buffer (width x height finite values).
+ * Any block >= 1 works (a block at least as large as the image gives a 1x1 level 0; sizes are
+ * computed without int overflow up to block = INT_MAX).
  * Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (size < 1, block < 0, unknown downscale),
- * SOL_ERR_NONFINITE (a NaN/Inf depth), SOL_ERR_NO_MEMORY. Free with sol_cbuffer_free. */
+ * SOL_ERR_NONFINITE (a NaN/Inf depth), SOL_ERR_LIMIT (level 0 is wider or taller than 2^23
+ * texels: more than SOL_CBUFFER_MAX_LEVELS levels), SOL_ERR_NO_MEMORY. Free with
+ * sol_cbuffer_free. */
 sol_status sol_cbuffer_build(const float *depth, int width, int height, const sol_cbuffer_options *options,
                              sol_cbuffer *out);
 /* Frees the levels and zeroes the struct; safe on a zeroed or NULL buffer. */

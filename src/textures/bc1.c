@@ -454,9 +454,14 @@ sol_status sol_bc1_encode_block(const float rgb[16][3], const sol_bc1_options *o
 
 size_t sol_bc1_size(int width, int height)
 {
+    size_t blocks, bytes;
     if (width <= 0 || height <= 0)
         return 0;
-    return (size_t)((width + 3) / 4) * (size_t)((height + 3) / 4) * SOL_BC1_BLOCK_BYTES;
+    /* ((size_t)w + 3) / 4: w + 3 in int overflows at INT_MAX */
+    if (!sol_size_mul(&blocks, ((size_t)width + 3) / 4, ((size_t)height + 3) / 4) ||
+        !sol_size_mul(&bytes, blocks, SOL_BC1_BLOCK_BYTES))
+        return 0;
+    return bytes;
 }
 
 sol_status sol_bc1_encode(const sol_image *image, const sol_bc1_options *options, uint8_t *blocks)
@@ -475,7 +480,9 @@ sol_status sol_bc1_encode(const sol_image *image, const sol_bc1_options *options
             for (int c = 0; c < 3; ++c)
                 if ((st = check_value(sol_image_pixel(image, x, y)[c])))
                     return st;
-    int bw = (image->width + 3) / 4, bh = (image->height + 3) / 4;
+    if (!sol_bc1_size(image->width, image->height))
+        return SOL_ERR_INVALID_ARG;
+    int bw = (int)(((unsigned)image->width + 3u) / 4u), bh = (int)(((unsigned)image->height + 3u) / 4u);
 #pragma omp parallel for schedule(dynamic, 4)
     for (int by = 0; by < bh; ++by)
         for (int bx = 0; bx < bw; ++bx) {
@@ -501,8 +508,8 @@ sol_status sol_bc1_decode(const uint8_t *blocks, int width, int height, sol_imag
     sol_status st = sol_image_alloc(&image, width, height, 3);
     if (st)
         return st;
-    int bw = (width + 3) / 4;
-    for (int by = 0; by < (height + 3) / 4; ++by)
+    int bw = (int)(((unsigned)width + 3u) / 4u), bh = (int)(((unsigned)height + 3u) / 4u);
+    for (int by = 0; by < bh; ++by)
         for (int bx = 0; bx < bw; ++bx) {
             uint8_t rgba[16][4];
             sol_bc1_decode_block(blocks + ((size_t)by * (size_t)bw + (size_t)bx) * 8, rgba);

@@ -106,7 +106,9 @@ typedef struct sol_bc1_options {
     int iterations;        /* refinement rounds for PCA_REFINE / CLUSTER*; 0 = 4; max 64 */
 } sol_bc1_options;
 
-/* Bytes of the BC1 data of a width x height image: ceil(w/4) * ceil(h/4) * 8. 0 if w or h <= 0. */
+/* Bytes of the BC1 data of a width x height image: ceil(w/4) * ceil(h/4) * 8, computed without
+ * int overflow (INT_MAX x 1 gives 536870912 * 8). 0 if w or h <= 0, or if the size does not fit
+ * a size_t (only possible where size_t has 32 bits). */
 size_t sol_bc1_size(int width, int height);
 /* Encodes one 4x4 block of linear-in-storage values (whatever the texture stores, each in
  * [0,1], row-major texels, RGB). Always uses the four-color mode (c0 > c1) unless the block is one
