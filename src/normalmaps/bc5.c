@@ -349,15 +349,6 @@ sol_status sol_bc5_search_block(const double normals[16][3], const sol_bc5_range
 
 /* ---- the three encoders ---- */
 
-static int nearest(const double pal[8], double t)
-{
-    int best = 0;
-    for (int i = 1; i < 8; ++i)
-        if (fabs(pal[i] - t) < fabs(pal[best] - t))
-            best = i;
-    return best;
-}
-
 /* Common encoder: two independent least-squares BC4 blocks, indices by nearest component (T10). */
 static void encode_common(const double n[16][3], sol_bc4_precision precision, sol_bc5_block *out)
 {
@@ -375,8 +366,8 @@ static void encode_common(const double n[16][3], sol_bc4_precision precision, so
     out->y.e0 = (uint8_t)(py >> 8);
     out->y.e1 = (uint8_t)(py & 255);
     for (int p = 0; p < 16; ++p) {
-        out->x.index[p] = (uint8_t)nearest(cx.palettes[px], tx[p]);
-        out->y.index[p] = (uint8_t)nearest(cy.palettes[py], ty[p]);
+        out->x.index[p] = (uint8_t)sol_nm_nearest_index(cx.palettes[px], tx[p]);
+        out->y.index[p] = (uint8_t)sol_nm_nearest_index(cy.palettes[py], ty[p]);
     }
 }
 

@@ -36,6 +36,9 @@ int sol_nm_channel_argmin(const sol_nm_channel *ch, double *score);
  * out holds at least (e0_hi - e0_lo + 1) (e1_hi - e1_lo + 1) entries. */
 size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pair *out);
 
+/* Index of the palette entry nearest to t (the first on ties): BC4's per-value index choice. */
+int sol_nm_nearest_index(const double pal[8], double t);
+
 /* Validates and normalises 16 source normals. */
 sol_status sol_nm_unit_normals(const double in[16][3], double out[16][3]);
 
