@@ -322,6 +322,17 @@ Test(normalmaps, image_encode_is_independent_of_thread_count_and_decodes)
     omp_set_num_threads(threads);
     cr_assert_eq(memcmp(a, b, sizeof a), 0);
     cr_assert_eq(s1.candidates, s2.candidates);
+    cr_assert_eq(s1.max_block, s2.max_block);
+    cr_assert_eq(s1.max_block_candidates, s2.max_block_candidates);
+    cr_assert(s1.max_block >= 0 && s1.max_block < 8 && s1.max_block_candidates >= 1);
+    sol_bc5_block mb;
+    sol_bc5_info mi;
+    double mn[16][3];
+    for (int p = 0; p < 16; ++p)
+        for (int k = 0; k < 3; ++k)
+            mn[p][k] = sol_image_pixel(&img, 4 * (s1.max_block % 4) + (p & 3), 4 * (s1.max_block / 4) + (p >> 2))[k];
+    cr_assert_eq(sol_bc5_encode_block(mn, &o, &mb, &mi), SOL_OK);
+    cr_assert_eq(mi.candidates, s1.max_block_candidates); /* the costliest block, re-encoded alone */
     cr_assert_eq(s1.blocks, 8u);
     sol_image dec = {0};
     cr_assert_eq(sol_bc5_decode_image(a, 16, 8, SOL_BC4_INTERP_16BIT, &dec), SOL_OK);

@@ -267,11 +267,34 @@ static double combine(double sx, double sy, int use_max)
  * the search keeps only the first of each class in its visiting order, which is the candidate the
  * full enumeration would have kept (the first of a tied class is met first), so the result is the
  * same pair as without merging, at a fraction of the work. */
+static inline uint64_t value_bits(double v)
+{
+    uint64_t u;
+    memcpy(&u, &v, sizeof u);
+    return u;
+}
+
 typedef struct channel_key {
-    const double *t; /* targets */
-    unsigned loose;  /* rim pixels */
-    double budget;   /* T */
+    double t[16];  /* the distinct (target, loose) pixels: equal pixels give equal key parts */
+    int loose[16];
+    int count;
+    double budget; /* T */
 } channel_key;
+
+static void channel_key_init(channel_key *k, const double t[16], unsigned loose, double budget)
+{
+    k->count = 0;
+    k->budget = budget;
+    for (int p = 0; p < 16; ++p) {
+        int l = (loose >> p) & 1, seen = 0;
+        for (int q = 0; q < k->count && !seen; ++q)
+            seen = value_bits(k->t[q]) == value_bits(t[p]) && k->loose[q] == l;
+        if (!seen) {
+            k->t[k->count] = t[p];
+            k->loose[k->count++] = l;
+        }
+    }
+}
 
 static inline int usable_entry(double a, double t, int loose, double budget)
 {
@@ -304,18 +327,11 @@ static inline uint64_t mix64(uint64_t h, uint64_t v)
     return h * UINT64_C(0xBF58476D1CE4E5B9);
 }
 
-static inline uint64_t value_bits(double v)
-{
-    uint64_t u;
-    memcpy(&u, &v, sizeof u);
-    return u;
-}
-
 static uint64_t pair_key_hash(const channel_key *k, const double pal[8])
 {
     uint64_t h = 0;
-    for (int p = 0; p < 16; ++p) {
-        int loose = (k->loose >> p) & 1;
+    for (int p = 0; p < k->count; ++p) {
+        int loose = k->loose[p];
         h = mix64(h, value_bits(pal[seed_entry(pal, k->t[p])]));
         for (int e = 0; e < 8; ++e)
             if (usable_entry(pal[e], k->t[p], loose, k->budget))
@@ -327,8 +343,8 @@ static uint64_t pair_key_hash(const channel_key *k, const double pal[8])
 
 static int pair_key_equal(const channel_key *k, const double pa[8], const double pb[8])
 {
-    for (int p = 0; p < 16; ++p) {
-        int loose = (k->loose >> p) & 1;
+    for (int p = 0; p < k->count; ++p) {
+        int loose = k->loose[p];
         if (value_bits(pa[seed_entry(pa, k->t[p])]) != value_bits(pb[seed_entry(pb, k->t[p])]))
             return 0;
         int ea = 0, eb = 0;
@@ -472,7 +488,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
         qsort(ws->x, nx, sizeof *ws->x, compare_pairs);
         qsort(ws->y, ny, sizeof *ws->y, compare_pairs);
         if (nx > 1 && ny > 1 && nx * ny > 256) { /* merging pays only for long lists */
-            channel_key kx = {tx, loose, room}, ky = {ty, loose, room};
+            channel_key kx, ky;
+            channel_key_init(&kx, tx, loose, room);
+            channel_key_init(&ky, ty, loose, room);
             nx = merge_equivalent(ws->x, nx, &kx, pal, ws->slots);
             ny = merge_equivalent(ws->y, ny, &ky, pal, ws->slots);
         }
@@ -723,13 +741,16 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
         if (st != SOL_OK)
             return st;
     }
-    uint64_t searched = 0, candidates = 0, bounded = 0;
+    uint64_t searched = 0, candidates = 0, bounded = 0, max_cand = 0;
+    int max_block = -1;
     int failed = 0;
 #pragma omp parallel reduction(+ : searched, candidates, bounded) reduction(| : failed)
     {
         search_workspace ws = {0};
         if (o->encoder != SOL_BC5_COMMON && o->encoder != SOL_BC5_FAST && workspace_alloc(&ws) != SOL_OK)
             failed = 1;
+        uint64_t my_max = 0;
+        int my_block = -1;
 #pragma omp for schedule(dynamic, 16)
         for (int b = 0; b < nblocks; ++b) {
             if (failed)
@@ -744,6 +765,15 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
             searched += (uint64_t)info.searched;
             bounded += (uint64_t)info.bounded;
             candidates += info.candidates;
+            if (my_block < 0 || info.candidates > my_max) { /* blocks ascend within a thread */
+                my_max = info.candidates;
+                my_block = b;
+            }
+        }
+#pragma omp critical(sol_bc5_max_block)
+        if (my_block >= 0 && (max_block < 0 || my_max > max_cand || (my_max == max_cand && my_block < max_block))) {
+            max_cand = my_max;
+            max_block = my_block;
         }
         workspace_free(&ws);
     }
@@ -754,6 +784,8 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
         stats->searched_blocks = searched;
         stats->candidates = candidates;
         stats->bounded_blocks = bounded;
+        stats->max_block_candidates = max_cand;
+        stats->max_block = max_block;
     }
     return SOL_OK;
 }

@@ -180,6 +180,8 @@ typedef struct sol_bc5_image_stats {
     uint64_t searched_blocks;
     uint64_t candidates;
     uint64_t bounded_blocks; /* blocks whose search the work bound stopped (see work_limit) */
+    uint64_t max_block_candidates; /* the most candidates one block took, and that block (the */
+    int max_block;                 /* first such, row-major block index): the costliest block */
 } sol_bc5_image_stats;
 
 /* Encodes a 3-channel normal image (x, y, z per pixel; width and height multiples of 4) into
