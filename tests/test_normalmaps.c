@@ -322,6 +322,17 @@ Test(normalmaps, image_encode_is_independent_of_thread_count_and_decodes)
     omp_set_num_threads(threads);
     cr_assert_eq(memcmp(a, b, sizeof a), 0);
     cr_assert_eq(s1.candidates, s2.candidates);
+    cr_assert_eq(s1.max_block, s2.max_block);
+    cr_assert_eq(s1.max_block_candidates, s2.max_block_candidates);
+    cr_assert(s1.max_block >= 0 && s1.max_block < 8 && s1.max_block_candidates >= 1);
+    sol_bc5_block mb;
+    sol_bc5_info mi;
+    double mn[16][3];
+    for (int p = 0; p < 16; ++p)
+        for (int k = 0; k < 3; ++k)
+            mn[p][k] = sol_image_pixel(&img, 4 * (s1.max_block % 4) + (p & 3), 4 * (s1.max_block / 4) + (p >> 2))[k];
+    cr_assert_eq(sol_bc5_encode_block(mn, &o, &mb, &mi), SOL_OK);
+    cr_assert_eq(mi.candidates, s1.max_block_candidates); /* the costliest block, re-encoded alone */
     cr_assert_eq(s1.blocks, 8u);
     sol_image dec = {0};
     cr_assert_eq(sol_bc5_decode_image(a, 16, 8, SOL_BC4_INTERP_16BIT, &dec), SOL_OK);
@@ -360,4 +371,178 @@ Test(normalmaps, dds_writer_writes_an_ati2_header)
     cr_assert_eq(sol_dds_write_bc(path, blocks, 8, 6, 2), SOL_ERR_INVALID_ARG);
     cr_assert_eq(sol_dds_write_bc("/nonexistent/dir/x.dds", blocks, 8, 8, 2), SOL_ERR_IO);
     unlink(path);
+}
+
+/* Degenerate blocks (issue 12 item 4: a flat block took ~80 ms, an 8-bit flat block ~1.8 s, a block
+ * of z = -1 normals did not finish): decided with few candidates (the exactly tied anchor pairs
+ * merged into classes, or the hemisphere bound met), with the brute-force minimum's error. */
+Test(normalmaps, degenerate_blocks_are_decided_directly_and_exactly)
+{
+    const double flat8 = 128.0 / 127.5 - 1.0; /* code 128 of an 8-bit map */
+    const double targets[4][3] = {{0.0, 0.0, 1.0}, {flat8, flat8, 1.0}, {0.3, -0.2, 0.9327379053}, {1.0, 0.0, 0.0}};
+    for (int c = 0; c < 4; ++c)
+        for (int metric = 0; metric < 2; ++metric) {
+            double n[16][3];
+            for (int p = 0; p < 16; ++p)
+                for (int k = 0; k < 3; ++k)
+                    n[p][k] = targets[c][k];
+            sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = (sol_bc5_metric)metric};
+            sol_bc5_block b;
+            sol_bc5_info info;
+            cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+            cr_assert(info.candidates < 2000 && !info.bounded, "case %d: %llu candidates", c,
+                      (unsigned long long)info.candidates);
+            /* a window with many tied pairs: the search equals brute force there, and the full-range
+             * optimum is no worse than the window's */
+            sol_bc5_range r = {clamp_code(b.x.e0 - 3), clamp_code(b.x.e0 + 3), clamp_code(b.x.e1 - 3),
+                               clamp_code(b.x.e1 + 3), clamp_code(b.y.e0 - 3), clamp_code(b.y.e0 + 3),
+                               clamp_code(b.y.e1 - 3), clamp_code(b.y.e1 + 3)};
+            sol_bc5_info window;
+            sol_bc5_block wb;
+            cr_assert_eq(sol_bc5_search_block(n, &r, &o, &wb, &window), SOL_OK);
+            cr_assert_eq(window.error, bc5_brute_force(n, &r, &o), "case %d metric %d", c, metric);
+            cr_assert_eq(info.error, window.error, "case %d metric %d: the optimum lies in its own window", c, metric);
+        }
+    /* pointing straight away: every rim decode is pi/2 off, the hemisphere bound; met at once */
+    double n[16][3];
+    for (int p = 0; p < 16; ++p)
+        n[p][0] = 0.0, n[p][1] = 0.0, n[p][2] = -1.0;
+    sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL};
+    sol_bc5_block b;
+    sol_bc5_info info;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+    double sum = 0.0; /* accumulated as the objective is, pixel by pixel */
+    for (int p = 0; p < 16; ++p)
+        sum += M_PI_2 * M_PI_2;
+    cr_assert_eq(info.error, sum);
+    cr_assert(info.candidates <= 3 && !info.bounded);
+    o.metric = SOL_BC5_MAX;
+    cr_assert_eq(sol_bc5_search_block(n, NULL, &o, &b, &info), SOL_OK);
+    cr_assert_eq(info.error, M_PI_2);
+    /* the axis block of hard_cases (every 6-value x pair serves x = +-1): now full range */
+    for (int p = 0; p < 16; ++p) {
+        n[p][0] = p % 2 ? 1.0 : -1.0;
+        n[p][1] = -0.0;
+        n[p][2] = 0.0;
+    }
+    o.metric = SOL_BC5_SUM_SQUARED;
+    cr_assert_eq(sol_bc5_search_block(n, NULL, &o, &b, &info), SOL_OK);
+    cr_assert(!info.bounded && info.candidates < 200000, "%llu", (unsigned long long)info.candidates);
+    sol_bc5_range axis = {252, 255, 0, 3, 125, 130, 125, 130};
+    sol_bc5_info window;
+    sol_bc5_block wb;
+    cr_assert_eq(sol_bc5_search_block(n, &axis, &o, &wb, &window), SOL_OK);
+    cr_assert(info.error <= window.error);
+}
+
+/* The documented work bound: a block the bounds cannot separate (varied normals all pointing away,
+ * every candidate within 0.2% of the hemisphere bound) stops at its work_limit and says so. */
+Test(normalmaps, work_bound_stops_the_search_and_says_so)
+{
+    double n[16][3];
+    for (int p = 0; p < 16; ++p) {
+        double f = 2 * M_PI * p / 16;
+        n[p][0] = 0.1 * cos(f);
+        n[p][1] = 0.1 * sin(f);
+        n[p][2] = -1.0;
+    }
+    sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .work_limit = 100};
+    sol_bc5_block b;
+    sol_bc5_info info;
+    cr_assert_eq(sol_bc5_search_block(n, NULL, &o, &b, &info), SOL_OK);
+    cr_assert(info.bounded && info.candidates <= 100, "%llu", (unsigned long long)info.candidates);
+    cr_assert(info.candidates >= 3); /* 100 pixel evaluations: at least the 3 incumbents and a few more */
+    double own;
+    cr_assert_eq(sol_bc5_block_error(&b, n, o.precision, o.metric, &own), SOL_OK);
+    cr_assert_float_eq(own, info.error, 1e-12 * info.error);
+    cr_assert(info.error >= 16 * pow(asin(1.0 / sqrt(1.01)), 2)); /* the hemisphere bound */
+    o.work_limit = 0; /* the default bound */
+    cr_assert_eq(sol_bc5_search_block(n, NULL, &o, &b, &info), SOL_OK);
+    cr_assert(info.candidates <= SOL_BC5_DEFAULT_WORK_LIMIT);
+    /* images count the blocks the bound stopped */
+    sol_image img = {0};
+    cr_assert_eq(sol_image_alloc(&img, 4, 4, 3), SOL_OK);
+    for (int p = 0; p < 16; ++p)
+        for (int k = 0; k < 3; ++k)
+            sol_image_pixel(&img, p & 3, p >> 2)[k] = (float)n[p][k];
+    uint8_t blocks[16];
+    sol_bc5_image_stats st;
+    o.work_limit = 50;
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, blocks, &st), SOL_OK);
+    cr_assert_eq(st.bounded_blocks, 1u);
+    cr_assert(st.candidates <= 50);
+    sol_image_free(&img);
+}
+
+/* The usual fast BC4 encoder: anchors at the extremes, the mode of least 8-bit error. */
+Test(normalmaps, fast_bc4_encoder_takes_the_extremes_T10)
+{
+    double v[16];
+    sol_bc4_block b;
+    for (int p = 0; p < 16; ++p)
+        v[p] = 0.2 + 0.6 * p / 15.0; /* a ramp: 8-value mode, e0 = max code, e1 = min code */
+    cr_assert_eq(sol_bc4_encode_block_fast(v, &b), SOL_OK);
+    cr_assert_eq(b.e0, 204);
+    cr_assert_eq(b.e1, 51);
+    double pal[8];
+    cr_assert_eq(sol_bc4_palette(b.e0, b.e1, SOL_BC4_INTERP_8BIT, pal), SOL_OK);
+    for (int p = 0; p < 16; ++p)
+        for (int i = 0; i < 8; ++i)
+            cr_assert(fabs(pal[b.index[p]] - v[p]) <= fabs(pal[i] - v[p]));
+    /* exact 0 and 1 with a cluster in between: 6-value mode (its fixed entries serve 0 and 1) */
+    for (int p = 0; p < 16; ++p)
+        v[p] = p == 0 ? 0.0 : (p == 1 ? 1.0 : 0.5 + 0.01 * (p % 3));
+    cr_assert_eq(sol_bc4_encode_block_fast(v, &b), SOL_OK);
+    cr_assert(b.e0 <= b.e1 && b.e0 == 128 && b.e1 == 133, "%d %d", b.e0, b.e1);
+    cr_assert_eq(b.index[0], 6);
+    cr_assert_eq(b.index[1], 7);
+    /* constant block and the all-0/1 block: exact */
+    for (int p = 0; p < 16; ++p)
+        v[p] = 0.0;
+    cr_assert_eq(sol_bc4_encode_block_fast(v, &b), SOL_OK);
+    cr_assert_eq(sol_bc4_palette(b.e0, b.e1, SOL_BC4_INTERP_8BIT, pal), SOL_OK);
+    cr_assert_eq(pal[b.index[3]], 0.0);
+    for (int p = 0; p < 16; ++p)
+        v[p] = p & 1;
+    cr_assert_eq(sol_bc4_encode_block_fast(v, &b), SOL_OK);
+    cr_assert_eq(sol_bc4_palette(b.e0, b.e1, SOL_BC4_INTERP_8BIT, pal), SOL_OK);
+    for (int p = 0; p < 16; ++p)
+        cr_assert_eq(pal[b.index[p]], (double)(p & 1));
+    /* bad input: untouched output */
+    sol_bc4_block untouched = {.e0 = 9};
+    v[4] = NAN;
+    cr_assert_eq(sol_bc4_encode_block_fast(v, &untouched), SOL_ERR_NONFINITE);
+    v[4] = 1.0 + 1e-12;
+    cr_assert_eq(sol_bc4_encode_block_fast(v, &untouched), SOL_ERR_OUT_OF_RANGE);
+    v[4] = -5e-324; /* negative denormal */
+    cr_assert_eq(sol_bc4_encode_block_fast(v, &untouched), SOL_ERR_OUT_OF_RANGE);
+    cr_assert_eq(sol_bc4_encode_block_fast(NULL, &untouched), SOL_ERR_NULL_ARG);
+    cr_assert_eq(untouched.e0, 9);
+    /* as a BC5 encoder: never better than the optimum, same bytes for 1 and 2 threads */
+    double n[16][3];
+    random_block(n, 0.5, 0.1);
+    sol_bc5_options o = {.encoder = SOL_BC5_FAST};
+    sol_bc5_info fast, opt;
+    sol_bc5_block blk;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &blk, &fast), SOL_OK);
+    o.encoder = SOL_BC5_OPTIMAL;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &blk, &opt), SOL_OK);
+    cr_assert(opt.error <= fast.error && isfinite(fast.error));
+    sol_image img = {0};
+    cr_assert_eq(sol_image_alloc(&img, 16, 16, 3), SOL_OK);
+    for (int i = 0; i < 256; ++i) {
+        img.data[3 * i] = (float)(0.5 * sin(0.3 * i));
+        img.data[3 * i + 1] = (float)(0.4 * cos(0.17 * i));
+        img.data[3 * i + 2] = 0.7f;
+    }
+    uint8_t a[256], c[256];
+    o.encoder = SOL_BC5_FAST;
+    int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, a, NULL), SOL_OK);
+    omp_set_num_threads(2);
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, c, NULL), SOL_OK);
+    omp_set_num_threads(threads);
+    cr_assert_eq(memcmp(a, c, sizeof a), 0);
+    sol_image_free(&img);
 }

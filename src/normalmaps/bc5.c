@@ -42,7 +42,7 @@ static inline double decoded_angle(double a, double b, const double n[3])
  * Candidates are compared by the cosine of their angle. A candidate with x^2 + y^2 <= 1 decodes to
  * a unit vector whose chord to n satisfies chord^2 >= (a-nx)^2 + (b-ny)^2; one with z clamped has
  * chord^2 >= nz^2; either bound above the best chord^2 so far skips the candidate. */
-static double best_pixel(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
+static void best_pixel_index(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
 {
     double da[8], db[8];
     int i0 = 0, j0 = 0;
@@ -83,7 +83,13 @@ static double best_pixel(const double a[8], const double b[8], const double n[3]
     }
     *bi = best_i;
     *bj = best_j;
-    return decoded_angle(a[best_i], b[best_j], n);
+}
+
+/* The angle (radians) of best_pixel_index's choice. */
+static double best_pixel(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
+{
+    best_pixel_index(a, b, n, bi, bj);
+    return decoded_angle(a[*bi], b[*bj], n);
 }
 
 /* Block objective for palettes a, b (decoded units): sum dN^2 or max dN^2 over pixels with joint
@@ -106,17 +112,42 @@ static double joint_objective(const double a[8], const double b[8], const double
     return s;
 }
 
-/* joint_objective with the pixels visited in `order` (worst first, so that hopeless candidates stop
- * early). Its sum may differ from joint_objective's in the last bits, so the search only uses it to
- * reject, with a relative margin, and re-evaluates survivors with joint_objective. */
-static double joint_objective_ordered(const double a[8], const double b[8], const double n[16][3],
-                                      const int order[16], int use_max, double budget)
+/* A lower bound of the squared angle dN^2 of the decoded (a, b) against unit n, without atan2: the
+ * chord c between the unit directions gives dN = 2 asin(c / 2), so dN^2 >= c^2 + c^4 / 12 (all the
+ * series' terms are positive). c^2 is computed from components (no 2 - 2 cos cancellation); c is
+ * lowered by 1e-6 relative and 1e-15 absolute to cover its rounding and that of sol_angle3's atan2,
+ * so the bound stays below the computed angle squared. */
+static inline double angle2_lower_bound(double a, double b, const double n[3])
+{
+    double r2 = a * a + b * b, c2;
+    if (r2 <= 1.0) {
+        double z = sqrt(1.0 - r2);
+        /* z - nz = (nx^2 + ny^2 - a^2 - b^2) / (z + nz) for unit n, accurate when z ~ nz */
+        double dz = z + n[2] > 0.0 ? (n[0] * n[0] + n[1] * n[1] - r2) / (z + n[2]) : z - n[2];
+        c2 = (a - n[0]) * (a - n[0]) + (b - n[1]) * (b - n[1]) + dz * dz;
+    } else {
+        double inv = 1.0 / sqrt(r2);
+        c2 = (a * inv - n[0]) * (a * inv - n[0]) + (b * inv - n[1]) * (b * inv - n[1]) + n[2] * n[2];
+    }
+    double c = sqrt(c2) * (1.0 - 1e-6) - 1e-15; /* relative and absolute rounding of c and of dN */
+    return c > 0.0 ? c * c * (1.0 + c * c / 12.0) : 0.0;
+}
+
+/* A lower bound of the joint objective with the pixels visited in `order` (worst first, so that
+ * hopeless candidates stop early): each pixel's jointly best index pair (the same choice as
+ * best_pixel), its dN^2 bounded below by angle2_lower_bound. The search rejects a candidate when
+ * this reaches the incumbent and re-evaluates survivors exactly with joint_objective. */
+static double joint_objective_lower(const double a[8], const double b[8], const double n[16][3],
+                                    const int order[16], int use_max, double budget, uint64_t *work)
 {
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
+        ++*work;
         int i, j;
-        double e = best_pixel(a, b, n[order[k]], &i, &j);
-        s = use_max ? (e * e > s ? e * e : s) : s + e * e;
+        const double *np = n[order[k]];
+        best_pixel_index(a, b, np, &i, &j);
+        double e2 = angle2_lower_bound(a[i], b[j], np);
+        s = use_max ? (e2 > s ? e2 : s) : s + e2;
         if (s >= budget)
             return s;
     }
@@ -126,9 +157,14 @@ static double joint_objective_ordered(const double a[8], const double b[8], cons
 static sol_status check_options(const sol_bc5_options *o)
 {
     if ((unsigned)o->precision >= SOL_BC4_PRECISION_COUNT || (unsigned)o->metric > SOL_BC5_MAX ||
-        (unsigned)o->encoder > SOL_BC5_ADAPTIVE || !isfinite(o->threshold_deg) || o->threshold_deg < 0.0)
+        (unsigned)o->encoder > SOL_BC5_FAST || !isfinite(o->threshold_deg) || o->threshold_deg < 0.0)
         return SOL_ERR_INVALID_ARG;
     return SOL_OK;
+}
+
+static uint64_t work_limit(const sol_bc5_options *o)
+{
+    return o->work_limit ? o->work_limit : SOL_BC5_DEFAULT_WORK_LIMIT;
 }
 
 static double metric_value(double internal, sol_bc5_metric metric)
@@ -198,9 +234,11 @@ sol_status sol_bc5_choose_indices(sol_bc5_block *block, const double normals[16]
 
 /* ---- the exact joint search ---- */
 
-/* Scratch lists of anchor pairs, one per channel; reused across the blocks of one thread. */
+/* Scratch of one thread, reused across its blocks: the lists of anchor pairs of each channel and
+ * a hash table (list positions + 1) for merging equivalent pairs. */
 typedef struct search_workspace {
     sol_nm_pair *x, *y;
+    uint32_t *slots; /* 2 * 65536 entries */
 } search_workspace;
 
 static int compare_pairs(const void *pa, const void *pb)
@@ -216,18 +254,192 @@ static double combine(double sx, double sy, int use_max)
     return use_max ? (sx > sy ? sx : sy) : sx + sy;
 }
 
+/* ---- equivalent anchor pairs (exact ties decided without enumerating them) ----
+ *
+ * Within a budget T >= the incumbent, a candidate can only reach the incumbent if every pixel's
+ * chosen entry a has (a - t_p)^2 <= T (tight pixels: dN^2 >= chord^2 >= (a - t_p)^2, and a clamped
+ * decode has dN^2 >= nz^2 > T) or, on rim pixels, the loose distance of t_p to [a / sqrt 2, a] within
+ * sqrt T. Call those entries usable. best_pixel's choice is the first entry pair of largest cosine in
+ * a fixed visiting order (seed pair first), and depends only on entry values; so two pairs of one
+ * channel whose seeds (nearest entry) and usable entries, in palette order, have bit-identical values
+ * on every pixel give every candidate the same objective whenever it can reach T. Flat blocks have
+ * hundreds of such pairs per channel (different anchors spanning the same value near the target);
+ * the search keeps only the first of each class in its visiting order, which is the candidate the
+ * full enumeration would have kept (the first of a tied class is met first), so the result is the
+ * same pair as without merging, at a fraction of the work. */
+static inline uint64_t value_bits(double v)
+{
+    uint64_t u;
+    memcpy(&u, &v, sizeof u);
+    return u;
+}
+
+typedef struct channel_key {
+    double t[16];  /* the distinct (target, loose) pixels: equal pixels give equal key parts */
+    int loose[16];
+    int count;
+    double budget; /* T */
+} channel_key;
+
+static void channel_key_init(channel_key *k, const double t[16], unsigned loose, double budget)
+{
+    k->count = 0;
+    k->budget = budget;
+    for (int p = 0; p < 16; ++p) {
+        int l = (loose >> p) & 1, seen = 0;
+        for (int q = 0; q < k->count && !seen; ++q)
+            seen = value_bits(k->t[q]) == value_bits(t[p]) && k->loose[q] == l;
+        if (!seen) {
+            k->t[k->count] = t[p];
+            k->loose[k->count++] = l;
+        }
+    }
+}
+
+static inline int usable_entry(double a, double t, int loose, double budget)
+{
+    double d = a - t;
+    if (loose) {
+        double b = a * (1.0 / M_SQRT2), lo = a < b ? a : b, hi = a < b ? b : a;
+        d = t < lo ? lo - t : (t > hi ? t - hi : 0.0);
+    }
+    return d * d <= budget;
+}
+
+/* The entry best_pixel seeds a pixel with: the first of least (a - t)^2. */
+static inline int seed_entry(const double pal[8], double t)
+{
+    int i0 = 0;
+    double d0 = (pal[0] - t) * (pal[0] - t);
+    for (int k = 1; k < 8; ++k) {
+        double d = (pal[k] - t) * (pal[k] - t);
+        if (d < d0) {
+            d0 = d;
+            i0 = k;
+        }
+    }
+    return i0;
+}
+
+static inline uint64_t mix64(uint64_t h, uint64_t v)
+{
+    h ^= v + UINT64_C(0x9E3779B97F4A7C15) + (h << 6) + (h >> 2);
+    return h * UINT64_C(0xBF58476D1CE4E5B9);
+}
+
+static uint64_t pair_key_hash(const channel_key *k, const double pal[8])
+{
+    uint64_t h = 0;
+    for (int p = 0; p < k->count; ++p) {
+        int loose = k->loose[p];
+        h = mix64(h, value_bits(pal[seed_entry(pal, k->t[p])]));
+        for (int e = 0; e < 8; ++e)
+            if (usable_entry(pal[e], k->t[p], loose, k->budget))
+                h = mix64(h, value_bits(pal[e]));
+        h = mix64(h, 0x5eed);
+    }
+    return h;
+}
+
+static int pair_key_equal(const channel_key *k, const double pa[8], const double pb[8])
+{
+    for (int p = 0; p < k->count; ++p) {
+        int loose = k->loose[p];
+        if (value_bits(pa[seed_entry(pa, k->t[p])]) != value_bits(pb[seed_entry(pb, k->t[p])]))
+            return 0;
+        int ea = 0, eb = 0;
+        for (;;) {
+            while (ea < 8 && !usable_entry(pa[ea], k->t[p], loose, k->budget))
+                ++ea;
+            while (eb < 8 && !usable_entry(pb[eb], k->t[p], loose, k->budget))
+                ++eb;
+            if (ea == 8 || eb == 8) {
+                if (ea != eb)
+                    return 0;
+                break;
+            }
+            if (value_bits(pa[ea++]) != value_bits(pb[eb++]))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* Keeps the first pair of each equivalence class of a sorted list (in place); returns the count. */
+static size_t merge_equivalent(sol_nm_pair *list, size_t count, const channel_key *k, const double (*pal)[8],
+                               uint32_t *slots)
+{
+    size_t size = 64;
+    while (size < 2 * count)
+        size *= 2;
+    memset(slots, 0, size * sizeof *slots);
+    size_t kept = 0;
+    for (size_t i = 0; i < count; ++i) {
+        const double *a = pal[list[i].pair];
+        size_t h = (size_t)pair_key_hash(k, a) & (size - 1);
+        int dup = 0;
+        for (; slots[h]; h = (h + 1) & (size - 1))
+            if (pair_key_equal(k, pal[list[slots[h] - 1].pair], a)) {
+                dup = 1;
+                break;
+            }
+        if (dup)
+            continue;
+        list[kept] = list[i];
+        slots[h] = (uint32_t)++kept;
+    }
+    return kept;
+}
+
+/* Lower bound of every candidate's objective from the hemisphere alone: a decoded normal has
+ * z >= 0, so dN_p >= asin(-nz_p) where nz_p < 0. A block of normals pointing straight away (0, 0, -1)
+ * reaches it (dN = pi / 2 at every rim decode), and is decided by it at once. */
+static double hemisphere_bound(const double n[16][3], int use_max)
+{
+    double s = 0.0;
+    for (int p = 0; p < 16; ++p) {
+        double e = n[p][2] < 0.0 ? asin(-n[p][2]) : 0.0;
+        s = use_max ? (e * e > s ? e * e : s) : s + e * e;
+    }
+    return s;
+}
+
+static int pair_in_range(int pair, uint8_t e0_lo, uint8_t e0_hi, uint8_t e1_lo, uint8_t e1_hi)
+{
+    int e0 = pair >> 8, e1 = pair & 255;
+    return e0 >= e0_lo && e0 <= e0_hi && e1 >= e1_lo && e1 <= e1_hi;
+}
+
+/* What search_unit is asked: range, precision, metric, work bound, optional first incumbent. */
+typedef struct search_request {
+    const sol_bc5_range *range;
+    sol_bc4_precision precision;
+    int use_max;
+    uint64_t work_limit;
+    int start_x, start_y; /* anchor pairs tried as incumbent before the search, -1 = none */
+} search_request;
+
 /* Branch and bound over (x pair, y pair) inside the range, for unit normals n.
- * 1. Incumbent: the per-channel least-squares pairs (the common anchors) with joint indices.
+ * 1. Incumbent: the best (first on ties) of the per-channel least-squares pairs (the common
+ *    anchors), the request's start pairs, and the full-span 6-value pairs (0, 255) whose entries
+ *    -1 and +1 reach the rim, all with joint indices. If it meets hemisphere_bound it is optimal.
  * 2. Bound: for a candidate whose pixels all decode with x^2 + y^2 <= 1, dN_p^2 >= chord_p^2 >=
  *    min_a (a - nx_p)^2 + min_b (b - ny_p)^2, so the objective >= SX + SY (sum) or max(SX, SY) (max),
  *    with SX, SY the per-channel scores. A pixel decoding with z clamped to 0 has dN_p^2 >= chord^2
  *    >= nz_p^2, so where nz_p^2 exceeds the incumbent such a decode cannot win and the tight term is
  *    a valid bound; rim pixels (nz_p^2 <= incumbent) take the loose term, valid in every case.
  * 3. Lists of the pairs of each channel whose score leaves room under the incumbent, sorted by
- *    score; the double loop stops as soon as the combined bound reaches the incumbent. */
-static void search_unit(const double n[16][3], const sol_bc5_range *r, sol_bc4_precision precision, int use_max,
-                        search_workspace *ws, sol_bc5_block *out, sol_bc5_info *info)
+ *    score, equivalent pairs merged (see above); the double loop stops as soon as the combined bound
+ *    reaches the incumbent. Each candidate is first rejected, if it can be, by a lower bound of its
+ *    objective without atan2 (joint_objective_lower), and evaluated exactly only if it survives.
+ * 4. Work bound: after work_limit pixel evaluations (one pixel of one candidate, bounded or exact)
+ *    the search stops with the best found (info->bounded = 1). */
+static void search_unit(const double n[16][3], const search_request *rq, search_workspace *ws, sol_bc5_block *out,
+                        sol_bc5_info *info)
 {
+    const sol_bc5_range *r = rq->range;
+    const sol_bc4_precision precision = rq->precision;
+    const int use_max = rq->use_max;
     double tx[16], ty[16], min_nz2 = INFINITY;
     for (int p = 0; p < 16; ++p) {
         tx[p] = n[p][0];
@@ -242,9 +454,26 @@ static void search_unit(const double n[16][3], const sol_bc5_range *r, sol_bc4_p
     const double(*pal)[8] = cx.palettes;
     double best = joint_objective(pal[px], pal[py], n, use_max, INFINITY, NULL, NULL);
     uint64_t candidates = 1;
-    if (best > 0.0) {
+    /* other incumbents: the caller's start, then the full-span 6-value pairs (rim decodes) */
+    const int starts[2][2] = {{rq->start_x, rq->start_y}, {0x00ff, 0x00ff}};
+    for (int s = 0; s < 2; ++s) {
+        int sx = starts[s][0], sy = starts[s][1];
+        if (sx < 0 || sy < 0 || !pair_in_range(sx, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi) ||
+            !pair_in_range(sy, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi))
+            continue;
+        ++candidates;
+        double v = joint_objective(pal[sx], pal[sy], n, use_max, best, NULL, NULL);
+        if (v < best) {
+            best = v;
+            px = sx;
+            py = sy;
+        }
+    }
+    int bounded = 0;
+    uint64_t work = 0; /* pixel evaluations of candidates */
+    if (best > 0.0 && best > hemisphere_bound(n, use_max)) {
+        unsigned loose = 0;
         if (best * (1.0 + BOUND_SLACK) >= min_nz2) { /* rim pixels: loose bounds for them */
-            unsigned loose = 0;
             for (int p = 0; p < 16; ++p)
                 if (n[p][2] * n[p][2] <= best * (1.0 + BOUND_SLACK))
                     loose |= 1u << p;
@@ -258,6 +487,13 @@ static void search_unit(const double n[16][3], const sol_bc5_range *r, sol_bc4_p
         size_t ny = sol_nm_channel_collect(&cy, use_max ? room : room - sx_min * (1.0 - BOUND_SLACK), ws->y);
         qsort(ws->x, nx, sizeof *ws->x, compare_pairs);
         qsort(ws->y, ny, sizeof *ws->y, compare_pairs);
+        if (nx > 1 && ny > 1 && nx * ny > 256) { /* merging pays only for long lists */
+            channel_key kx, ky;
+            channel_key_init(&kx, tx, loose, room);
+            channel_key_init(&ky, ty, loose, room);
+            nx = merge_equivalent(ws->x, nx, &kx, pal, ws->slots);
+            ny = merge_equivalent(ws->y, ny, &ky, pal, ws->slots);
+        }
         /* visit pixels worst-first (by the incumbent's per-pixel error) when rejecting candidates */
         int order[16];
         double pixel_err[16];
@@ -272,17 +508,22 @@ static void search_unit(const double n[16][3], const sol_bc5_range *r, sol_bc4_p
                 order[q] = order[q - 1];
                 order[q - 1] = t;
             }
-        for (size_t i = 0; i < nx && ny > 0; ++i) {
+        for (size_t i = 0; i < nx && ny > 0 && !bounded; ++i) {
             if (combine(ws->x[i].score, ws->y[0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                 break;
             const double *a = pal[ws->x[i].pair];
             for (size_t j = 0; j < ny; ++j) {
                 if (combine(ws->x[i].score, ws->y[j].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                     break;
+                if (work >= rq->work_limit) {
+                    bounded = 1;
+                    break;
+                }
                 ++candidates;
                 double margin = best * (1.0 + BOUND_SLACK);
-                if (joint_objective_ordered(a, pal[ws->y[j].pair], n, order, use_max, margin) >= margin)
+                if (joint_objective_lower(a, pal[ws->y[j].pair], n, order, use_max, margin, &work) >= margin)
                     continue;
+                work += 16;
                 double v = joint_objective(a, pal[ws->y[j].pair], n, use_max, best, NULL, NULL);
                 if (v < best) {
                     best = v;
@@ -301,6 +542,7 @@ static void search_unit(const double n[16][3], const sol_bc5_range *r, sol_bc4_p
         info->error = metric_value(check, use_max ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED);
         info->searched = 1;
         info->candidates = candidates;
+        info->bounded = bounded;
     }
 }
 
@@ -308,9 +550,11 @@ static sol_status workspace_alloc(search_workspace *ws)
 {
     ws->x = malloc(65536 * sizeof *ws->x);
     ws->y = malloc(65536 * sizeof *ws->y);
-    if (!ws->x || !ws->y) {
+    ws->slots = malloc(2 * 65536 * sizeof *ws->slots);
+    if (!ws->x || !ws->y || !ws->slots) {
         free(ws->x);
         free(ws->y);
+        free(ws->slots);
         return SOL_ERR_NO_MEMORY;
     }
     return SOL_OK;
@@ -320,6 +564,7 @@ static void workspace_free(search_workspace *ws)
 {
     free(ws->x);
     free(ws->y);
+    free(ws->slots);
 }
 
 static const sol_bc5_range full_range = {0, 255, 0, 255, 0, 255, 0, 255};
@@ -342,21 +587,13 @@ sol_status sol_bc5_search_block(const double normals[16][3], const sol_bc5_range
     search_workspace ws;
     if ((st = workspace_alloc(&ws)) != SOL_OK)
         return st;
-    search_unit(n, r, o->precision, o->metric == SOL_BC5_MAX, &ws, out, info);
+    search_request rq = {r, o->precision, o->metric == SOL_BC5_MAX, work_limit(o), -1, -1};
+    search_unit(n, &rq, &ws, out, info);
     workspace_free(&ws);
     return SOL_OK;
 }
 
 /* ---- the three encoders ---- */
-
-static int nearest(const double pal[8], double t)
-{
-    int best = 0;
-    for (int i = 1; i < 8; ++i)
-        if (fabs(pal[i] - t) < fabs(pal[best] - t))
-            best = i;
-    return best;
-}
 
 /* Common encoder: two independent least-squares BC4 blocks, indices by nearest component (T10). */
 static void encode_common(const double n[16][3], sol_bc4_precision precision, sol_bc5_block *out)
@@ -375,8 +612,8 @@ static void encode_common(const double n[16][3], sol_bc4_precision precision, so
     out->y.e0 = (uint8_t)(py >> 8);
     out->y.e1 = (uint8_t)(py & 255);
     for (int p = 0; p < 16; ++p) {
-        out->x.index[p] = (uint8_t)nearest(cx.palettes[px], tx[p]);
-        out->y.index[p] = (uint8_t)nearest(cy.palettes[py], ty[p]);
+        out->x.index[p] = (uint8_t)sol_nm_nearest_index(cx.palettes[px], tx[p]);
+        out->y.index[p] = (uint8_t)sol_nm_nearest_index(cy.palettes[py], ty[p]);
     }
 }
 
@@ -403,8 +640,25 @@ static void encode_unit(const double n[16][3], const sol_bc5_options *o, search_
                         sol_bc5_block *out, sol_bc5_info *info)
 {
     int use_max = o->metric == SOL_BC5_MAX;
+    if (o->encoder == SOL_BC5_FAST) {
+        double tx[16], ty[16];
+        for (int p = 0; p < 16; ++p) {
+            tx[p] = n[p][0];
+            ty[p] = n[p][1];
+        }
+        sol_nm_bc4_fast(tx, &out->x);
+        sol_nm_bc4_fast(ty, &out->y);
+        if (info) {
+            info->error = metric_value(own_index_objective(out, n, o->precision, use_max), o->metric);
+            info->searched = 0;
+            info->candidates = 1;
+            info->bounded = 0;
+        }
+        return;
+    }
     if (o->encoder == SOL_BC5_OPTIMAL) {
-        search_unit(n, &full_range, o->precision, use_max, ws, out, info);
+        search_request rq = {&full_range, o->precision, use_max, work_limit(o), -1, -1};
+        search_unit(n, &rq, ws, out, info);
         return;
     }
     sol_bc5_block common;
@@ -418,6 +672,7 @@ static void encode_unit(const double n[16][3], const sol_bc5_options *o, search_
             info->error = metric_value(err, o->metric);
             info->searched = 0;
             info->candidates = 1;
+            info->bounded = 0;
         }
         return;
     }
@@ -425,7 +680,8 @@ static void encode_unit(const double n[16][3], const sol_bc5_options *o, search_
     sol_bc5_range r = {clamp_code(common.x.e0 - w), clamp_code(common.x.e0 + w), clamp_code(common.x.e1 - w),
                        clamp_code(common.x.e1 + w), clamp_code(common.y.e0 - w), clamp_code(common.y.e0 + w),
                        clamp_code(common.y.e1 - w), clamp_code(common.y.e1 + w)};
-    search_unit(n, &r, o->precision, use_max, ws, out, info);
+    search_request rq = {&r, o->precision, use_max, work_limit(o), -1, -1};
+    search_unit(n, &rq, ws, out, info);
 }
 
 sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_options *options, sol_bc5_block *out,
@@ -442,7 +698,7 @@ sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_optio
     if (st != SOL_OK)
         return st;
     search_workspace ws = {0};
-    if (o->encoder != SOL_BC5_COMMON && (st = workspace_alloc(&ws)) != SOL_OK)
+    if (o->encoder != SOL_BC5_COMMON && o->encoder != SOL_BC5_FAST && (st = workspace_alloc(&ws)) != SOL_OK)
         return st;
     encode_unit(n, o, &ws, out, info);
     workspace_free(&ws);
@@ -485,13 +741,16 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
         if (st != SOL_OK)
             return st;
     }
-    uint64_t searched = 0, candidates = 0;
+    uint64_t searched = 0, candidates = 0, bounded = 0, max_cand = 0;
+    int max_block = -1;
     int failed = 0;
-#pragma omp parallel reduction(+ : searched, candidates) reduction(| : failed)
+#pragma omp parallel reduction(+ : searched, candidates, bounded) reduction(| : failed)
     {
         search_workspace ws = {0};
-        if (o->encoder != SOL_BC5_COMMON && workspace_alloc(&ws) != SOL_OK)
+        if (o->encoder != SOL_BC5_COMMON && o->encoder != SOL_BC5_FAST && workspace_alloc(&ws) != SOL_OK)
             failed = 1;
+        uint64_t my_max = 0;
+        int my_block = -1;
 #pragma omp for schedule(dynamic, 16)
         for (int b = 0; b < nblocks; ++b) {
             if (failed)
@@ -500,11 +759,21 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
             gather_block(normals, b % bw, b / bw, raw);
             sol_nm_unit_normals(raw, n);
             sol_bc5_block block;
-            sol_bc5_info info;
-            encode_unit(n, o, &ws, &block, &info);
+            sol_bc5_info info = {0.0, 0, 1, 0};
+            encode_unit(n, o, &ws, &block, o->encoder == SOL_BC5_FAST ? NULL : &info); /* fast: no error needed */
             pack_block(&block, blocks + 16 * (size_t)b);
             searched += (uint64_t)info.searched;
+            bounded += (uint64_t)info.bounded;
             candidates += info.candidates;
+            if (my_block < 0 || info.candidates > my_max) { /* blocks ascend within a thread */
+                my_max = info.candidates;
+                my_block = b;
+            }
+        }
+#pragma omp critical(sol_bc5_max_block)
+        if (my_block >= 0 && (max_block < 0 || my_max > max_cand || (my_max == max_cand && my_block < max_block))) {
+            max_cand = my_max;
+            max_block = my_block;
         }
         workspace_free(&ws);
     }
@@ -514,6 +783,9 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
         stats->blocks = (uint64_t)nblocks;
         stats->searched_blocks = searched;
         stats->candidates = candidates;
+        stats->bounded_blocks = bounded;
+        stats->max_block_candidates = max_cand;
+        stats->max_block = max_block;
     }
     return SOL_OK;
 }

@@ -36,6 +36,12 @@ int sol_nm_channel_argmin(const sol_nm_channel *ch, double *score);
  * out holds at least (e0_hi - e0_lo + 1) (e1_hi - e1_lo + 1) entries. */
 size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pair *out);
 
+/* Index of the palette entry nearest to t (the first on ties): BC4's per-value index choice. */
+int sol_nm_nearest_index(const double pal[8], double t);
+
+/* The fast BC4 encoder (bc4_fast.c) on targets in decoded units [-1, 1]. */
+void sol_nm_bc4_fast(const double t[16], sol_bc4_block *out);
+
 /* Validates and normalises 16 source normals. */
 sol_status sol_nm_unit_normals(const double in[16][3], double out[16][3]);
 

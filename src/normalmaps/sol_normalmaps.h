@@ -73,6 +73,15 @@ sol_status sol_bc4_unpack(const uint8_t in[8], sol_bc4_block *out);
 sol_status sol_bc4_encode_block(const double values[16], sol_bc4_precision precision, sol_bc4_block *out,
                                 double *squared_error);
 
+/* The usual fast BC4 encoder (the DXT5 alpha-block encoder of libsquish and NVIDIA Texture Tools'
+ * fast path, the talk's "usual" per-channel encoder): anchors at the block's extreme codes, in
+ * 8-value mode (e0 = largest, e1 = smallest) or 6-value mode (e0 = smallest, e1 = largest of the
+ * values other than 0 and 255, which the mode's fixed entries serve), whichever has the smaller
+ * squared error under 8-bit interpolation; each value takes its nearest entry (first on ties).
+ * One pass, no anchor search: not least-squares optimal. values in [0,1], else
+ * SOL_ERR_OUT_OF_RANGE; NaN/Inf: SOL_ERR_NONFINITE. */
+sol_status sol_bc4_encode_block_fast(const double values[16], sol_bc4_block *out);
+
 /* ---- BC5 (3Dc) ---- */
 
 typedef struct sol_bc5_block {
@@ -87,7 +96,8 @@ typedef enum sol_bc5_metric {
 typedef enum sol_bc5_encoder {
     SOL_BC5_COMMON = 0, /* x and y as two independent least-squares BC4 blocks (T10 "usual") */
     SOL_BC5_OPTIMAL,    /* joint anchors and indices minimising the block's angular error (T10/T11) */
-    SOL_BC5_ADAPTIVE    /* common, then if above the threshold a window search around it (T13) */
+    SOL_BC5_ADAPTIVE,   /* common, then if above the threshold a window search around it (T13) */
+    SOL_BC5_FAST        /* x and y as two sol_bc4_encode_block_fast blocks (libsquish-style usual) */
 } sol_bc5_encoder;
 
 typedef struct sol_bc5_options {
@@ -101,7 +111,15 @@ typedef struct sol_bc5_options {
     /* Adaptive: search only blocks whose common RMS angular error (sqrt(mean dN^2), or max dN for
      * SOL_BC5_MAX) exceeds this many degrees. 0 = search every block. */
     double threshold_deg;
+    /* Optimal and adaptive: work bound per block, in pixel evaluations (one pixel's jointly best
+     * index pair for one candidate; a candidate costs 1 to 32). A search that reaches it stops with
+     * the best block found so far and reports info->bounded = 1 (the result is then not proven
+     * optimal). 0 = SOL_BC5_DEFAULT_WORK_LIMIT, about 0.5-1 s of one core; the hardest ordinary
+     * blocks of the benchmark maps need well under a tenth of it. */
+    uint64_t work_limit;
 } sol_bc5_options;
+
+#define SOL_BC5_DEFAULT_WORK_LIMIT (UINT64_C(1) << 21)
 
 /* Anchor ranges for sol_bc5_search_block: each anchor code in [lo, hi] (inclusive). */
 typedef struct sol_bc5_range {
@@ -115,6 +133,7 @@ typedef struct sol_bc5_info {
     double error;
     int searched;
     uint64_t candidates;
+    int bounded; /* 1 if the work bound (work_limit) stopped the search before its proof */
 } sol_bc5_info;
 
 /* Decodes a block to 16 normals (x, y, z), z = sqrt(max(0, 1 - x^2 - y^2)). The result is NOT
@@ -138,12 +157,20 @@ sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_optio
 /* The exact minimum of the joint objective (sol_bc5_choose_indices) over all anchors inside
  * `range` (NULL = all 2^32 anchor combinations), by branch and bound: separable lower bounds
  * sum_p min_a (a - Nx_p)^2 + min_b (b - Ny_p)^2 <= sum_p chord_p^2 <= sum_p dN_p^2 (and their max
- * forms) over anchor pairs sorted by bound. Only options->precision and ->metric are used.
- * Ties: the first minimiser found (its error equals the literal brute force's minimum exactly).
- * Cost: a few hundred microseconds to tens of milliseconds per block on smooth to creased maps;
- * much more where the bounds are weak - rim normals (z ~ 0) with many exactly tied anchor pairs, or
- * a normal with z < 0 (its large error makes every bound loose). SOL_ERR_INVALID_ARG if a range has
- * lo > hi. */
+ * forms) over anchor pairs sorted by bound; each candidate is rejected through a lower bound of its
+ * angles (from chords, no atan2) before an exact evaluation. Only options->precision, ->metric and
+ * ->work_limit are used.
+ * Ties: the first minimiser in the search order (incumbents - the common anchors, then the
+ * full-span 6-value pairs (0, 255) - then x pairs by increasing bound and code, y pairs likewise);
+ * its error equals the literal brute force's minimum exactly. Exactly tied anchor pairs (a flat
+ * block has hundreds per channel: anchors whose palettes hold the same values near the targets)
+ * are recognised as one class and evaluated once, which does not change the result.
+ * Degenerate blocks are decided at once: flat or all-equal blocks (ties merged), normals pointing
+ * straight away (0, 0, -1) (the incumbent meets the hemisphere bound asin(-z)). Cost: about 0.1-50 ms
+ * per block on smooth to creased maps; the work bound (work_limit) caps the rest - near-ties
+ * the bounds cannot separate, e.g. a block of varied normals all pointing away (z < 0), where
+ * info->bounded reports that the result is the best found, not a proven optimum.
+ * SOL_ERR_INVALID_ARG if a range has lo > hi. */
 sol_status sol_bc5_search_block(const double normals[16][3], const sol_bc5_range *range,
                                 const sol_bc5_options *options, sol_bc5_block *out, sol_bc5_info *info);
 
@@ -152,6 +179,9 @@ typedef struct sol_bc5_image_stats {
     uint64_t blocks;
     uint64_t searched_blocks;
     uint64_t candidates;
+    uint64_t bounded_blocks; /* blocks whose search the work bound stopped (see work_limit) */
+    uint64_t max_block_candidates; /* the most candidates one block took, and that block (the */
+    int max_block;                 /* first such, row-major block index): the costliest block */
 } sol_bc5_image_stats;
 
 /* Encodes a 3-channel normal image (x, y, z per pixel; width and height multiples of 4) into

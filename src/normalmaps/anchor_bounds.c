@@ -1,0 +1,262 @@
+/* anchor_bounds.c - per-channel scoring of BC4 anchor pairs against target components, and the
+ * enumeration of the pairs whose score fits a budget: the separable lower bounds of the joint BC5
+ * search (bc5.c) and the exact least-squares BC4 search (bc4.c). */
+#include "normalmaps_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+/* ---- per-channel scoring ---- */
+
+void sol_nm_channel_init(sol_nm_channel *ch, const double t[16], sol_bc4_precision precision, int use_max,
+                         unsigned loose, uint8_t e0_lo, uint8_t e0_hi, uint8_t e1_lo, uint8_t e1_hi)
+{
+    memcpy(ch->t, t, sizeof ch->t);
+    ch->palettes = sol_nm_palettes(precision);
+    ch->precision = precision;
+    ch->use_max = use_max;
+    ch->loose = (uint16_t)loose;
+    ch->e0_lo = e0_lo;
+    ch->e0_hi = e0_hi;
+    ch->e1_lo = e1_lo;
+    ch->e1_hi = e1_hi;
+    /* Order: smallest, largest, then by decreasing distance from the mean - the pixels most likely
+     * to be far from a poor palette come first. */
+    double mean = 0.0;
+    for (int p = 0; p < 16; ++p)
+        mean += t[p];
+    mean /= 16.0;
+    int lo = 0, hi = 0;
+    for (int p = 1; p < 16; ++p) {
+        if (t[p] < t[lo])
+            lo = p;
+        if (t[p] > t[hi])
+            hi = p;
+    }
+    int n = 0, used[16] = {0};
+    ch->order[n++] = lo;
+    used[lo] = 1;
+    if (!used[hi]) {
+        ch->order[n++] = hi;
+        used[hi] = 1;
+    }
+    while (n < 16) {
+        int best = -1;
+        for (int p = 0; p < 16; ++p)
+            if (!used[p] && (best < 0 || fabs(t[p] - mean) > fabs(t[best] - mean)))
+                best = p;
+        ch->order[n++] = best;
+        used[best] = 1;
+    }
+}
+
+static inline double term_tight(const double pal[8], double t)
+{
+    double m = (pal[0] - t) * (pal[0] - t);
+    for (int i = 1; i < 8; ++i) {
+        double d = (pal[i] - t) * (pal[i] - t);
+        m = d < m ? d : m;
+    }
+    return m;
+}
+
+/* Distance^2 from t to the interval between a / sqrt(2) and a: the x of a decoded normal with
+ * code value a is a when x^2 + y^2 <= 1, and a / r with r in (1, sqrt 2] when z is clamped. */
+static inline double term_loose(const double pal[8], double t)
+{
+    double m = INFINITY;
+    for (int i = 0; i < 8; ++i) {
+        double a = pal[i], b = pal[i] * (1.0 / M_SQRT2);
+        double lo = a < b ? a : b, hi = a < b ? b : a;
+        double d = t < lo ? lo - t : (t > hi ? t - hi : 0.0);
+        m = d * d < m ? d * d : m;
+    }
+    return m;
+}
+
+/* Score with early exit: returns a value > budget as soon as the partial score exceeds it. */
+static inline double score_pair(const sol_nm_channel *ch, int pair, double budget)
+{
+    const double *pal = ch->palettes[pair];
+    double s = 0.0;
+    for (int k = 0; k < 16; ++k) {
+        double t = ch->t[ch->order[k]];
+        double term = (ch->loose >> ch->order[k]) & 1 ? term_loose(pal, t) : term_tight(pal, t);
+        s = ch->use_max ? (term > s ? term : s) : s + term;
+        if (s > budget)
+            return s;
+    }
+    return s;
+}
+
+/* ---- enumeration of the pairs that can score <= budget ----
+ *
+ * Tight terms: a pair can only score <= budget if the smallest and the largest target each lie
+ * within r = sqrt(budget) of a palette entry. With the low anchor L fixed, the entries are
+ * A(L) + (k / D) (A(H) - A(L)), k = 0..D (D = 7 or 5, plus -1 and +1 in 6-value mode), so for each k
+ * the high anchors H that bring entry k within r of a target form one interval: at most D + 1
+ * intervals per target, intersected as 256-bit masks. Rounded decoders move an entry by at most
+ * `delta` (half a code of their precision), added to r. The masks are a superset of the pairs
+ * within budget; each survivor is then scored exactly with early exit. Loose terms scan all pairs. */
+
+typedef struct anchor_mask {
+    uint64_t w[4];
+} anchor_mask;
+
+static void mask_set_range(anchor_mask *m, int lo, int hi)
+{
+    lo = lo < 0 ? 0 : lo;
+    hi = hi > 255 ? 255 : hi;
+    for (int w = lo >> 6; w <= hi >> 6 && lo <= hi; ++w) {
+        int a = w * 64 > lo ? 0 : lo - w * 64, b = w * 64 + 63 < hi ? 63 : hi - w * 64;
+        uint64_t upper = b == 63 ? ~UINT64_C(0) : (UINT64_C(1) << (b + 1)) - 1;
+        m->w[w] |= upper & ~((UINT64_C(1) << a) - 1);
+    }
+}
+
+static double anchor_value(int code)
+{
+    return 2.0 * code / 255.0 - 1.0;
+}
+
+/* High anchors H in [hmin, hmax] whose palette (low anchor L, D intervals) has an entry within r of t. */
+static anchor_mask reachable(double t, int low, int divisions, int six_value, double r, int hmin, int hmax)
+{
+    anchor_mask m = {{0, 0, 0, 0}};
+    double al = anchor_value(low);
+    if (fabs(al - t) <= r || (six_value && (fabs(t + 1.0) <= r || fabs(t - 1.0) <= r))) {
+        mask_set_range(&m, hmin, hmax);
+        return m;
+    }
+    for (int k = 1; k <= divisions; ++k) {
+        double scale = (double)divisions / k;
+        double ah_lo = al + scale * (t - r - al), ah_hi = al + scale * (t + r - al);
+        int h_lo = (int)ceil((ah_lo + 1.0) * 127.5 - 1e-6), h_hi = (int)floor((ah_hi + 1.0) * 127.5 + 1e-6);
+        if (h_lo < hmin)
+            h_lo = hmin;
+        if (h_hi > hmax)
+            h_hi = hmax;
+        if (h_lo <= h_hi)
+            mask_set_range(&m, h_lo, h_hi);
+    }
+    return m;
+}
+
+static double rounding_delta(sol_bc4_precision precision)
+{
+    /* decoded units (2 v - 1): half a code of the interpolant's precision, times 2 */
+    if (precision == SOL_BC4_INTERP_8BIT)
+        return 1.0 / 255.0;
+    if (precision == SOL_BC4_INTERP_16BIT)
+        return 1.0 / 65535.0;
+    return 0.0;
+}
+
+/* Visits candidate pairs: argmin (budget shrinks to the best score; *best_pair updated with the
+ * least (score, pair)) or collect (fixed budget, survivors appended to out). Returns the count. */
+static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *best_pair, sol_nm_pair *out)
+{
+    size_t n = 0;
+    const int collect = out != NULL;
+    const double delta = rounding_delta(ch->precision) + 1e-12;
+    for (int six = 0; six < 2; ++six) {
+        /* 8-value: e0 > e1, low anchor e1; 6-value: e0 <= e1, low anchor e0 */
+        int low_lo = six ? ch->e0_lo : ch->e1_lo, low_hi = six ? ch->e0_hi : ch->e1_hi;
+        int high_lo = six ? ch->e1_lo : ch->e0_lo, high_hi = six ? ch->e1_hi : ch->e0_hi;
+        /* lows visited outward from the smallest target's code: good pairs early, budget shrinks */
+        int centre = (int)lround((ch->t[ch->order[0]] + 1.0) * 127.5);
+        centre = centre < low_lo ? low_lo : (centre > low_hi ? low_hi : centre);
+        for (int step = 0; step <= 2 * (low_hi - low_lo); ++step) {
+            int low = centre + (step & 1 ? -(step + 1) / 2 : step / 2);
+            if (low < low_lo || low > low_hi)
+                continue;
+            int hmin = high_lo > low + !six ? high_lo : low + !six;
+            if (hmin > high_hi)
+                continue;
+            anchor_mask m = {{0, 0, 0, 0}};
+            /* every 8-value entry is >= the low anchor: it must reach the smallest target */
+            double t0 = ch->t[ch->order[0]];
+            if (!((ch->loose >> ch->order[0]) & 1) && anchor_value(low) > t0 + sqrt(*budget) + delta &&
+                (!six || (t0 + 1.0) * (t0 + 1.0) > *budget))
+                continue;
+            /* the three extreme pixels' reachable masks (a loose pixel constrains nothing) */
+            mask_set_range(&m, hmin, high_hi);
+            double r = sqrt(*budget) + delta;
+            for (int k = 0; k < 3 && (m.w[0] | m.w[1] | m.w[2] | m.w[3]); ++k) {
+                if ((ch->loose >> ch->order[k]) & 1)
+                    continue;
+                anchor_mask b = reachable(ch->t[ch->order[k]], low, six ? 5 : 7, six, r, hmin, high_hi);
+                for (int w = 0; w < 4; ++w)
+                    m.w[w] &= b.w[w];
+            }
+            for (int w = 0; w < 4; ++w) {
+                uint64_t bits = m.w[w];
+                while (bits) {
+                    int high = 64 * w + __builtin_ctzll(bits);
+                    bits &= bits - 1;
+                    int pair = six ? (low << 8 | high) : (high << 8 | low);
+                    double v = score_pair(ch, pair, *budget);
+                    if (collect) {
+                        if (v <= *budget) {
+                            out[n].score = v;
+                            out[n].pair = (uint16_t)pair;
+                            ++n;
+                        }
+                    } else if (v < *budget || (v == *budget && pair < *best_pair)) {
+                        *budget = v;
+                        *best_pair = pair;
+                    }
+                }
+            }
+        }
+    }
+    return n;
+}
+
+int sol_nm_channel_argmin(const sol_nm_channel *ch, double *score)
+{
+    /* start from the corner pair (full span, 8-value mode) if it is in range, else the first pair */
+    int lo = (int)floor((ch->t[ch->order[0]] + 1.0) * 127.5), hi = (int)ceil((ch->t[ch->order[1]] + 1.0) * 127.5);
+    lo = lo < 0 ? 0 : (lo > 255 ? 255 : lo);
+    hi = hi < 0 ? 0 : (hi > 255 ? 255 : hi);
+    int best = ch->e0_lo << 8 | ch->e1_lo;
+    if (hi >= ch->e0_lo && hi <= ch->e0_hi && lo >= ch->e1_lo && lo <= ch->e1_hi)
+        best = hi << 8 | lo;
+    double budget = score_pair(ch, best, INFINITY);
+    /* a short descent over the neighbouring pairs (both modes) gives a tight budget before the
+     * exhaustive enumeration, whose masks shrink with the budget */
+    for (int improved = 1, rounds = 0; improved && rounds < 64; ++rounds) {
+        improved = 0;
+        int e0 = best >> 8, e1 = best & 255;
+        for (int d0 = -2; d0 <= 2; ++d0)
+            for (int d1 = -2; d1 <= 2; ++d1) {
+                int a = e0 + d0, b = e1 + d1;
+                if (a < ch->e0_lo || a > ch->e0_hi || b < ch->e1_lo || b > ch->e1_hi)
+                    continue;
+                double v = score_pair(ch, a << 8 | b, budget);
+                if (v < budget) {
+                    budget = v;
+                    best = a << 8 | b;
+                    improved = 1;
+                }
+            }
+        int swapped = (best & 255) << 8 | best >> 8; /* the same span in the other mode */
+        if ((swapped >> 8) >= ch->e0_lo && (swapped >> 8) <= ch->e0_hi && (swapped & 255) >= ch->e1_lo &&
+            (swapped & 255) <= ch->e1_hi) {
+            double v = score_pair(ch, swapped, budget);
+            if (v < budget) {
+                budget = v;
+                best = swapped;
+                improved = 1;
+            }
+        }
+    }
+    enumerate_pairs(ch, &budget, &best, NULL);
+    *score = budget;
+    return best;
+}
+
+size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pair *out)
+{
+    return enumerate_pairs(ch, &budget, NULL, out);
+}
