@@ -289,7 +289,7 @@ static void sg_fit_work_limits(double ax, double ay, sg_fit_work *w)
 {
     /* Lobes sharper than 4x the target's sharpest curvature would fall between fit nodes. */
     double amin = ax < ay ? ax : ay;
-    w->log_lambda_cap = log(8.0 / (amin * amin));
+    w->log_lambda_cap = fmin(log(8.0 / (amin * amin)), LOG_SHARPNESS_MAX);
     for (int j = 0; j < w->k_max; ++j) {
         double *lo = w->lower + LOBE_PARAMS * j, *hi = w->upper + LOBE_PARAMS * j;
         lo[0] = 0.0, hi[0] = 0.5 * M_PI;
@@ -309,6 +309,16 @@ static void sg_fit_work_limits(double ax, double ay, sg_fit_work *w)
     w->lambda0 = lambda0;
 }
 
+/* Puts a start inside the solver's bounds (sol_lsq_solve rejects a start outside them). The
+ * widths, splits and residual amplitudes of the starts can leave them at the alpha edges: a lobe
+ * 4x wider than lambda0 = 0.02 at alpha 10 is below the sharpness floor 0.01, one 4x sharper at
+ * alpha 0.002 above the cap 1e6, a residual near the horizon at alpha 10 above the amplitude cap. */
+static void clamp_to_bounds(const sg_fit_work *w, int np, double *p)
+{
+    for (int i = 0; i < np; ++i)
+        p[i] = fmin(fmax(p[i], w->lower[i]), w->upper[i]);
+}
+
 /* Writes start c of the k-lobe fit into w->trial: the k-1 fit plus a lobe at the largest residual
  * at width factor c (c < 3), or the k-1 fit with its widest lobe split (c == 3). */
 static void make_start(const fit_setup *s, sg_fit_work *w, int k, int c)
@@ -326,6 +336,7 @@ static void make_start(const fit_setup *s, sg_fit_work *w, int k, int c)
     } else {
         seed_lobe(s, w->params, k - 1, lam, w->trial + np - LOBE_PARAMS);
     }
+    clamp_to_bounds(w, np, w->trial);
 }
 
 /* Solves the k-lobe fit from w->trial in place; *rel_l2 is its error on the (finer) evaluation

@@ -194,7 +194,8 @@ typedef struct sol_sg_fit_error {
  * result has the smallest error on the (finer) evaluation nodes wins, and fit K-1 padded with a
  * zero lobe is kept when none beats it, so the error never rises with K. Bounds: sharpness in
  * [0.01, min(1e6, 8 / min(alpha)^2)] (sharper lobes would fall between fit nodes), amplitude in
- * [0, 1e3] x the NDF's peak scale, axis in the upper hemisphere.
+ * [0, 1e3] x the NDF's peak scale, axis in the upper hemisphere; every start is clamped into these
+ * bounds, so the whole documented alpha range [1e-3, 10] fits for every k_max.
  * lobes: k_max * (k_max + 1) / 2 entries, fit K at offset K (K - 1) / 2; errors, summaries: k_max
  * entries each (summaries may be NULL; costs are those of the chosen start, iterations and
  * solve_seconds are summed over the four starts). Amplitudes are in the NDF's units.
