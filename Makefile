@@ -5,7 +5,8 @@
 #   make test        build and run the Criterion test suite
 #   make bench       accuracy-vs-time benchmarks of every experiment (tables on stdout)
 #   make sanitize    the test suite under AddressSanitizer + UndefinedBehaviorSanitizer
-#   make run-NAME    one experiment (NAME is a folder of experiments/)
+#   make run-NAME    one experiment (NAME is a folder of experiments/); ARGS="--quick --out /tmp/x"
+#                    passes arguments to the driver
 #   make             the library and every experiment driver
 #
 # Layout is discovered: src/<module>/*.c (+ the Ceres shim *.cpp) form libsol.a, each
@@ -100,7 +101,7 @@ $(BUILD)/experiments/$(1)/$(1): $$($(1)_OBJ) $(EXP_COMMON_OBJ) $(LIB)
 	$(CXX) -fopenmp $(LDFLAGS) $$^ -o $$@ $$($(1)_LDLIBS) $(LDLIBS_ALL)
 run-$(1): $(BUILD)/experiments/$(1)/$(1)
 	@echo "== experiment $(1)"
-	$(BUILD)/experiments/$(1)/$(1)
+	$(BUILD)/experiments/$(1)/$(1) $(ARGS)
 endef
 $(foreach e,$(EXPERIMENTS),$(eval $(call experiment_rules,$(e))))
 
@@ -146,7 +147,10 @@ reproduce: deps-reproduce
 
 run-experiments: $(EXPERIMENTS:%=run-%)
 
+# Fails (naming the line) if a claim of experiments/claims_list.tsv lacks its experiment or its
+# library entry point, so claim ID -> experiment -> function is one step.
 claims-table:
+	sh experiments/common/check_claims_list.sh experiments/claims_list.tsv
 	awk -F'\t' -v fmt=md -f experiments/common/claims_table.awk experiments/claims_list.tsv \
 	    $(wildcard results/*/claims.tsv) > results/CLAIMS.md
 	awk -F'\t' -v fmt=tex -f experiments/common/claims_table.awk experiments/claims_list.tsv \
