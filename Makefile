@@ -28,6 +28,14 @@ TEST_PKGS := gcc g++ make pkg-config libcriterion-dev libceres-dev libgoogle-glo
 REPRODUCE_PKGS := $(TEST_PKGS) gnuplot-nox libsquish-dev libnvtt-dev colobot-common-textures texlive-latex-base \
                   texlive-latex-recommended texlive-fonts-recommended latexmk
 
+# Reruns give identical files except timing values: gnuplot's PDFs (exp_plot) and the paper take
+# their dates from SOURCE_DATE_EPOCH, the time of the last commit that changed what generates
+# results/ (a commit of results/ alone does not move it). FORCE_SOURCE_DATE makes LaTeX's \today
+# follow it too.
+SOURCE_DATE_EPOCH ?= $(shell git log -1 --format=%ct -- src experiments paper Makefile 2>/dev/null || echo 0)
+export SOURCE_DATE_EPOCH
+export FORCE_SOURCE_DATE := 1
+
 # All three can be narrowed on the command line while one module is being worked on, e.g.
 # make BUILD=build/normals MODULES="core normals" TEST_SRC=tests/test_normals.c run-tests
 # src/cli is the `sol` program, not a library module.

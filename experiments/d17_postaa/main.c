@@ -284,8 +284,8 @@ typedef struct filter_results {
 static void threshold_sweep(const exp_run *exp, const test_images *im, filter_results *r)
 {
     FILE *csv = exp_open(exp, "threshold_curves.csv");
-    fputs("taps,threshold,rms_all,rms_edge\n", csv);
     for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
+        fputs("taps,threshold,rms_all,rms_edge\n", csv); /* each gnuplot block has its header */
         for (int i = 0; i <= 16; ++i) {
             double thr = 0.02 * pow(2.0, i * 0.5); /* 0.02 .. 5.12 */
             sol_postaa_options opt = {(sol_postaa_taps)taps, thr};
