@@ -165,10 +165,19 @@ claims-table:
 	    $(wildcard results/*/claims.tsv) > results/claims.tex
 
 # The paper is built from results/ once paper/sol.tex exists; the PDF is copied into results/.
+# results/numbers.tex gathers every driver's numbers.tex (exp_number) and the verdict counts of the
+# claims table, so the prose's \solnum{key} come from the run; an undefined key fails the build.
 paper:
 	@if [ -f paper/sol.tex ]; then \
+	  { cat $(wildcard results/*/numbers.tex) /dev/null; \
+	    cat $(wildcard results/*/claims.tsv) /dev/null | awk -F'\t' 'NF >= 5 { n++; c[$$5]++ } END { \
+	      printf "\\solnumdef{claims-rows}{%d}\n", n; \
+	      split("reproduced differs-explained not-reproduced", v, " "); \
+	      for (i = 1; i <= 3; i++) printf "\\solnumdef{claims-%s}{%d}\n", v[i], c[v[i]] }'; \
+	  } > results/numbers.tex; \
 	  cd paper && latexmk -pdf -interaction=nonstopmode -halt-on-error -quiet sol.tex >/dev/null \
-	    || { echo "paper: LaTeX failed, see paper/sol.log"; exit 1; }; \
+	    || { grep -A1 "undefined solnum key" sol.log | sed 's/^! Package sol Error: /paper: /'; \
+	         echo "paper: LaTeX failed, see paper/sol.log"; exit 1; }; \
 	  cp sol.pdf ../results/sol.pdf; \
 	fi
 
@@ -192,6 +201,7 @@ sanitize: deps-test
 	  LDFLAGS="-fsanitize=address,undefined" run-tests
 
 clean:
-	rm -rf $(BUILD) paper/*.aux paper/*.log paper/*.fls paper/*.fdb_latexmk paper/*.out paper/sol.pdf
+	rm -rf $(BUILD) paper/*.aux paper/*.log paper/*.fls paper/*.fdb_latexmk paper/*.out paper/*.bbl paper/*.blg \
+	  paper/sol.pdf
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -7,10 +7,11 @@ function tex(s) {
     if (substr(s, 1, 1) == "[") s = "{}" s   # a bare [ after \\ would start an optional argument
     return s
 }
+function breakable(s) { gsub(/\\_/, "\\_\\allowbreak{}", s); return s }   # long experiment names may wrap at _
 function md(s) { gsub(/\|/, "\\|", s); return s }   # a | inside a cell would split it
 function row(id, text, talk, sol, tol, verdict, experiment, note) {
     if (fmt == "tex")
-        printf "%s & %s & %s & %s & %s \\\\\n", tex(id), tex(talk), tex(sol), tex(verdict), tex(experiment)
+        printf "%s & %s & %s & %s & %s & %s \\\\\n", tex(id), tex(talk), tex(sol), tex(tol), tex(verdict), breakable(tex(experiment))
     else
         printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", id, md(text), md(talk), md(sol), md(tol), verdict, experiment, entry[id] ? "`" entry[id] "`" : "", md(note)
 }
@@ -19,8 +20,11 @@ file == 1 { order[++n] = $1; claim[$1] = $2; figure[$1] = $3; entry[$1] = $5; ne
 { rows[$1] = rows[$1] SUBSEP $0; count[$1]++ }
 END {
     if (fmt == "tex") {
-        print "\\begin{longtable}{p{0.06\\linewidth}p{0.2\\linewidth}p{0.36\\linewidth}p{0.13\\linewidth}p{0.15\\linewidth}}"
-        print "\\toprule ID & talk & sol & verdict & experiment \\\\ \\midrule \\endhead"
+        # 6 columns sized for a landscape page (the paper puts the table in a landscape environment)
+        print "\\begin{longtable}{>{\\raggedright}p{0.03\\linewidth}>{\\raggedright}p{0.23\\linewidth}>{\\raggedright}p{0.35\\linewidth}>{\\raggedright}p{0.13\\linewidth}>{\\raggedright}p{0.08\\linewidth}>{\\raggedright\\arraybackslash}p{0.11\\linewidth}}"
+        print "\\caption{Every claim: the talk's figure, sol's figure, the tolerance and the verdict (generated from the experiments' claims.tsv).}\\label{tab:claims}\\\\"
+        print "\\toprule ID & talk's figure & sol's figure & tolerance & verdict & experiment \\\\ \\midrule \\endfirsthead"
+        print "\\toprule ID & talk's figure & sol's figure & tolerance & verdict & experiment \\\\ \\midrule \\endhead"
     } else {
         print "# Claims table"
         print ""
