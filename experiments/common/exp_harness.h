@@ -47,7 +47,9 @@ void exp_table_write(exp_table *table, const exp_run *exp, const char *name);
  * Header lines: every CSV block (a file, or each block of a multi-block file read with `index`)
  * starts with one header line, and exp_plot starts the script with `set datafile columnheaders`, so
  * pseudo-column 0, xtic() and histograms count data rows only. A script that handles the header
- * itself (`skip 1`, `every ::1`) or reads headerless .dat files gets no such line. */
+ * itself (`skip 1`, `every ::1 using ...`) or reads headerless .dat files gets no such line; with it,
+ * `every ::k::k` selects data row k (from 0). Key titles are plain text (`set key noenhanced`), so
+ * underscores in column headers print as underscores. */
 void exp_plot(const exp_run *exp, const char *name, const char *script_fmt, ...);
 
 /* ---- claims rows: results/<name>/claims.tsv, gathered into results/CLAIMS.md ---- */

@@ -78,10 +78,13 @@ void exp_plot(const exp_run *exp, const char *name, const char *script_fmt, ...)
     vsnprintf(script, (size_t)n + 1, script_fmt, args);
     va_end(args);
     FILE *f = exp_open(exp, file);
+    /* Key titles are names (often CSV column headers such as ev_log_average), not enhanced text:
+     * without this an underscore turns the rest of a title into a subscript. */
+    fputs("set key noenhanced  # exp_plot: titles are plain names\n", f);
     /* Every CSV block a driver writes starts with a header line. Without being told, gnuplot reads
      * that line as a data row for pseudo-column 0, xtic() and histograms (one bar dropped, labels off
      * by one), so the header is declared for every script that does not handle it itself. */
-    if (!strstr(script, "skip ") && !strstr(script, "every ::") && !strstr(script, ".dat'"))
+    if (!strstr(script, "skip 1") && !strstr(script, "every ::1 ") && !strstr(script, ".dat'"))
         fputs("set datafile columnheaders  # exp_plot: each CSV block starts with a header line\n", f);
     fputs(script, f);
     fputc('\n', f);
