@@ -7,7 +7,8 @@
 #   make sanitize    the test suite under AddressSanitizer + UndefinedBehaviorSanitizer (+ leaks)
 #   make valgrind    the test suite under valgrind memcheck (slow; TEST_ARGS='--filter x/*')
 #   make fuzz        every tests/fuzz/fuzz_*.c under libFuzzer for FUZZ_SECONDS each
-#   make run-NAME    one experiment (NAME is a folder of experiments/)
+#   make run-NAME    one experiment (NAME is a folder of experiments/); ARGS="--quick --out /tmp/x"
+#                    passes arguments to the driver
 #   make             the library and every experiment driver
 #
 # Layout is discovered: src/<module>/*.c (+ the Ceres shim *.cpp) form libsol.a, each
@@ -28,6 +29,14 @@ TEST_PKGS := gcc g++ make pkg-config libcriterion-dev libceres-dev libgoogle-glo
              libopenexr-dev libpng-dev clang libclang-rt-14-dev libomp-14-dev valgrind
 REPRODUCE_PKGS := $(TEST_PKGS) gnuplot-nox libsquish-dev libnvtt-dev colobot-common-textures texlive-latex-base \
                   texlive-latex-recommended texlive-fonts-recommended latexmk
+
+# Reruns give identical files except timing values: gnuplot's PDFs (exp_plot) and the paper take
+# their dates from SOURCE_DATE_EPOCH, the time of the last commit that changed what generates
+# results/ (a commit of results/ alone does not move it). FORCE_SOURCE_DATE makes LaTeX's \today
+# follow it too.
+SOURCE_DATE_EPOCH ?= $(shell git log -1 --format=%ct -- src experiments paper Makefile 2>/dev/null || echo 0)
+export SOURCE_DATE_EPOCH
+export FORCE_SOURCE_DATE := 1
 
 # All three can be narrowed on the command line while one module is being worked on, e.g.
 # make BUILD=build/normals MODULES="core normals" TEST_SRC=tests/test_normals.c run-tests
@@ -102,7 +111,7 @@ $(BUILD)/experiments/$(1)/$(1): $$($(1)_OBJ) $(EXP_COMMON_OBJ) $(LIB)
 	$(CXX) -fopenmp $(LDFLAGS) $$^ -o $$@ $$($(1)_LDLIBS) $(LDLIBS_ALL)
 run-$(1): $(BUILD)/experiments/$(1)/$(1)
 	@echo "== experiment $(1)"
-	$(BUILD)/experiments/$(1)/$(1)
+	$(BUILD)/experiments/$(1)/$(1) $(ARGS)
 endef
 $(foreach e,$(EXPERIMENTS),$(eval $(call experiment_rules,$(e))))
 
@@ -149,17 +158,29 @@ reproduce: deps-reproduce
 
 run-experiments: $(EXPERIMENTS:%=run-%)
 
+# Fails (naming the line) if a claim of experiments/claims_list.tsv lacks its experiment or its
+# library entry point, so claim ID -> experiment -> function is one step.
 claims-table:
+	sh experiments/common/check_claims_list.sh experiments/claims_list.tsv
 	awk -F'\t' -v fmt=md -f experiments/common/claims_table.awk experiments/claims_list.tsv \
 	    $(wildcard results/*/claims.tsv) > results/CLAIMS.md
 	awk -F'\t' -v fmt=tex -f experiments/common/claims_table.awk experiments/claims_list.tsv \
 	    $(wildcard results/*/claims.tsv) > results/claims.tex
 
 # The paper is built from results/ once paper/sol.tex exists; the PDF is copied into results/.
+# results/numbers.tex gathers every driver's numbers.tex (exp_number) and the verdict counts of the
+# claims table, so the prose's \solnum{key} come from the run; an undefined key fails the build.
 paper:
 	@if [ -f paper/sol.tex ]; then \
+	  { cat $(wildcard results/*/numbers.tex) /dev/null; \
+	    cat $(wildcard results/*/claims.tsv) /dev/null | awk -F'\t' 'NF >= 5 { n++; c[$$5]++ } END { \
+	      printf "\\solnumdef{claims-rows}{%d}\n", n; \
+	      split("reproduced differs-explained not-reproduced", v, " "); \
+	      for (i = 1; i <= 3; i++) printf "\\solnumdef{claims-%s}{%d}\n", v[i], c[v[i]] }'; \
+	  } > results/numbers.tex; \
 	  cd paper && latexmk -pdf -interaction=nonstopmode -halt-on-error -quiet sol.tex >/dev/null \
-	    || { echo "paper: LaTeX failed, see paper/sol.log"; exit 1; }; \
+	    || { grep "undefined solnum key" sol.log | sed 's/^! Package sol Error: /paper: /; s/$$/ (no results\/*\/numbers.tex defines it: add exp_number to its driver and rerun it)/'; \
+	         echo "paper: LaTeX failed, see paper/sol.log"; exit 1; }; \
 	  cp sol.pdf ../results/sol.pdf; \
 	fi
 
@@ -242,6 +263,7 @@ fuzz-smoke: fuzz-build
 	$(foreach t,$(FUZZ_TARGETS),$(call fuzz_run,$(t),$(FUZZ_SMOKE_SECONDS)))
 
 clean:
-	rm -rf $(BUILD) paper/*.aux paper/*.log paper/*.fls paper/*.fdb_latexmk paper/*.out paper/sol.pdf
+	rm -rf $(BUILD) paper/*.aux paper/*.log paper/*.fls paper/*.fdb_latexmk paper/*.out paper/*.bbl paper/*.blg \
+	  paper/sol.pdf
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

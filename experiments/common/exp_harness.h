@@ -43,7 +43,13 @@ void exp_table_write(exp_table *table, const exp_run *exp, const char *name);
 /* ---- plots: gnuplot, rendered as <name>.png (reading) and <name>.pdf (paper) ---- */
 /* `script` is gnuplot commands without terminal/output lines; it runs with the results folder as
  * working directory, so data files are named plainly ("errors.csv", with `set datafile separator
- * comma`). The script is kept as <name>.gp so the figure can be re-rendered by hand. */
+ * comma`). The script is kept as <name>.gp so the figure can be re-rendered by hand.
+ * Header lines: every CSV block (a file, or each block of a multi-block file read with `index`)
+ * starts with one header line, and exp_plot starts the script with `set datafile columnheaders`, so
+ * pseudo-column 0, xtic() and histograms count data rows only. A script that handles the header
+ * itself (`skip 1`, `every ::1 using ...`) or reads headerless .dat files gets no such line; with it,
+ * `every ::k::k` selects data row k (from 0). Key titles are plain text (`set key noenhanced`), so
+ * underscores in column headers print as underscores. */
 void exp_plot(const exp_run *exp, const char *name, const char *script_fmt, ...);
 
 /* ---- claims rows: results/<name>/claims.tsv, gathered into results/CLAIMS.md ---- */

@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 static void render(const exp_run *exp, const char *name, const char *terminal, const char *ext)
 {
@@ -15,20 +16,85 @@ static void render(const exp_run *exp, const char *name, const char *terminal, c
         exp_die("gnuplot failed on %s/%s.gp", exp->dir, name);
 }
 
+/* cairo (1.16) stamps each PDF with the time it was written, so two runs of the same driver give
+ * different files. When SOURCE_DATE_EPOCH is set (the Makefile sets it to the last commit that
+ * changed the sources) the date becomes that time, written over the old one with the same length so
+ * the PDF's cross-reference offsets stay valid; the file is replaced through a temporary name. */
+static void pin_pdf_date(const char *path)
+{
+    const char *epoch = getenv("SOURCE_DATE_EPOCH");
+    if (!epoch || !*epoch)
+        return;
+    char *end;
+    long long seconds = strtoll(epoch, &end, 10);
+    if (*end || seconds < 0)
+        exp_die("SOURCE_DATE_EPOCH='%s' is not a number of seconds", epoch);
+    time_t t = (time_t)seconds;
+    struct tm tm;
+    char stamp[32];
+    if (!gmtime_r(&t, &tm) || strftime(stamp, sizeof stamp, "%Y%m%d%H%M%S", &tm) != 14)
+        exp_die("SOURCE_DATE_EPOCH='%s' is out of range", epoch);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        exp_die("cannot read %s", path);
+    size_t cap = 1 << 16, n = 0;
+    char *data = malloc(cap);
+    for (size_t got; data && (got = fread(data + n, 1, cap - n, f)) > 0;) {
+        n += got;
+        if (n == cap) {
+            char *bigger = realloc(data, cap *= 2);
+            if (!bigger)
+                free(data);
+            data = bigger;
+        }
+    }
+    fclose(f);
+    if (!data)
+        exp_die("out of memory reading %s", path);
+    static const char key[] = "/CreationDate (D:";
+    for (size_t i = 0; i + sizeof key - 1 + 14 <= n; ++i)
+        if (memcmp(data + i, key, sizeof key - 1) == 0)
+            memcpy(data + i + sizeof key - 1, stamp, 14);
+    char tmp[4200];
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    f = fopen(tmp, "wb");
+    if (!f || fwrite(data, 1, n, f) != n || fclose(f) != 0 || rename(tmp, path) != 0)
+        exp_die("cannot rewrite %s", path);
+    free(data);
+}
+
 void exp_plot(const exp_run *exp, const char *name, const char *script_fmt, ...)
 {
     char file[512];
     snprintf(file, sizeof file, "%s.gp", name);
-    FILE *f = exp_open(exp, file);
+    char *script = NULL;
     va_list args;
     va_start(args, script_fmt);
-    vfprintf(f, script_fmt, args);
+    int n = vsnprintf(NULL, 0, script_fmt, args);
     va_end(args);
+    if (n < 0 || !(script = malloc((size_t)n + 1)))
+        exp_die("out of memory formatting %s", file);
+    va_start(args, script_fmt);
+    vsnprintf(script, (size_t)n + 1, script_fmt, args);
+    va_end(args);
+    FILE *f = exp_open(exp, file);
+    /* Key titles are names (often CSV column headers such as ev_log_average), not enhanced text:
+     * without this an underscore turns the rest of a title into a subscript. */
+    fputs("set key noenhanced  # exp_plot: titles are plain names\n", f);
+    /* Every CSV block a driver writes starts with a header line. Without being told, gnuplot reads
+     * that line as a data row for pseudo-column 0, xtic() and histograms (one bar dropped, labels off
+     * by one), so the header is declared for every script that does not handle it itself. */
+    if (!strstr(script, "skip 1") && !strstr(script, "every ::1 ") && !strstr(script, ".dat'"))
+        fputs("set datafile columnheaders  # exp_plot: each CSV block starts with a header line\n", f);
+    fputs(script, f);
     fputc('\n', f);
+    free(script);
     if (fclose(f) != 0)
         exp_die("cannot write %s", exp_path(exp, file));
     render(exp, name, "pngcairo size 960,640 font 'Sans,11'", "png");
     render(exp, name, "pdfcairo size 5in,3.3in font 'Sans,8'", "pdf");
+    snprintf(file, sizeof file, "%s.pdf", name);
+    pin_pdf_date(exp_path(exp, file));
 }
 
 /* Claims rows are tab-separated; tabs and newlines inside a field would break the row. */

@@ -111,7 +111,6 @@ static void solver_sweep(const exp_run *exp)
     exp_table *t = exp_table_new("Inverse tone map: accuracy vs time",
                                  "tone map,solver,tolerance,max relative error,ns per inverse");
     FILE *csv = exp_open(exp, "solver_curves.csv");
-    fputs("op,method,tolerance,max_rel_error,ns\n", csv);
     FILE *closed = exp_open(exp, "solver_closed_form.csv");
     fputs("op,ns\n", closed);
     const sol_tonemap ops[] = {SOL_TONEMAP_FILMIC_HBD, SOL_TONEMAP_ACES_FIT, SOL_TONEMAP_ACES_REF};
@@ -138,6 +137,7 @@ static void solver_sweep(const exp_run *exp)
         }
         job.closed_form = 0;
         for (int m = 0; m < 2; ++m) {
+            fputs("op,method,tolerance,max_rel_error,ns\n", csv); /* each gnuplot block has its header */
             for (size_t k = 0; k < sizeof tolerances / sizeof tolerances[0]; ++k) {
                 job.options = (sol_root_options){(sol_root_method)m, tolerances[k], 400};
                 double ns = exp_time_per_item_ns(run_solves, &job, SOLVE_BATCH, repeats);

@@ -284,8 +284,8 @@ typedef struct filter_results {
 static void threshold_sweep(const exp_run *exp, const test_images *im, filter_results *r)
 {
     FILE *csv = exp_open(exp, "threshold_curves.csv");
-    fputs("taps,threshold,rms_all,rms_edge\n", csv);
     for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
+        fputs("taps,threshold,rms_all,rms_edge\n", csv); /* each gnuplot block has its header */
         for (int i = 0; i <= 16; ++i) {
             double thr = 0.02 * pow(2.0, i * 0.5); /* 0.02 .. 5.12 */
             sol_postaa_options opt = {(sol_postaa_taps)taps, thr};
@@ -376,10 +376,22 @@ static void plot_results(const exp_run *exp, const test_images *im)
              "'' index 0 using 2:3 with linespoints dt 3 title 'pinwheel, all pixels', "
              "%.6f with lines dt 3 lc rgb 'black' title 'aliased, all pixels'",
              im->rms_alias_edge, im->rms_alias_all);
+    /* one key entry per row of error_vs_time.csv (the tap placements, then supersampling 2x2 and 4x4,
+     * as edge_error_table writes them); text labels beside the points overlapped where the
+     * placements cost about the same */
+    char clauses[2048] = "";
+    const char *ss_names[2] = {"supersampling 2x2", "supersampling 4x4"};
+    for (int k = 0; k <= SOL_POSTAA_DIRECT8 - SOL_POSTAA_PINWHEEL4 + 2; ++k) {
+        int taps = SOL_POSTAA_PINWHEEL4 + k;
+        const char *name = taps <= SOL_POSTAA_DIRECT8 ? taps_name((sol_postaa_taps)taps) : ss_names[taps - SOL_POSTAA_DIRECT8 - 1];
+        size_t used = strlen(clauses);
+        snprintf(clauses + used, sizeof clauses - used, "%s'error_vs_time.csv' every ::%d::%d using 2:3 with points pt %d lc %d ps 2 title '%s'",
+                 k ? ", " : "", k, k, k + 5, k + 1, name);
+    }
     exp_plot(exp, "error_vs_time",
              "set datafile separator comma\nset xlabel 'ns per pixel (median)'\nset ylabel 'RMS error on edge pixels'\n"
-             "set grid\nset key off\nset logscale x\nset offsets graph 0.1, graph 0.3, graph 0.1, graph 0.1\n"
-             "plot 'error_vs_time.csv' using 2:3 with points pt 7 ps 1.5, '' using 2:3:1 with labels left rotate by 20 offset 1,0.5");
+             "set grid\nset key outside right top\nset logscale x\nset offsets graph 0.1, graph 0.1, graph 0.1, graph 0.1\n"
+             "plot %s", clauses);
 }
 
 /* D17 rows: the pinwheel's kernel, the fetched deviation against the talk's d, and the edge error. */

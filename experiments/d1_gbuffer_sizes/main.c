@@ -54,7 +54,7 @@ int main(int argc, char **argv)
     exp_table_write(t, &exp, "sizes");
     exp_plot(&exp, "sizes",
              "set datafile separator comma\nset style fill solid 0.6\nset boxwidth 0.6\nset ylabel 'bits per pixel'\n"
-             "set yrange [0:*]\nset xrange [-0.6:3.6]\nset xtics rotate by -15 font ',8'\nset grid ytics\n"
+             "set yrange [0:*]\nset xrange [-0.6:3.6]\nset xtics rotate by -15 font ',8'\nset rmargin 12\nset bmargin 6\nset grid ytics\n"
              "plot 'sizes.csv' using 0:2:xtic(1) with boxes notitle, '' using 0:($2+5):2 with labels notitle");
 
     char sol_figure[128];

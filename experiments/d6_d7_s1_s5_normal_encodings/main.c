@@ -151,11 +151,18 @@ int main(int argc, char **argv)
     for (int k = 0; k < count; ++k)
         exp_table_row(p, "%s|%.1f|%.5f|%.5f", r[k].enc.name, r[k].ns, r[k].stats.rms, r[k].stats.max);
     exp_table_write(p, &exp, "pareto");
+    /* one key entry per encoder (point type and colour), not text labels, which overlap where
+     * encoders have similar cost and error */
+    char clauses[4096] = "";
+    for (int k = 0; k < count; ++k) {
+        size_t used = strlen(clauses);
+        snprintf(clauses + used, sizeof clauses - used, "%s'pareto.csv' every ::%d::%d using 2:3 with points pt %d lc %d ps 1.5 title '%s'",
+                 k ? ", " : "", k, k, k % 13 + 1, k % 8 + 1, r[k].enc.name);
+    }
     exp_plot(&exp, "pareto",
              "set datafile separator comma\nset logscale xy\nset xlabel 'ns per normal (encode + decode)'\n"
-             "set ylabel 'RMS angular error (deg)'\nset grid\nset key off\nset offsets graph 0.05, graph 0.3, 0, 0\n"
-             "plot 'pareto.csv' skip 1 using 2:3 with points pt 7 ps 1.2, "
-             "'' skip 1 using 2:3:1 with labels offset char 1,0.5 left font ',7'");
+             "set ylabel 'RMS angular error (deg)'\nset grid\nset key outside right top font ',8'\n"
+             "set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\nplot %s", clauses);
 
     if (!exp.bench) {
         const method_result *xyz = &r[SOL_NORMAL_XYZ_NORMALIZED], *oct = &r[SOL_NORMAL_OCTAHEDRAL_12],

@@ -243,8 +243,8 @@ static void refine_sweep(const exp_run *exp, const cull_scene *sc, cull_results 
     exp_table *sweep = exp_table_new("Coverage buffer: culling vs refinement depth (block 4)",
                                      "downscale,refine levels,culled of hidden %,false culls,texels per test,ns per test");
     FILE *csv = exp_open(exp, "refine_curves.csv");
-    fputs("downscale,refine,culled_pct,false_culls,texels,ns\n", csv);
     for (int d = SOL_DOWNSCALE_MAX; d <= SOL_DOWNSCALE_MEAN; ++d) {
+        fputs("downscale,refine,culled_pct,false_culls,texels,ns\n", csv); /* each block has its header */
         refine_sweep_downscale(sc, (sol_downscale)d, sweep, csv, res);
         fputs("\n\n", csv); /* gnuplot data blocks: index 0 max, 1 min, 2 mean */
     }

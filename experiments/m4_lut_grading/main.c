@@ -162,7 +162,6 @@ static void size_sweep(const exp_run *exp, int *sufficient16, double worst16[2],
                                     "transform,trilinear,trilinear 8-bit entries,tetrahedral,"
                                     "max dE00 at 16 (tri / tri8 / tet),mean dE00 at 16 (tri8),max codes at 16 (tri8)");
     FILE *csv = exp_open(exp, "size_curves.csv");
-    fputs("look,variant,N,max_code,mean_code,max_de,mean_de,ns\n", csv);
     *sufficient16 = 2; /* 2: max dE00 < 1 at 16 for every look; 1: only the mean < 0.5; 0: neither */
     for (int l = 0; l < LOOK_COUNT; ++l) {
         colour_set set;
@@ -175,6 +174,7 @@ static void size_sweep(const exp_run *exp, int *sufficient16, double worst16[2],
         exp_table_row(t, "%s|exact|transform|0|0|0|0|0|%.1f", looks[l].name, ns_exact);
         for (int v = 0; v < VARIANT_COUNT; ++v) {
             exp_progress("m4 LUT size sweep", (size_t)(l * VARIANT_COUNT + v), LOOK_COUNT * VARIANT_COUNT);
+            fputs("look,variant,N,max_code,mean_code,max_de,mean_de,ns\n", csv); /* each gnuplot block has its header */
             for (int k = 0; k < n_sizes; ++k) {
                 sol_lut3d lut;
                 exp_check(sol_lut3d_bake(sizes[k], grade_fn, (void *)&looks[l].grade, &lut), "baking");

@@ -140,7 +140,7 @@ void run_storage_rule(const exp_run *exp)
         }
     exp_table_write(b, exp, "storage_threshold");
     exp_plot(exp, "storage_rule",
-             "set datafile separator comma\nset grid\nset key top left\n"
+             "set datafile separator comma\nset grid\nset key outside below\n"
              "set xlabel 'share of values above the median'\nset ylabel 'log2(RMS gamma / RMS linear)'\n"
              "set arrow from 0.75,graph 0 to 0.75,graph 1 nohead dt 2 lc rgb 'gray'\n"
              "set label '75%%' at 0.76,graph 0.05 tc rgb 'gray'\nset xzeroaxis lw 2\n"
