@@ -3,6 +3,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
+#include <omp.h>
 #include <string.h>
 
 #include "sol_scene.h"
@@ -155,4 +156,105 @@ Test(scene, load_names_a_missing_scene_file_and_reads_a_real_one)
     cr_expect_str_eq(s.name, "disk");
     sol_scene_free(&s);
     remove("/tmp/sol_test_scene.json");
+}
+
+/* ---------------- the effect graph and the renderer ---------------- */
+
+static const char *const mixed_scene =
+    "{\"camera\":{\"position\":[0,2,-6],\"look_at\":[0,0.5,0],\"width\":48,\"height\":27},"
+    "\"materials\":[{\"name\":\"floor\",\"albedo_texture\":{\"procedural\":\"checker\",\"scale\":0.5}},"
+    "{\"name\":\"paint\",\"albedo\":[0.6,0.05,0.05],\"gloss\":0.8,\"normal_map\":{\"procedural\":\"bumps\"}}],"
+    "\"objects\":[{\"type\":\"plane\",\"material\":\"floor\"},{\"type\":\"sphere\",\"center\":[0,1,0],"
+    "\"material\":\"paint\"}],"
+    "\"lights\":[{\"type\":\"sun\",\"direction\":[0.5,-1,0.8],\"intensity\":3,\"shadows\":true}],"
+    "\"pipeline\":{\"ssao\":true,\"normal_map_codec\":\"none\"}}";
+
+Test(scene, plan_names_the_calling_element_and_why_others_are_skipped)
+{
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(parse(mixed_scene, &s, &e), SOL_OK, "%s %s", e.pointer, e.message);
+    sol_scene_plan p;
+    cr_assert_eq(sol_scene_plan_build(&s, &p), SOL_OK);
+    cr_expect_eq(p.run[SOL_FX_GBUFFER_NORMALS], 1);
+    cr_expect_eq(p.run[SOL_FX_ALBEDO_STORAGE], 1);
+    cr_expect_str_eq(p.element[SOL_FX_ALBEDO_STORAGE], "/materials/0/albedo_texture");
+    cr_expect_eq(p.run[SOL_FX_NORMAL_MAP_BC5], 0);
+    cr_expect_str_eq(p.element[SOL_FX_NORMAL_MAP_BC5], "/pipeline/normal_map_codec");
+    cr_expect_eq(p.run[SOL_FX_SSAO], 1);
+    cr_expect_eq(p.run[SOL_FX_SG_LOBES], 0);
+    cr_expect(strstr(p.reason[SOL_FX_SG_LOBES], "anisotropic") != NULL);
+    cr_expect_eq(p.run[SOL_FX_TEMPORAL], 0);
+    cr_expect_eq(p.run[SOL_FX_CULLING], 0);
+    cr_expect_eq(p.run[SOL_FX_CLIP_VOLUMES], 0);
+    for (int i = 0; i < SOL_FX_COUNT; ++i)
+        cr_expect(sol_effect_get((sol_effect)i) && *sol_effect_get((sol_effect)i)->name);
+    cr_expect_null(sol_effect_get(SOL_FX_COUNT));
+    cr_expect_eq(sol_scene_plan_build(NULL, &p), SOL_ERR_NULL_ARG);
+    sol_scene_free(&s);
+}
+
+Test(scene, skipped_effects_never_run_and_planned_ones_do)
+{
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(parse(mixed_scene, &s, &e), SOL_OK);
+    sol_scene_plan p;
+    sol_scene_plan_build(&s, &p);
+    sol_render_result r;
+    sol_render_stats st;
+    cr_assert_eq(sol_scene_render(&s, &p, NULL, &r, &st), SOL_OK);
+    for (int i = 0; i < SOL_FX_COUNT; ++i) {
+        if (p.run[i])
+            cr_expect_gt(st.effect_runs[i], 0, "%s planned but never ran", sol_effect_get((sol_effect)i)->name);
+        else
+            cr_expect_eq(st.effect_runs[i], 0, "%s skipped but ran", sol_effect_get((sol_effect)i)->name);
+    }
+    /* swapping an effect for its reference version stops its code too */
+    sol_render_options o = {0};
+    o.reference_effects = 1u << SOL_FX_SSAO;
+    sol_render_result r2;
+    cr_assert_eq(sol_scene_render(&s, &p, &o, &r2, &st), SOL_OK);
+    cr_expect_eq(st.effect_runs[SOL_FX_SSAO], 0);
+    /* and the reference path runs none */
+    o.reference = 1;
+    sol_render_result r3;
+    cr_assert_eq(sol_scene_render(&s, &p, &o, &r3, &st), SOL_OK);
+    for (int i = 0; i < SOL_FX_COUNT; ++i)
+        cr_expect_eq(st.effect_runs[i], 0, "%s ran in the reference path", sol_effect_get((sol_effect)i)->name);
+    sol_render_error err;
+    cr_assert_eq(sol_render_compare(&r, &r3, &err), SOL_OK);
+    cr_expect_gt(err.rms_code, 0.0);
+    cr_expect_lt(err.rms_code, 40.0);
+    cr_assert_eq(sol_render_compare(&r, &r, &err), SOL_OK);
+    cr_expect_eq(err.rms_code, 0.0);
+    cr_expect_eq(err.normal_max_deg, 0.0);
+    sol_render_result_free(&r);
+    sol_render_result_free(&r2);
+    sol_render_result_free(&r3);
+    sol_scene_free(&s);
+}
+
+Test(scene, render_is_deterministic_for_any_thread_count)
+{
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(parse(mixed_scene, &s, &e), SOL_OK);
+    sol_scene_plan p;
+    sol_scene_plan_build(&s, &p);
+    sol_render_result a, b;
+    omp_set_num_threads(1);
+    cr_assert_eq(sol_scene_render(&s, &p, NULL, &a, NULL), SOL_OK);
+    omp_set_num_threads(2);
+    cr_assert_eq(sol_scene_render(&s, &p, NULL, &b, NULL), SOL_OK);
+    size_t n = (size_t)a.display.width * a.display.height * 3;
+    cr_expect_eq(memcmp(a.display.data, b.display.data, n * sizeof(float)), 0);
+    cr_expect_eq(memcmp(a.hdr.data, b.hdr.data, n * sizeof(float)), 0);
+    sol_render_result_free(&a);
+    sol_render_result_free(&b);
+    sol_render_options o = {0};
+    o.width = -1;
+    cr_expect_eq(sol_scene_render(&s, &p, &o, &a, NULL), SOL_ERR_INVALID_ARG);
+    cr_expect_eq(sol_scene_render(NULL, &p, NULL, &a, NULL), SOL_ERR_NULL_ARG);
+    sol_scene_free(&s);
 }

@@ -174,6 +174,101 @@ sol_status sol_scene_load(const char *path, sol_scene *out, sol_scene_error *err
 /* Frees everything the scene owns and zeroes it; safe on NULL or a zeroed scene. */
 void sol_scene_free(sol_scene *scene);
 
+/* ======================= the effect graph (scene_plan.c) =======================
+ * Each effect is one of the talk's techniques already in sol. It declares what in a scene calls
+ * for it (a scene element, named by JSON pointer in the plan), what it needs and what it
+ * produces. sol_scene_plan decides, for a loaded scene, which effects run and why the others are
+ * skipped; the renderer runs only the planned ones (sol_render_stats.effect_runs counts every
+ * time an effect's code runs, so a test can prove a skipped effect never runs). */
+typedef enum sol_effect {
+    SOL_FX_GBUFFER_NORMALS = 0, /* D3-D7, S1, S5: 24-bit G-buffer normal encoding */
+    SOL_FX_NORMAL_MAP_BC5,      /* T8-T14: normal maps through BC5 (3Dc) */
+    SOL_FX_ALBEDO_STORAGE,      /* T3-T6: 8-bit albedo storage, gamma or linear by the T4 rule */
+    SOL_FX_ALBEDO_BC1,          /* T7: BC1 (DXT1) albedo */
+    SOL_FX_ALBEDO_RENORM,       /* T1, T2: per-channel range renormalisation of albedo */
+    SOL_FX_LIGHT_BUFFER,        /* D9, S9: lossy light-accumulation buffer */
+    SOL_FX_RANGE_SCALING,       /* D9, D10: light buffer pre-scaled by the exposure */
+    SOL_FX_SG_LOBES,            /* D15, D16: anisotropic material as SG lobes -> principal Phong lobe */
+    SOL_FX_CLIP_VOLUMES,        /* D13: stencil clip volume instead of a shadow */
+    SOL_FX_SSAO,                /* M3: volumetric obscurance (half resolution, few samples) */
+    SOL_FX_TEMPORAL,            /* D18 (and M3's temporal accumulation): reprojection over the camera path */
+    SOL_FX_POST_AA,             /* D17: deviation-driven post-process AA */
+    SOL_FX_CULLING,             /* M1: coverage-buffer occlusion culling */
+    SOL_FX_LUT_GRADING,         /* M4: colour grading through a size^3 LUT */
+    SOL_FX_COUNT
+} sol_effect;
+
+typedef struct sol_effect_info {
+    const char *name;     /* stable short name ("gbuffer-normals") */
+    const char *claims;   /* claim IDs ("D3-D7, S1, S5") */
+    const char *called_by;/* what in a scene calls for it */
+    const char *needs;    /* what it consumes */
+    const char *produces; /* what it produces */
+    const char *reference;/* what the reference path does instead */
+} sol_effect_info;
+
+/* The static description of an effect; NULL for an out-of-range value. */
+const sol_effect_info *sol_effect_get(sol_effect effect);
+
+typedef struct sol_scene_plan {
+    int run[SOL_FX_COUNT];             /* 1: the effect runs */
+    char element[SOL_FX_COUNT][128];   /* run: JSON pointer of the scene element calling for it */
+    char reason[SOL_FX_COUNT][160];    /* run: what that element is; skipped: why */
+} sol_scene_plan;
+
+/* Plans a loaded scene. Deterministic, cheap, no I/O. Errors: SOL_ERR_NULL_ARG. */
+sol_status sol_scene_plan_build(const sol_scene *scene, sol_scene_plan *out);
+
+/* ======================= the two-path renderer (scene_render.c) =======================
+ * A small CPU deferred renderer, written to be read (pbrt-style): primary rays find the surface
+ * of each pixel (the G-buffer pass: position, view depth, normal, albedo, gloss), a light loop
+ * accumulates diffuse and specular light (the light buffer), composition multiplies by albedo and
+ * adds ambient light times obscurance, then exposure, tone map (sol_hdr), grading, and AA.
+ *  - reference path: float everywhere, no compression, exact Ward BRDF, ray-traced visibility for
+ *    clipped lights, converged obscurance, reference_supersample^2 samples per pixel.
+ *  - engine path: one sample per pixel and every planned effect in the talk's format.
+ * Attribution: the engine path with one effect swapped for its reference version
+ * (options.reference_effects bit e) measures that effect's share of the error and of the time.
+ * Deterministic and independent of the thread count (OpenMP over rows, no shared accumulation). */
+typedef struct sol_render_options {
+    int width, height;            /* 0: the camera's size */
+    int reference;                /* nonzero: the reference path */
+    unsigned reference_effects;   /* engine path: bit e set = effect e runs in its reference version */
+} sol_render_options;
+
+typedef struct sol_render_stats {
+    uint64_t effect_runs[SOL_FX_COUNT]; /* how many times each effect's code ran (per texture, pass or frame) */
+    uint64_t objects_culled;            /* culling: objects removed before the G-buffer pass */
+    int frames;                         /* frames rendered (camera path) */
+    double seconds;                     /* wall time of the frame(s): every pass after the textures */
+    double prepare_seconds;             /* wall time of texture compression and fits (offline in an engine) */
+} sol_render_stats;
+
+typedef struct sol_render_result {
+    sol_image hdr;     /* linear scene radiance (RGB, before exposure) */
+    sol_image display; /* display image: sRGB-encoded RGB in [0,1] after tone map, grading, AA */
+    sol_image normals; /* the normals lighting used at pixel centres (world space, 0 = background) */
+} sol_render_result;
+
+/* Renders a loaded scene along its plan (sol_scene_plan_build). out's images are allocated here
+ * (free with sol_render_result_free); stats may be NULL. Meshes are not drawn (see the plan).
+ * Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (size < 1 or above SOL_SCENE_MAX_PIXELS),
+ * SOL_ERR_NO_MEMORY, and the technique modules' errors (e.g. SOL_ERR_SOLVER from the Ward fit). */
+sol_status sol_scene_render(const sol_scene *scene, const sol_scene_plan *plan, const sol_render_options *options,
+                            sol_render_result *out, sol_render_stats *stats);
+void sol_render_result_free(sol_render_result *result);
+
+/* Image error of a render against a reference render of the same size: display-code (8-bit)
+ * RMS and max over RGB, CIEDE2000 mean and max (sol_ciede2000 on the display images), and the
+ * angle between the normals where both have a surface (degrees). */
+typedef struct sol_render_error {
+    double rms_code, max_code;
+    double de2000_mean, de2000_max;
+    double normal_mean_deg, normal_max_deg;
+} sol_render_error;
+sol_status sol_render_compare(const sol_render_result *engine, const sol_render_result *reference,
+                              sol_render_error *out);
+
 #ifdef __cplusplus
 }
 #endif
