@@ -1,0 +1,1210 @@
+/* scene_render.c - a small CPU deferred renderer with a reference path and an engine path.
+ *
+ * The order of a frame (engine path; the reference path is the same code with every effect in
+ * its reference version and reference_supersample^2 samples per pixel):
+ *   1. textures: albedo through 8-bit storage (T3-T6), BC1 (T7), renormalisation (T1/T2);
+ *      normal maps through BC5 (T8-T14). Done once per render.
+ *   2. culling (M1): occluder depth at quarter resolution, coverage buffer, object bounds tested.
+ *   3. G-buffer pass: a primary ray per pixel finds the surface; normal encoded in 24 bits (D3-D7);
+ *      anisotropic materials replaced by their principal Phong lobe (D15/D16).
+ *   4. obscurance (M3) from the depth buffer.
+ *   5. light loop: sun, point, spot, SG environment lobes; clip volumes (D13) for unshadowed
+ *      lights; diffuse and specular sums stored in the light buffer format (D9, S9) with range
+ *      scaling (D10).
+ *   6. composition, temporal accumulation over the camera path (D18), exposure + tone map,
+ *      grading through a LUT (M4), post AA (D17).
+ */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sol_brdf.h"
+#include "sol_hdr.h"
+#include "sol_lighting.h"
+#include "sol_normalmaps.h"
+#include "sol_normals.h"
+#include "sol_scene.h"
+#include "sol_screen.h"
+#include "sol_textures.h"
+
+#define TEX_SIZE 256     /* procedural textures are baked at this size */
+#define MAX_SG_LIGHTS 64 /* lighting lobes used for the D16 extraction */
+#define EPS 1e-4
+
+/* ---------------- small vector helpers ---------------- */
+
+static void v_set(double o[3], double x, double y, double z) { o[0] = x, o[1] = y, o[2] = z; }
+static void v_sub(double o[3], const double a[3], const double b[3])
+{
+    for (int i = 0; i < 3; ++i)
+        o[i] = a[i] - b[i];
+}
+static void v_cross(double o[3], const double a[3], const double b[3])
+{
+    double t[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    memcpy(o, t, sizeof t);
+}
+static double v_norm(double v[3])
+{
+    double l = sqrt(sol_dot3(v, v));
+    if (l > 0)
+        for (int i = 0; i < 3; ++i)
+            v[i] /= l;
+    return l;
+}
+
+/* ---------------- prepared scene ---------------- */
+
+typedef struct prepared_material {
+    sol_image albedo;     /* linear albedo texels as this path sees them (or empty) */
+    sol_image normal_map; /* tangent-space normals as this path sees them (or empty) */
+    double albedo_scale, normal_scale;
+    int k;                /* SG lobes of the Ward NDF fit (engine, sg-lobes) */
+    sol_sg lobes[16];     /* in the shading frame (x = tangent, z = normal) */
+} prepared_material;
+
+typedef struct frame {
+    const sol_scene *s;
+    int reference;
+    unsigned on; /* bit e: effect e runs in its engine version */
+    int width, height;
+    double eye[3], fwd[3], right[3], up[3], focal;
+    prepared_material *mats;
+    unsigned char *culled; /* per object */
+    sol_lut3d lut;
+    sol_grade grade;
+    sol_render_stats *stats;
+    float **irradiance; /* per light, per SG lobe: IRR_TABLE values of the clamped-cosine convolution */
+} frame;
+
+#define IRR_TABLE 2049 /* irradiance of a unit SG lobe against cos(normal, axis) in [-1, 1] */
+
+/* Irradiance of environment lobe j of light li at normal n, from the table built in prepare()
+ * (sol_sg_cosine_convolve at IRR_TABLE cosines, linearly interpolated). */
+static double lobe_irradiance(const struct frame *f, int li, int j, const double axis[3], const double n[3])
+{
+    const float *t = f->irradiance[li] + (size_t)j * IRR_TABLE;
+    double x = (sol_dot3(axis, n) + 1) * 0.5 * (IRR_TABLE - 1);
+    x = x < 0 ? 0 : x > IRR_TABLE - 1 ? IRR_TABLE - 1 : x;
+    int i = (int)x;
+    if (i >= IRR_TABLE - 1)
+        return t[IRR_TABLE - 1];
+    return t[i] + (x - i) * (t[i + 1] - t[i]);
+}
+
+static int fx(const frame *f, sol_effect e) { return (f->on >> e) & 1u; }
+
+/* ---------------- geometry: ray casting ---------------- */
+
+typedef struct hit {
+    double t;
+    int object;
+    double p[3], n[3]; /* position, geometric normal (facing the ray) */
+} hit;
+
+/* Height field y = base + A (1 + sin(2 pi f x) sin(2 pi f z)) / 2 in local x, z. */
+static double hf_height(const sol_scene_object *o, double x, double z)
+{
+    double w = 2 * M_PI * o->radius;
+    return o->a[1] + o->b[1] * 0.5 * (1 + sin(w * (x - o->a[0])) * sin(w * (z - o->a[2])));
+}
+
+static int intersect(const sol_scene_object *o, const double org[3], const double dir[3], double tmax, double *t_out,
+                     double n[3])
+{
+    switch (o->kind) {
+    case SOL_GEOM_PLANE: {
+        double nn[3] = {o->b[0], o->b[1], o->b[2]};
+        v_norm(nn);
+        double dn = sol_dot3(dir, nn);
+        if (fabs(dn) < 1e-12)
+            return 0;
+        double d[3];
+        v_sub(d, o->a, org);
+        double t = sol_dot3(d, nn) / dn;
+        if (!(t > EPS && t < tmax))
+            return 0;
+        if (o->radius > 0)
+            for (int i = 0; i < 3; ++i)
+                if (fabs(org[i] + t * dir[i] - o->a[i]) > o->radius)
+                    return 0;
+        *t_out = t;
+        memcpy(n, nn, sizeof nn);
+        return 1;
+    }
+    case SOL_GEOM_BOX: {
+        double t0 = EPS, t1 = tmax;
+        int axis0 = -1;
+        for (int i = 0; i < 3; ++i) {
+            double inv = 1.0 / dir[i];
+            double a = (o->a[i] - org[i]) * inv, b = (o->b[i] - org[i]) * inv;
+            if (a > b) {
+                double tmp = a;
+                a = b;
+                b = tmp;
+            }
+            if (a > t0) {
+                t0 = a;
+                axis0 = i;
+            }
+            if (b < t1)
+                t1 = b;
+            if (t0 > t1)
+                return 0;
+        }
+        if (axis0 < 0)
+            return 0; /* the origin is inside the box */
+        *t_out = t0;
+        v_set(n, 0, 0, 0);
+        n[axis0] = 1;
+        return 1;
+    }
+    case SOL_GEOM_SPHERE: {
+        double oc[3];
+        v_sub(oc, org, o->a);
+        double a = sol_dot3(dir, dir), b = sol_dot3(oc, dir), c = sol_dot3(oc, oc) - o->radius * o->radius;
+        double disc = b * b - a * c; /* dir need not be unit length */
+        if (disc < 0)
+            return 0;
+        double sq = sqrt(disc), t = (-b - sq) / a;
+        if (t <= EPS)
+            t = (-b + sq) / a;
+        if (!(t > EPS && t < tmax))
+            return 0;
+        *t_out = t;
+        for (int i = 0; i < 3; ++i)
+            n[i] = (org[i] + t * dir[i] - o->a[i]) / o->radius;
+        return 1;
+    }
+    case SOL_GEOM_HEIGHTFIELD: {
+        /* ray march inside the bounding box, then bisection on the sign change */
+        double lo[3] = {o->a[0], o->a[1], o->a[2]}, hi[3] = {o->a[0] + o->b[0], o->a[1] + o->b[1], o->a[2] + o->b[2]};
+        double t0 = EPS, t1 = tmax;
+        for (int i = 0; i < 3; ++i) {
+            double inv = 1.0 / dir[i];
+            double a = (lo[i] - org[i]) * inv, b = (hi[i] - org[i]) * inv;
+            if (a > b) {
+                double tmp = a;
+                a = b;
+                b = tmp;
+            }
+            t0 = fmax(t0, a);
+            t1 = fmin(t1, b);
+        }
+        if (!(t0 <= t1))
+            return 0;
+        const int steps = 96;
+        double dt = (t1 - t0) / steps, ta = t0;
+        double fa = org[1] + ta * dir[1] - hf_height(o, org[0] + ta * dir[0], org[2] + ta * dir[2]);
+        if (fa < 0)
+            return 0; /* starts below the surface */
+        for (int s = 1; s <= steps; ++s) {
+            double tb = t0 + s * dt;
+            double fb = org[1] + tb * dir[1] - hf_height(o, org[0] + tb * dir[0], org[2] + tb * dir[2]);
+            if (fb <= 0) {
+                for (int k = 0; k < 12; ++k) {
+                    double tm = 0.5 * (ta + tb);
+                    double fm = org[1] + tm * dir[1] - hf_height(o, org[0] + tm * dir[0], org[2] + tm * dir[2]);
+                    if (fm > 0)
+                        ta = tm;
+                    else
+                        tb = tm;
+                }
+                double x = org[0] + tb * dir[0] - o->a[0], z = org[2] + tb * dir[2] - o->a[2];
+                double w = 2 * M_PI * o->radius, A = 0.5 * o->b[1];
+                v_set(n, -A * w * cos(w * x) * sin(w * z), 1, -A * w * sin(w * x) * cos(w * z));
+                v_norm(n);
+                *t_out = tb;
+                return 1;
+            }
+            ta = tb;
+            fa = fb;
+        }
+        return 0;
+    }
+    case SOL_GEOM_MESH:
+        return 0; /* meshes are not drawn by this renderer */
+    }
+    return 0;
+}
+
+/* Closest hit along a ray; `skip_culled` leaves out culled objects (camera rays only). */
+static int trace(const frame *f, const double org[3], const double dir[3], double tmax, int skip_culled, hit *h)
+{
+    const sol_scene *s = f->s;
+    int found = 0;
+    double best = tmax, n[3];
+    for (int i = 0; i < s->object_count; ++i) {
+        double t;
+        if (skip_culled && f->culled && f->culled[i])
+            continue;
+        if (intersect(&s->objects[i], org, dir, best, &t, n)) {
+            best = t;
+            found = 1;
+            h->object = i;
+            memcpy(h->n, n, sizeof n);
+        }
+    }
+    if (!found)
+        return 0;
+    h->t = best;
+    for (int i = 0; i < 3; ++i)
+        h->p[i] = org[i] + best * dir[i];
+    if (sol_dot3(h->n, dir) > 0)
+        for (int i = 0; i < 3; ++i)
+            h->n[i] = -h->n[i];
+    return 1;
+}
+
+static int occluded(const frame *f, const double p[3], const double n[3], const double l[3], double dist)
+{
+    double org[3];
+    for (int i = 0; i < 3; ++i)
+        org[i] = p[i] + n[i] * 1e-3;
+    hit h;
+    return trace(f, org, l, dist, 0, &h);
+}
+
+/* Ray through screen point (sx, sy) of the current camera; dir has unit view-z component, so t is
+ * the view depth. */
+static void camera_ray(const frame *f, double sx, double sy, double dir[3])
+{
+    double x = (sx - 0.5 * f->width) / f->focal, y = (sy - 0.5 * f->height) / f->focal;
+    for (int i = 0; i < 3; ++i)
+        dir[i] = f->fwd[i] + x * f->right[i] - y * f->up[i];
+}
+
+/* ---------------- textures ---------------- */
+
+static void tex_sample(const sol_image *img, double u, double v, double out[3])
+{
+    double x = (u - floor(u)) * img->width - 0.5, y = (v - floor(v)) * img->height - 0.5;
+    int x0 = (int)floor(x), y0 = (int)floor(y);
+    double fx_ = x - x0, fy = y - y0;
+    out[0] = out[1] = out[2] = 0;
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            int xi = ((x0 + i) % img->width + img->width) % img->width;
+            int yi = ((y0 + j) % img->height + img->height) % img->height;
+            double w = (i ? fx_ : 1 - fx_) * (j ? fy : 1 - fy);
+            const float *p = sol_image_pixel(img, xi, yi);
+            for (int c = 0; c < 3; ++c)
+                out[c] += w * p[img->channels >= 3 ? c : 0];
+        }
+}
+
+/* Planar mapping by the dominant axis of the normal: texture coordinates and tangent frame. */
+static void surface_frame(const double p[3], const double n[3], double uv[2], double t[3], double b[3])
+{
+    double ax = fabs(n[0]), ay = fabs(n[1]), az = fabs(n[2]);
+    if (ay >= ax && ay >= az) {
+        uv[0] = p[0], uv[1] = p[2];
+        v_set(t, 1, 0, 0);
+    } else if (ax >= az) {
+        uv[0] = p[2], uv[1] = p[1];
+        v_set(t, 0, 0, 1);
+    } else {
+        uv[0] = p[0], uv[1] = p[1];
+        v_set(t, 1, 0, 0);
+    }
+    double d = sol_dot3(t, n);
+    for (int i = 0; i < 3; ++i)
+        t[i] -= d * n[i];
+    v_norm(t);
+    v_cross(b, n, t);
+}
+
+static sol_status bake_procedural(const sol_scene_texture *t, int normal_map, sol_image *out)
+{
+    sol_status st = sol_image_alloc(out, TEX_SIZE, TEX_SIZE, 3);
+    if (st != SOL_OK)
+        return st;
+    for (int y = 0; y < TEX_SIZE; ++y)
+        for (int x = 0; x < TEX_SIZE; ++x) {
+            double u = (x + 0.5) / TEX_SIZE, v = (y + 0.5) / TEX_SIZE;
+            float *p = sol_image_pixel(out, x, y);
+            if (normal_map) { /* bumps: h = sin(8 pi u) sin(8 pi v) / (8 pi), n = (-A dh/du, -A dh/dv, 1) */
+                double w = 8 * M_PI, a = t->low[0];
+                double n[3] = {-a * cos(w * u) * sin(w * v), -a * sin(w * u) * cos(w * v), 1};
+                v_norm(n);
+                for (int c = 0; c < 3; ++c)
+                    p[c] = (float)n[c];
+            } else { /* checker of 8 x 8 cells with a soft gradient inside each cell */
+                int cell = ((x / 32) + (y / 32)) & 1;
+                double g = 0.75 + 0.25 * sin(M_PI * (x % 32 + 0.5) / 32) * sin(M_PI * (y % 32 + 0.5) / 32);
+                for (int c = 0; c < 3; ++c)
+                    p[c] = (float)(g * (cell ? t->high[c] : t->low[c]));
+            }
+        }
+    return SOL_OK;
+}
+
+/* The albedo texture as the path sees it: float (reference), or through the planned effects. */
+static sol_status prepare_albedo(frame *f, const sol_scene_texture *t, sol_image *out)
+{
+    sol_image img = {0};
+    sol_status st;
+    if (t->source == SOL_TEX_FILE) {
+        st = sol_image_alloc(&img, t->image.width, t->image.height, 3);
+        if (st != SOL_OK)
+            return st;
+        for (size_t i = 0; i < (size_t)img.width * img.height; ++i)
+            for (int c = 0; c < 3; ++c) {
+                double v = t->image.data[i * t->image.channels + (t->image.channels >= 3 ? c : 0)];
+                img.data[i * 3 + c] = (float)(t->linear ? v : sol_srgb_decode(v));
+            }
+    } else if ((st = bake_procedural(t, 0, &img)) != SOL_OK)
+        return st;
+    if (t->bits != 8 || f->reference) {
+        *out = img;
+        return SOL_OK;
+    }
+    size_t n = (size_t)img.width * img.height * 3;
+    sol_renorm range;
+    int renorm = fx(f, SOL_FX_ALBEDO_RENORM);
+    if (renorm) { /* T1/T2: stretch each channel's range to [0,1] before storage */
+        f->stats->effect_runs[SOL_FX_ALBEDO_RENORM]++;
+        if ((st = sol_renorm_fit(&img, &range)) != SOL_OK || (st = sol_renorm_apply(&range, &img)) != SOL_OK)
+            goto fail;
+    }
+    sol_transfer curve = {SOL_TRANSFER_SRGB, 0};
+    if (fx(f, SOL_FX_ALBEDO_STORAGE)) { /* T4: gamma or linear storage, 8-bit codes */
+        f->stats->effect_runs[SOL_FX_ALBEDO_STORAGE]++;
+        int storage = f->s->pipeline.albedo_storage;
+        if (storage < 0) {
+            sol_storage choice;
+            if ((st = sol_storage_classify(&img, NULL, &choice, NULL)) != SOL_OK)
+                goto fail;
+            storage = choice == SOL_STORAGE_LINEAR;
+        }
+        if (storage == 1)
+            curve.kind = SOL_TRANSFER_LINEAR;
+    }
+    for (size_t i = 0; i < n; ++i) { /* into storage space */
+        double e;
+        sol_transfer_encode(&curve, img.data[i], &e);
+        img.data[i] = (float)e;
+    }
+    if (fx(f, SOL_FX_ALBEDO_BC1)) { /* T7: BC1 blocks (5:6:5 endpoints, 2-bit indices) */
+        f->stats->effect_runs[SOL_FX_ALBEDO_BC1]++;
+        uint8_t *blocks = malloc(sol_bc1_size(img.width, img.height));
+        sol_image dec = {0};
+        if (!blocks) {
+            st = SOL_ERR_NO_MEMORY;
+            goto fail;
+        }
+        st = sol_bc1_encode(&img, NULL, blocks);
+        if (st == SOL_OK)
+            st = sol_bc1_decode(blocks, img.width, img.height, &dec);
+        free(blocks);
+        if (st != SOL_OK)
+            goto fail;
+        sol_image_free(&img);
+        img = dec;
+    } else if (fx(f, SOL_FX_ALBEDO_STORAGE)) {
+        for (size_t i = 0; i < n; ++i)
+            img.data[i] = (float)(sol_unorm_encode(img.data[i], 8) / 255.0);
+    }
+    for (size_t i = 0; i < n; ++i) { /* the sampler's de-gamma */
+        double l;
+        sol_transfer_decode(&curve, img.data[i], &l);
+        img.data[i] = (float)l;
+    }
+    if (renorm && (st = sol_renorm_undo(&range, &img)) != SOL_OK)
+        goto fail;
+    *out = img;
+    return SOL_OK;
+fail:
+    sol_image_free(&img);
+    return st;
+}
+
+static sol_status prepare_normal_map(frame *f, const sol_scene_texture *t, sol_image *out)
+{
+    sol_image img = {0};
+    sol_status st;
+    if (t->source == SOL_TEX_FILE) {
+        st = sol_image_alloc(&img, t->image.width, t->image.height, 3);
+        if (st != SOL_OK)
+            return st;
+        for (size_t i = 0; i < (size_t)img.width * img.height; ++i) {
+            double n[3];
+            for (int c = 0; c < 3; ++c)
+                n[c] = 2.0 * t->image.data[i * t->image.channels + c] - 1.0;
+            if (v_norm(n) == 0)
+                v_set(n, 0, 0, 1);
+            for (int c = 0; c < 3; ++c)
+                img.data[i * 3 + c] = (float)n[c];
+        }
+    } else if ((st = bake_procedural(t, 1, &img)) != SOL_OK)
+        return st;
+    if (!f->reference && fx(f, SOL_FX_NORMAL_MAP_BC5) && img.width % 4 == 0 && img.height % 4 == 0) {
+        f->stats->effect_runs[SOL_FX_NORMAL_MAP_BC5]++;
+        sol_bc5_options o = {0};
+        o.encoder = (sol_bc5_encoder)f->s->pipeline.normal_map_encoder;
+        uint8_t *blocks = malloc((size_t)img.width * img.height);
+        sol_image dec = {0};
+        if (!blocks) {
+            sol_image_free(&img);
+            return SOL_ERR_NO_MEMORY;
+        }
+        st = sol_bc5_encode_image(&img, &o, blocks, NULL);
+        if (st == SOL_OK)
+            st = sol_bc5_decode_image(blocks, img.width, img.height, o.precision, &dec);
+        free(blocks);
+        sol_image_free(&img);
+        if (st != SOL_OK)
+            return st;
+        img = dec;
+    }
+    *out = img;
+    return SOL_OK;
+}
+
+/* ---------------- shading ---------------- */
+
+typedef struct surface {
+    int object, material;
+    double p[3], ng[3], n[3]; /* position, geometric normal, shading normal (what the G-buffer holds) */
+    double n_exact[3];        /* the float shading normal, before any encoding */
+    double albedo[3];
+    double exponent;          /* Phong exponent */
+    double lobe_scale;        /* specular scale from the lobe extraction (1 otherwise) */
+    int exact_ward;           /* shade with the exact Ward BRDF (reference of sg-lobes) */
+    double ax, ay;            /* Ward roughness pair */
+    double t_axis[3], b_axis[3];
+    double depth;             /* view z */
+} surface;
+
+static double phong_exponent(const sol_scene_material *m)
+{
+    return m->phong_exponent > 0 ? m->phong_exponent : pow(2.0, 13.0 * m->gloss);
+}
+
+/* One punctual light at p: direction to it, its irradiance at normal incidence, distance. */
+static int light_at(const sol_scene_light *l, const double p[3], double dir[3], double e[3], double *dist)
+{
+    double k = l->intensity;
+    if (l->kind == SOL_LIGHT_SUN) {
+        for (int i = 0; i < 3; ++i)
+            dir[i] = -l->direction[i];
+        *dist = 1e30;
+    } else {
+        v_sub(dir, l->position, p);
+        double d = v_norm(dir);
+        if (d >= l->radius || d == 0)
+            return 0;
+        double w = 1 - (d / l->radius) * (d / l->radius);
+        k *= w * w / (d * d + 1e-2); /* inverse square, windowed to the light's radius */
+        if (l->kind == SOL_LIGHT_SPOT) {
+            double c = -sol_dot3(dir, l->direction), c0 = cos(l->cone_deg * M_PI / 180);
+            double c1 = cos(fmax(0, l->cone_deg - 5) * M_PI / 180);
+            double s = (c - c0) / fmax(c1 - c0, 1e-9);
+            s = s < 0 ? 0 : s > 1 ? 1 : s;
+            k *= s * s * (3 - 2 * s);
+        }
+        *dist = d;
+    }
+    for (int i = 0; i < 3; ++i)
+        e[i] = l->color[i] * k;
+    return k > 0;
+}
+
+static int inside_clip(const sol_scene_clip *c, const double p[3])
+{
+    for (int i = 0; i < 3; ++i)
+        if (p[i] < c->min[i] - 1e-3 || p[i] > c->max[i] + 1e-3)
+            return 0;
+    return 1;
+}
+
+/* The lights as SG lobes over light directions, for the lobe extraction (D16): each environment
+ * lobe as it is, each punctual light as a sharp lobe (sharpness 1000) of the same irradiance. */
+static int lights_as_sgs(const frame *f, const double p[3], sol_sg *out)
+{
+    int n = 0;
+    for (int i = 0; i < f->s->light_count && n < MAX_SG_LIGHTS; ++i) {
+        const sol_scene_light *l = &f->s->lights[i];
+        if (l->kind == SOL_LIGHT_ENV) {
+            for (int j = 0; j < l->lobe_count && n < MAX_SG_LIGHTS; ++j, ++n) {
+                memcpy(out[n].axis, l->lobes[j].axis, sizeof out[n].axis);
+                out[n].sharpness = l->lobes[j].sharpness;
+                out[n].amplitude = l->intensity * sol_luminance(l->lobes[j].amplitude);
+            }
+        } else {
+            double dir[3], e[3], d;
+            if (!light_at(l, p, dir, e, &d))
+                continue;
+            memcpy(out[n].axis, dir, sizeof dir);
+            out[n].sharpness = 1000;
+            out[n].amplitude = sol_luminance(e) * 1000 / (2 * M_PI);
+            ++n;
+        }
+    }
+    return n;
+}
+
+/* Specular BRDF value times cos for light direction l (per unit F0). */
+static double specular(const surface *sf, const double v[3], const double l[3])
+{
+    double nl = sol_dot3(sf->n, l);
+    if (nl <= 0)
+        return 0;
+    if (sf->exact_ward) { /* the Ward BRDF in the shading frame (rho_s = 1) */
+        double vl[3] = {sol_dot3(v, sf->t_axis), sol_dot3(v, sf->b_axis), sol_dot3(v, sf->n)};
+        double ll[3] = {sol_dot3(l, sf->t_axis), sol_dot3(l, sf->b_axis), nl};
+        return sol_ward_brdf(vl, ll, sf->ax, sf->ay) * nl;
+    }
+    double r[3];
+    double vn = sol_dot3(v, sf->n);
+    for (int i = 0; i < 3; ++i)
+        r[i] = 2 * vn * sf->n[i] - v[i];
+    return sf->lobe_scale * sol_phong_normalized(sol_dot3(r, l), sf->exponent) * nl;
+}
+
+/* The G-buffer of one camera ray: surface, material, normal as the path stores it. */
+static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
+{
+    double dir[3];
+    camera_ray(f, sx, sy, dir);
+    hit h;
+    if (!trace(f, f->eye, dir, f->s->camera.zfar, 1, &h))
+        return 0;
+    const sol_scene_object *o = &f->s->objects[h.object];
+    const sol_scene_material *m = &f->s->materials[o->material];
+    const prepared_material *pm = &f->mats[o->material];
+    memset(sf, 0, sizeof *sf);
+    sf->object = h.object;
+    sf->material = o->material;
+    sf->depth = h.t;
+    memcpy(sf->p, h.p, sizeof h.p);
+    memcpy(sf->ng, h.n, sizeof h.n);
+    double uv[2];
+    surface_frame(h.p, h.n, uv, sf->t_axis, sf->b_axis);
+    memcpy(sf->n, h.n, sizeof h.n);
+    if (pm->normal_map.data) {
+        double tn[3];
+        tex_sample(&pm->normal_map, uv[0] * pm->normal_scale, uv[1] * pm->normal_scale, tn);
+        for (int i = 0; i < 3; ++i)
+            sf->n[i] = tn[0] * sf->t_axis[i] + tn[1] * sf->b_axis[i] + tn[2] * h.n[i];
+        if (v_norm(sf->n) == 0 || sol_dot3(sf->n, h.n) <= 0)
+            memcpy(sf->n, h.n, sizeof h.n);
+    }
+    memcpy(sf->albedo, m->albedo, sizeof sf->albedo);
+    if (pm->albedo.data) {
+        double a[3];
+        tex_sample(&pm->albedo, uv[0] * pm->albedo_scale, uv[1] * pm->albedo_scale, a);
+        for (int i = 0; i < 3; ++i)
+            sf->albedo[i] = a[i]; /* a texture replaces the material's albedo */
+    }
+    sf->exponent = phong_exponent(m);
+    sf->lobe_scale = 1;
+    if (m->aniso != SOL_ANISO_NONE) {
+        /* the tangent of the material, projected into the surface */
+        double t[3];
+        memcpy(t, m->tangent, sizeof t);
+        double d = sol_dot3(t, sf->n);
+        for (int i = 0; i < 3; ++i)
+            t[i] -= d * sf->n[i];
+        if (v_norm(t) > 1e-6) {
+            memcpy(sf->t_axis, t, sizeof t);
+            v_cross(sf->b_axis, sf->n, t);
+        }
+        sf->ax = m->roughness[0];
+        sf->ay = m->roughness[1];
+        sf->exact_ward = 1;
+    }
+    memcpy(sf->n_exact, sf->n, sizeof sf->n);
+    if (sf->exact_ward && !f->reference && fx(f, SOL_FX_SG_LOBES) && pm->k > 0) {
+        /* D15/D16: the NDF as SG lobes (world frame), lit by the lights as SGs; the principal Phong
+         * lobe replaces the material in the G-buffer (normal, exponent). */
+        sol_sg ndf[16], lights[MAX_SG_LIGHTS];
+        for (int k = 0; k < pm->k; ++k) {
+            ndf[k] = pm->lobes[k];
+            for (int i = 0; i < 3; ++i)
+                ndf[k].axis[i] = pm->lobes[k].axis[0] * sf->t_axis[i] + pm->lobes[k].axis[1] * sf->b_axis[i] +
+                                 pm->lobes[k].axis[2] * sf->n[i];
+        }
+        int nl = lights_as_sgs(f, sf->p, lights);
+        double v[3];
+        for (int i = 0; i < 3; ++i)
+            v[i] = -dir[i];
+        v_norm(v);
+        sol_phong_lobe lobe;
+        if (nl > 0 && sol_extract_phong_lobe(ndf, pm->k, lights, nl, v, &lobe) == SOL_OK &&
+            sol_dot3(lobe.normal, h.n) > 0) {
+            memcpy(sf->n, lobe.normal, sizeof lobe.normal);
+            v_norm(sf->n);
+            sf->exponent = fmax(1, lobe.glossiness);
+            sf->exact_ward = 0;
+        }
+    }
+    if (!f->reference && fx(f, SOL_FX_GBUFFER_NORMALS)) { /* D3-D7: 24-bit normal */
+        uint32_t code;
+        double dec[3];
+        sol_normal_method mth = (sol_normal_method)f->s->pipeline.gbuffer_normals;
+        if (sol_normal_encode(mth, sf->n, &code) == SOL_OK && sol_normal_decode(mth, code, dec) == SOL_OK)
+            memcpy(sf->n, dec, sizeof dec);
+    }
+    return 1;
+}
+
+/* The light loop at one G-buffer sample: diffuse irradiance and specular radiance (per unit F0). */
+static void light_loop(const frame *f, const surface *sf, const double v[3], double diff[3], double spec[3])
+{
+    const sol_scene *s = f->s;
+    diff[0] = diff[1] = diff[2] = spec[0] = spec[1] = spec[2] = 0;
+    for (int li = 0; li < s->light_count; ++li) {
+        const sol_scene_light *l = &s->lights[li];
+        if (l->kind == SOL_LIGHT_ENV) {
+            for (int j = 0; j < l->lobe_count; ++j) {
+                sol_sg g = {{l->lobes[j].axis[0], l->lobes[j].axis[1], l->lobes[j].axis[2]}, l->lobes[j].sharpness, 1};
+                double e = l->intensity * lobe_irradiance(f, li, j, g.axis, sf->n);
+                double sp;
+                if (sf->exact_ward) { /* quadrature: 128 R2 directions over the sphere */
+                    sp = 0;
+                    for (int k = 0; k < 128; ++k) {
+                        double u, w, d[3];
+                        sol_r2_point((uint64_t)k, &u, &w);
+                        sol_sphere_uniform(u, w, d);
+                        sp += sol_sg_eval(&g, d) * specular(sf, v, d);
+                    }
+                    sp *= l->intensity * 4 * M_PI / 128;
+                } else { /* the Phong lobe as an SG about the reflection vector, times n.r */
+                    double r[3], vn = sol_dot3(v, sf->n);
+                    for (int i = 0; i < 3; ++i)
+                        r[i] = 2 * vn * sf->n[i] - v[i];
+                    sol_sg ph = {{r[0], r[1], r[2]}, sf->exponent, sol_phong_norm_factor(sf->exponent)};
+                    sp = l->intensity * sf->lobe_scale * sol_sg_inner_product(&g, &ph) * fmax(0, sol_dot3(r, sf->n));
+                }
+                for (int c = 0; c < 3; ++c) {
+                    diff[c] += e * l->lobes[j].amplitude[c];
+                    spec[c] += sp * l->lobes[j].amplitude[c];
+                }
+            }
+            continue;
+        }
+        double dir[3], e[3], dist;
+        if (!light_at(l, sf->p, dir, e, &dist) || sol_dot3(sf->ng, dir) <= 0)
+            continue;
+        /* visibility: shadowed lights trace; a clipped light uses its clip volume in the engine
+         * path (D13) and a shadow ray in the reference; other lights are unshadowed */
+        int clipped = l->clip >= 0 && !l->shadows;
+        if (clipped && !f->reference && fx(f, SOL_FX_CLIP_VOLUMES)) {
+            if (!inside_clip(&s->clips[l->clip], sf->p))
+                continue;
+        } else if (l->shadows || clipped) {
+            if (occluded(f, sf->p, sf->ng, dir, dist))
+                continue;
+        }
+        double nl = fmax(0, sol_dot3(sf->n, dir));
+        double sp = specular(sf, v, dir);
+        for (int c = 0; c < 3; ++c) {
+            diff[c] += e[c] * nl;
+            spec[c] += e[c] * sp;
+        }
+    }
+}
+
+/* One light-buffer value through the configured format (D9, S9), with range scaling (D10). */
+static double store_light(const frame *f, double v, double scale)
+{
+    float x = (float)(v * scale);
+    switch (f->s->pipeline.light_buffer) {
+    case SOL_LB_R11G11B10F:
+        x = sol_uf11_to_float(sol_uf11_from_float(x));
+        break;
+    case SOL_LB_RGB10:
+        x = sol_rgb10_scaled_decode(sol_rgb10_scaled_encode(x));
+        break;
+    default:
+        break;
+    }
+    return x / scale;
+}
+
+static void store_light3(const frame *f, double rgb[3], double scale)
+{
+    if (f->s->pipeline.light_buffer == SOL_LB_RGBM) {
+        float in[3] = {(float)(rgb[0] * scale), (float)(rgb[1] * scale), (float)(rgb[2] * scale)}, out[3];
+        uint8_t code[4];
+        sol_rgbm_encode(in, f->s->pipeline.light_range, code);
+        sol_rgbm_decode(code, f->s->pipeline.light_range, out);
+        for (int c = 0; c < 3; ++c)
+            rgb[c] = out[c] / scale;
+        return;
+    }
+    for (int c = 0; c < 3; ++c)
+        rgb[c] = store_light(f, rgb[c], scale);
+}
+
+/* Shades one sample: the colour (linear radiance) the composition gives, with obscurance `ao`. */
+static void shade(const frame *f, const surface *sf, double ao, double rgb[3])
+{
+    const sol_scene_material *m = &f->s->materials[sf->material];
+    double v[3];
+    v_sub(v, f->eye, sf->p);
+    v_norm(v);
+    double diff[3], spec[3];
+    light_loop(f, sf, v, diff, spec);
+    if (!f->reference && fx(f, SOL_FX_LIGHT_BUFFER)) {
+        double scale = fx(f, SOL_FX_RANGE_SCALING) ? f->s->pipeline.exposure : 1.0;
+        store_light3(f, diff, scale);
+        store_light3(f, spec, scale);
+    }
+    for (int c = 0; c < 3; ++c)
+        rgb[c] = sf->albedo[c] / M_PI * diff[c] + m->specular * spec[c] + sf->albedo[c] * f->s->ambient[c] * ao;
+}
+
+/* ---------------- camera, culling, obscurance ---------------- */
+
+static void set_camera(frame *f, const double eye[3])
+{
+    const sol_scene_camera *c = &f->s->camera;
+    memcpy(f->eye, eye, sizeof f->eye);
+    v_sub(f->fwd, c->look_at, c->position); /* a path translates the camera: orientation kept */
+    v_norm(f->fwd);
+    v_cross(f->right, c->up, f->fwd);
+    v_norm(f->right);
+    v_cross(f->up, f->fwd, f->right);
+    f->focal = 0.5 * f->height / tan(0.5 * c->fov_deg * M_PI / 180);
+}
+
+static sol_camera screen_camera(const frame *f)
+{
+    sol_camera c = {f->width, f->height, f->focal, f->s->camera.znear, f->s->camera.zfar};
+    return c;
+}
+
+/* M1: occluder depth at quarter resolution, its coverage buffer, and each box's screen bounds
+ * tested against it; culled boxes are left out of the camera rays. */
+static sol_status cull(frame *f)
+{
+    const sol_scene *s = f->s;
+    int w = (f->width + 3) / 4, h = (f->height + 3) / 4;
+    float *depth = malloc((size_t)w * h * sizeof *depth);
+    if (!depth)
+        return SOL_ERR_NO_MEMORY;
+    memset(f->culled, 0, (size_t)s->object_count);
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            double dir[3];
+            camera_ray(f, 4.0 * x + 2.0, 4.0 * y + 2.0, dir);
+            hit hh;
+            depth[(size_t)y * w + x] = trace(f, f->eye, dir, s->camera.zfar, 0, &hh) ? (float)hh.t : (float)s->camera.zfar;
+        }
+    sol_cbuffer cb;
+    sol_cbuffer_options o = {1, SOL_DOWNSCALE_MAX};
+    sol_status st = sol_cbuffer_build(depth, w, h, &o, &cb);
+    free(depth);
+    if (st != SOL_OK)
+        return st;
+    for (int i = 0; i < s->object_count; ++i) {
+        const sol_scene_object *ob = &s->objects[i];
+        if (ob->kind != SOL_GEOM_BOX)
+            continue;
+        sol_screen_bounds b = {1e300, 1e300, -1e300, -1e300, 1e300};
+        int ok = 1;
+        for (int k = 0; k < 8 && ok; ++k) {
+            double p[3] = {(k & 1) ? ob->b[0] : ob->a[0], (k & 2) ? ob->b[1] : ob->a[1], (k & 4) ? ob->b[2] : ob->a[2]};
+            double d[3];
+            v_sub(d, p, f->eye);
+            double z = sol_dot3(d, f->fwd);
+            if (z < s->camera.znear) {
+                ok = 0;
+                break;
+            }
+            double sx = (0.5 * f->width + f->focal * sol_dot3(d, f->right) / z) / 4;
+            double sy = (0.5 * f->height - f->focal * sol_dot3(d, f->up) / z) / 4;
+            b.x0 = fmin(b.x0, sx), b.x1 = fmax(b.x1, sx), b.y0 = fmin(b.y0, sy), b.y1 = fmax(b.y1, sy);
+            b.znear = fmin(b.znear, z);
+        }
+        int occ = 0;
+        if (ok && sol_cbuffer_test(&cb, &b, -1, &occ, NULL) == SOL_OK && occ) {
+            f->culled[i] = 1;
+            f->stats->objects_culled++;
+        }
+    }
+    sol_cbuffer_free(&cb);
+    return SOL_OK;
+}
+
+/* ---------------- one frame ---------------- */
+
+typedef struct frame_buffers {
+    float *hdr;     /* width * height * 3 */
+    float *depth;   /* view z, zfar for background */
+    float *normals; /* width * height * 3 */
+    float *ao;
+} frame_buffers;
+
+/* Renders one frame at screen offset (jx, jy) (engine) or supersampled (reference). `ao_frame`
+ * selects the obscurance samples (temporal accumulation uses new ones every frame). */
+static sol_status render_frame(frame *f, double jx, double jy, unsigned ao_frame, frame_buffers *fb)
+{
+    const sol_scene *s = f->s;
+    const int W = f->width, H = f->height;
+    const size_t n = (size_t)W * H;
+    if (!f->reference && fx(f, SOL_FX_CULLING)) {
+        f->stats->effect_runs[SOL_FX_CULLING]++;
+        sol_status st = cull(f);
+        if (st != SOL_OK)
+            return st;
+    } else if (f->culled) {
+        memset(f->culled, 0, (size_t)s->object_count);
+    }
+    /* depth and normals at the pixel centres (jittered in the engine path) */
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            surface sf;
+            size_t i = (size_t)y * W + x;
+            if (gbuffer_sample(f, x + 0.5 + jx, y + 0.5 + jy, &sf)) {
+                fb->depth[i] = (float)sf.depth;
+                for (int c = 0; c < 3; ++c)
+                    fb->normals[3 * i + c] = (float)sf.n[c];
+            } else {
+                fb->depth[i] = (float)s->camera.zfar;
+                fb->normals[3 * i] = fb->normals[3 * i + 1] = fb->normals[3 * i + 2] = 0;
+            }
+        }
+    /* obscurance (M3) */
+    for (size_t i = 0; i < n; ++i)
+        fb->ao[i] = 1;
+    if (s->pipeline.ssao) {
+        sol_camera cam = screen_camera(f);
+        sol_vo_options vo = {s->pipeline.ssao_radius, s->pipeline.ssao_samples, ao_frame, 0};
+        sol_status st = SOL_OK;
+        if (f->reference || !fx(f, SOL_FX_SSAO)) {
+            vo.samples = 256;
+            vo.frame = 0;
+            st = sol_vo_compute(&cam, fb->depth, &vo, fb->ao);
+        } else {
+            f->stats->effect_runs[SOL_FX_SSAO]++;
+            if (s->pipeline.ssao_half_res && W > 1 && H > 1) {
+                int hw = (W + 1) / 2, hh = (H + 1) / 2;
+                float *hd = malloc((size_t)hw * hh * sizeof *hd), *hv = malloc((size_t)hw * hh * sizeof *hv);
+                sol_camera half = {hw, hh, f->focal / 2, cam.znear, cam.zfar};
+                st = !hd || !hv ? SOL_ERR_NO_MEMORY : sol_depth_half(fb->depth, W, H, hd);
+                if (st == SOL_OK)
+                    st = sol_vo_compute(&half, hd, &vo, hv);
+                if (st == SOL_OK)
+                    st = sol_bilateral_upsample(hv, hd, fb->depth, W, H, fb->ao);
+                free(hd);
+                free(hv);
+            } else {
+                st = sol_vo_compute(&cam, fb->depth, &vo, fb->ao);
+            }
+        }
+        if (st != SOL_OK)
+            return st;
+        for (size_t i = 0; i < n; ++i) /* obscurance 0.5 on a flat floor: visibility 2 (1 - vo) */
+            fb->ao[i] = fb->depth[i] >= (float)s->camera.zfar ? 1.0f : fminf(1.0f, 2.0f * (1.0f - fb->ao[i]));
+    }
+    /* the per-pixel effects run inside the passes below; they are counted once per pass */
+    static const sol_effect per_pixel[] = {SOL_FX_GBUFFER_NORMALS, SOL_FX_LIGHT_BUFFER, SOL_FX_RANGE_SCALING,
+                                           SOL_FX_CLIP_VOLUMES};
+    for (size_t k = 0; k < sizeof per_pixel / sizeof per_pixel[0]; ++k)
+        if (!f->reference && fx(f, per_pixel[k]))
+            f->stats->effect_runs[per_pixel[k]]++;
+    /* lighting and composition */
+    const int ss = f->reference ? s->pipeline.reference_supersample : 1;
+#pragma omp parallel for schedule(dynamic, 2)
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            size_t i = (size_t)y * W + x;
+            double sum[3] = {0, 0, 0};
+            for (int sy = 0; sy < ss; ++sy)
+                for (int sx = 0; sx < ss; ++sx) {
+                    surface sf;
+                    double px = ss == 1 ? x + 0.5 + jx : x + (sx + 0.5) / ss, py = ss == 1 ? y + 0.5 + jy : y + (sy + 0.5) / ss;
+                    double rgb[3] = {0, 0, 0};
+                    if (gbuffer_sample(f, px, py, &sf))
+                        shade(f, &sf, fb->ao[i], rgb);
+                    for (int c = 0; c < 3; ++c)
+                        sum[c] += rgb[c];
+                }
+            for (int c = 0; c < 3; ++c)
+                fb->hdr[3 * i + c] = (float)(sum[c] / (ss * ss));
+        }
+    return SOL_OK;
+}
+
+/* ---------------- display ---------------- */
+
+static void grade_fn(const double in[3], double out[3], void *ctx) { sol_grade_apply(ctx, in, out); }
+
+static sol_status to_display(frame *f, const float *hdr, sol_image *display)
+{
+    const sol_scene_pipeline *pl = &f->s->pipeline;
+    const size_t n = (size_t)f->width * f->height;
+    int lut = pl->has_look && !f->reference && fx(f, SOL_FX_LUT_GRADING);
+    if (lut)
+        f->stats->effect_runs[SOL_FX_LUT_GRADING]++;
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < (long)n; ++i) {
+        double c[3], g[3];
+        for (int k = 0; k < 3; ++k)
+            c[k] = sol_srgb_encode(sol_tonemap_apply((sol_tonemap)pl->tonemap, hdr[3 * i + k] * pl->exposure));
+        if (lut)
+            sol_lut3d_apply(&f->lut, SOL_LUT_TRILINEAR, c, g);
+        else if (pl->has_look)
+            sol_grade_apply(&f->grade, c, g);
+        else
+            memcpy(g, c, sizeof c);
+        for (int k = 0; k < 3; ++k)
+            display->data[3 * i + k] = (float)fmin(1, fmax(0, g[k]));
+    }
+    if (pl->aa == SOL_AA_POST && !f->reference && fx(f, SOL_FX_POST_AA)) {
+        f->stats->effect_runs[SOL_FX_POST_AA]++;
+        sol_image out;
+        sol_status st = sol_postaa_filter(display, NULL, &out);
+        if (st != SOL_OK)
+            return st;
+        sol_image_free(display);
+        *display = out;
+    }
+    return SOL_OK;
+}
+
+/* ---------------- the public entry points ---------------- */
+
+void sol_render_result_free(sol_render_result *r)
+{
+    if (!r)
+        return;
+    sol_image_free(&r->hdr);
+    sol_image_free(&r->display);
+    sol_image_free(&r->normals);
+}
+
+static void free_frame(frame *f)
+{
+    if (f->mats)
+        for (int i = 0; i < f->s->material_count; ++i) {
+            sol_image_free(&f->mats[i].albedo);
+            sol_image_free(&f->mats[i].normal_map);
+        }
+    free(f->mats);
+    free(f->culled);
+    if (f->irradiance)
+        for (int i = 0; i < f->s->light_count; ++i)
+            free(f->irradiance[i]);
+    free(f->irradiance);
+    sol_lut3d_free(&f->lut);
+}
+
+static sol_status prepare(frame *f)
+{
+    const sol_scene *s = f->s;
+    sol_status st;
+    f->mats = calloc((size_t)(s->material_count > 0 ? s->material_count : 1), sizeof *f->mats);
+    f->culled = calloc((size_t)(s->object_count > 0 ? s->object_count : 1), 1);
+    f->irradiance = calloc((size_t)(s->light_count > 0 ? s->light_count : 1), sizeof *f->irradiance);
+    if (!f->mats || !f->culled || !f->irradiance)
+        return SOL_ERR_NO_MEMORY;
+    for (int li = 0; li < s->light_count; ++li) {
+        const sol_scene_light *l = &s->lights[li];
+        if (l->lobe_count == 0)
+            continue;
+        float *t = malloc(sizeof *t * (size_t)l->lobe_count * IRR_TABLE);
+        if (!t)
+            return SOL_ERR_NO_MEMORY;
+        f->irradiance[li] = t;
+        for (int j = 0; j < l->lobe_count; ++j) {
+            sol_sg g = {{0, 0, 1}, l->lobes[j].sharpness, 1};
+            for (int k = 0; k < IRR_TABLE; ++k) {
+                double c = -1 + 2.0 * k / (IRR_TABLE - 1), n[3] = {sqrt(fmax(0, 1 - c * c)), 0, c};
+                t[(size_t)j * IRR_TABLE + k] = (float)sol_sg_cosine_convolve(&g, n);
+            }
+        }
+    }
+    for (int i = 0; i < s->material_count; ++i) {
+        const sol_scene_material *m = &s->materials[i];
+        prepared_material *pm = &f->mats[i];
+        if (m->albedo_texture.source != SOL_TEX_NONE) {
+            pm->albedo_scale = m->albedo_texture.scale;
+            if ((st = prepare_albedo(f, &m->albedo_texture, &pm->albedo)) != SOL_OK)
+                return st;
+        }
+        if (m->normal_map.source != SOL_TEX_NONE) {
+            pm->normal_scale = m->normal_map.scale;
+            if ((st = prepare_normal_map(f, &m->normal_map, &pm->normal_map)) != SOL_OK)
+                return st;
+        }
+        if (m->aniso != SOL_ANISO_NONE && !f->reference && fx(f, SOL_FX_SG_LOBES)) {
+            /* D15: K isotropic SG lobes fitted to the Ward NDF (Ceres); fit K at offset K(K-1)/2 */
+            int k = s->pipeline.sg_lobes;
+            sol_sg *all = malloc(sizeof(sol_sg) * (size_t)(k * (k + 1) / 2));
+            sol_sg_fit_error *errs = malloc(sizeof *errs * (size_t)k);
+            st = !all || !errs ? SOL_ERR_NO_MEMORY
+                               : sol_ward_sg_fit(m->roughness[0], m->roughness[1], k, NULL, all, errs, NULL);
+            if (st == SOL_OK) {
+                memcpy(pm->lobes, all + k * (k - 1) / 2, sizeof(sol_sg) * (size_t)k);
+                pm->k = k;
+                f->stats->effect_runs[SOL_FX_SG_LOBES]++;
+            }
+            free(all);
+            free(errs);
+            if (st != SOL_OK)
+                return st;
+        }
+    }
+    if (s->pipeline.has_look) {
+        sol_grade *g = &f->grade;
+        g->saturation = s->pipeline.look_saturation;
+        g->contrast = s->pipeline.look_contrast;
+        g->hue_degrees = s->pipeline.look_hue_deg;
+        memcpy(g->gain, s->pipeline.look_gain, sizeof g->gain);
+        if (!f->reference && fx(f, SOL_FX_LUT_GRADING) &&
+            (st = sol_lut3d_bake(s->pipeline.lut_size, grade_fn, g, &f->lut)) != SOL_OK)
+            return st;
+    }
+    return SOL_OK;
+}
+
+sol_status sol_scene_render(const sol_scene *scene, const sol_scene_plan *plan, const sol_render_options *options,
+                            sol_render_result *out, sol_render_stats *stats)
+{
+    if (!scene || !plan || !out)
+        return SOL_ERR_NULL_ARG;
+    sol_render_options opt = {0};
+    if (options)
+        opt = *options;
+    frame f;
+    memset(&f, 0, sizeof f);
+    f.s = scene;
+    f.reference = opt.reference != 0;
+    f.width = opt.width > 0 ? opt.width : scene->camera.width;
+    f.height = opt.height > 0 ? opt.height : scene->camera.height;
+    if (opt.width < 0 || opt.height < 0 || (int64_t)f.width * f.height > SOL_SCENE_MAX_PIXELS)
+        return SOL_ERR_INVALID_ARG;
+    for (int e = 0; e < SOL_FX_COUNT; ++e)
+        if (plan->run[e] && !((opt.reference_effects >> e) & 1u))
+            f.on |= 1u << e;
+    if (f.reference)
+        f.on = 0;
+    sol_render_stats st_local;
+    memset(&st_local, 0, sizeof st_local);
+    f.stats = &st_local;
+    double t0 = omp_get_wtime();
+    const size_t n = (size_t)f.width * f.height;
+    sol_render_result r;
+    memset(&r, 0, sizeof r);
+    frame_buffers fb = {0};
+    sol_history hist[2];
+    memset(hist, 0, sizeof hist);
+    sol_status st = prepare(&f);
+    double t1 = omp_get_wtime();
+    st_local.prepare_seconds = t1 - t0;
+    if (st == SOL_OK && (st = sol_image_alloc(&r.hdr, f.width, f.height, 3)) == SOL_OK &&
+        (st = sol_image_alloc(&r.display, f.width, f.height, 3)) == SOL_OK)
+        st = sol_image_alloc(&r.normals, f.width, f.height, 3);
+    if (st == SOL_OK) {
+        fb.hdr = r.hdr.data;
+        fb.normals = r.normals.data;
+        fb.depth = malloc(n * sizeof *fb.depth);
+        fb.ao = malloc(n * sizeof *fb.ao);
+        if (!fb.depth || !fb.ao)
+            st = SOL_ERR_NO_MEMORY;
+    }
+    const sol_scene_camera *cam = &scene->camera;
+    int temporal = !f.reference && fx(&f, SOL_FX_TEMPORAL);
+    if (st == SOL_OK && temporal) {
+        /* D18: every frame of the path, jittered, accumulated by reprojection; the result is the
+         * history of the last frame */
+        if ((st = sol_history_alloc(&hist[0], f.width, f.height, 3)) == SOL_OK)
+            st = sol_history_alloc(&hist[1], f.width, f.height, 3);
+        sol_temporal_options to = {0};
+        to.edge_tolerant = 1;
+        for (int k = 0; k < cam->frame_count && st == SOL_OK; ++k) {
+            double jx = 0, jy = 0;
+            if (scene->pipeline.aa == SOL_AA_TEMPORAL)
+                sol_jitter_offset((unsigned)k, &jx, &jy);
+            set_camera(&f, cam->frames[k]);
+            f.stats->effect_runs[SOL_FX_TEMPORAL]++;
+            if ((st = render_frame(&f, jx, jy, (unsigned)k, &fb)) != SOL_OK)
+                break;
+            double motion[3] = {0, 0, 0}, d[3];
+            if (k > 0) {
+                v_sub(d, cam->frames[k], cam->frames[k - 1]);
+                motion[0] = sol_dot3(d, f.right);
+                motion[1] = -sol_dot3(d, f.up);
+                motion[2] = sol_dot3(d, f.fwd);
+            }
+            sol_camera sc = screen_camera(&f);
+            sol_history *prev = &hist[k & 1], *next = &hist[(k + 1) & 1];
+            st = sol_temporal_accumulate(&sc, fb.depth, fb.hdr, motion, &to, prev, next);
+        }
+        if (st == SOL_OK)
+            memcpy(fb.hdr, hist[cam->frame_count & 1].values, n * 3 * sizeof *fb.hdr);
+        st_local.frames = cam->frame_count;
+    } else if (st == SOL_OK) {
+        set_camera(&f, cam->frame_count > 0 ? cam->frames[cam->frame_count - 1] : cam->position);
+        st = render_frame(&f, 0, 0, 0, &fb);
+        st_local.frames = 1;
+    }
+    if (st == SOL_OK)
+        st = to_display(&f, fb.hdr, &r.display);
+    sol_history_free(&hist[0]);
+    sol_history_free(&hist[1]);
+    free(fb.depth);
+    free(fb.ao);
+    free_frame(&f);
+    if (st != SOL_OK) {
+        sol_render_result_free(&r);
+        return st;
+    }
+    st_local.seconds = omp_get_wtime() - t1;
+    *out = r;
+    if (stats)
+        *stats = st_local;
+    return SOL_OK;
+}
+
+sol_status sol_render_compare(const sol_render_result *a, const sol_render_result *b, sol_render_error *out)
+{
+    if (!a || !b || !out || !a->display.data || !b->display.data)
+        return SOL_ERR_NULL_ARG;
+    if (a->display.width != b->display.width || a->display.height != b->display.height)
+        return SOL_ERR_INVALID_ARG;
+    const long n = (long)a->display.width * a->display.height;
+    double sq = 0, mx = 0, de = 0, demax = 0, ang = 0, angmax = 0;
+    long nn = 0;
+#pragma omp parallel for reduction(+ : sq, de, ang, nn) reduction(max : mx, demax, angmax)
+    for (long i = 0; i < n; ++i) {
+        double ca[3], cb[3], la[3], lb[3];
+        for (int c = 0; c < 3; ++c) {
+            ca[c] = a->display.data[3 * i + c];
+            cb[c] = b->display.data[3 * i + c];
+            double d = 255.0 * ca[c] - 255.0 * cb[c];
+            sq += d * d;
+            mx = fmax(mx, fabs(d));
+        }
+        sol_srgb_to_lab(ca, la);
+        sol_srgb_to_lab(cb, lb);
+        double e = sol_ciede2000(la, lb);
+        de += e;
+        demax = fmax(demax, e);
+        double na[3], nb[3];
+        for (int c = 0; c < 3; ++c) {
+            na[c] = a->normals.data[3 * i + c];
+            nb[c] = b->normals.data[3 * i + c];
+        }
+        if (sol_dot3(na, na) > 0 && sol_dot3(nb, nb) > 0) {
+            double g = sol_angle3(na, nb) * 180 / M_PI;
+            ang += g;
+            angmax = fmax(angmax, g);
+            ++nn;
+        }
+    }
+    out->rms_code = sqrt(sq / (3.0 * n));
+    out->max_code = mx;
+    out->de2000_mean = de / n;
+    out->de2000_max = demax;
+    out->normal_mean_deg = nn ? ang / nn : 0;
+    out->normal_max_deg = angmax;
+    return SOL_OK;
+}

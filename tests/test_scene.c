@@ -1,0 +1,260 @@
+/* test_scene.c - the scene file (defaults, every error names its field), the effect graph
+ * (sol_scene_plan) and the two-path renderer. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <omp.h>
+#include <string.h>
+
+#include "sol_scene.h"
+
+static sol_status parse(const char *json, sol_scene *s, sol_scene_error *e)
+{
+    return sol_scene_parse(json, strlen(json), "mem/test.json", s, e);
+}
+
+Test(scene, empty_document_gets_every_documented_default)
+{
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(parse("{}", &s, &e), SOL_OK, "%s %s", e.pointer, e.message);
+    cr_expect_eq(s.camera.width, 960);
+    cr_expect_eq(s.camera.height, 540);
+    cr_expect_float_eq(s.camera.fov_deg, 60.0, 0);
+    cr_expect_eq(s.pipeline.light_buffer, SOL_LB_R11G11B10F);
+    cr_expect_eq(s.pipeline.lut_size, 16);
+    cr_expect_eq(s.pipeline.ssao, 0);
+    cr_expect_eq(s.pipeline.aa, SOL_AA_NONE);
+    cr_expect_eq(s.pipeline.reference_supersample, 3);
+    cr_expect_str_eq(s.name, "test");
+    cr_expect_eq(s.object_count, 0);
+    sol_scene_free(&s);
+    sol_scene_free(&s); /* free zeroes: a second free is harmless */
+    sol_scene_free(NULL);
+}
+
+Test(scene, full_scene_parses_materials_objects_lights_by_name)
+{
+    const char *json = "{\"name\":\"t\",\"camera\":{\"position\":[0,2,-6],\"path\":[[0,2,-6],[0.1,2,-6]]},"
+                       "\"materials\":[{\"name\":\"paint\",\"albedo\":[0.8,0.1,0.1],\"gloss\":0.9,"
+                       "\"normal_map\":{\"procedural\":\"bumps\",\"amplitude\":0.2}},"
+                       "{\"name\":\"brushed\",\"anisotropic\":{\"model\":\"ward\",\"roughness\":[0.05,0.3]},"
+                       "\"albedo_texture\":{\"procedural\":\"checker\",\"bits\":8}}],"
+                       "\"objects\":[{\"type\":\"plane\"},{\"type\":\"sphere\",\"radius\":0.5,\"material\":\"brushed\"},"
+                       "{\"type\":\"box\",\"min\":[0,0,0],\"max\":[1,1,1],\"material\":1},"
+                       "{\"type\":\"heightfield\",\"size\":[4,4]}],"
+                       "\"clip_volumes\":[{\"min\":[-1,-1,-1],\"max\":[1,1,1]}],"
+                       "\"lights\":[{\"type\":\"sun\",\"direction\":[0,-2,0]},{\"type\":\"point\",\"clip\":0},"
+                       "{\"type\":\"environment\",\"lobes\":[{\"axis\":[0,1,0],\"sharpness\":2}]}],"
+                       "\"pipeline\":{\"light_buffer\":\"rgbm\",\"gbuffer_normals\":\"octahedral-12\","
+                       "\"look\":{\"saturation\":0.2},\"aa\":\"temporal\",\"ssao\":true}}";
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(parse(json, &s, &e), SOL_OK, "%s %s", e.pointer, e.message);
+    cr_expect_eq(s.material_count, 2);
+    cr_expect_eq(s.object_count, 4);
+    cr_expect_eq(s.objects[1].material, 1);
+    cr_expect_eq(s.objects[2].material, 1);
+    cr_expect_eq(s.objects[0].material, 0);
+    cr_expect_eq(s.materials[1].aniso, SOL_ANISO_WARD);
+    cr_expect_float_eq(s.materials[1].roughness[1], 0.3, 0);
+    cr_expect_eq(s.materials[0].normal_map.source, SOL_TEX_BUMPS);
+    cr_expect_eq(s.materials[1].albedo_texture.source, SOL_TEX_CHECKER);
+    cr_expect_eq(s.lights[1].clip, 0);
+    cr_expect_eq(s.lights[0].clip, -1);
+    cr_expect_float_eq(s.lights[0].direction[1], -1.0, 1e-15); /* normalised */
+    cr_expect_eq(s.lights[2].lobe_count, 1);
+    cr_expect_eq(s.camera.frame_count, 2);
+    cr_expect_eq(s.pipeline.light_buffer, SOL_LB_RGBM);
+    cr_expect_eq(s.pipeline.has_look, 1);
+    cr_expect_eq(s.pipeline.aa, SOL_AA_TEMPORAL);
+    sol_scene_free(&s);
+}
+
+/* Each bad document: the status and the JSON pointer the error must name. */
+static const struct {
+    const char *json;
+    sol_status status;
+    const char *pointer;
+} bad_docs[] = {
+    {"{\"materials\":[{\"anisotropic\":{\"roughness\":[-0.1,0.2]}}]}", SOL_ERR_OUT_OF_RANGE,
+     "/materials/0/anisotropic/roughness/0"},
+    {"{\"materials\":[{}],\"objects\":[{\"type\":\"sphere\",\"center\":[0,1e999,0]}]}", SOL_ERR_NONFINITE,
+     "/objects/0/center/1"},
+    {"{\"materials\":[{}],\"objects\":[{\"type\":\"sphere\",\"radius\":0}]}", SOL_ERR_OUT_OF_RANGE,
+     "/objects/0/radius"},
+    {"{\"lights\":[{\"type\":\"point\",\"radius\":0}]}", SOL_ERR_OUT_OF_RANGE, "/lights/0/radius"},
+    {"{\"lights\":[{\"type\":\"spot\",\"cone\":0}]}", SOL_ERR_OUT_OF_RANGE, "/lights/0/cone"},
+    {"{\"lights\":[{\"type\":\"sun\",\"direction\":[0,0,0]}]}", SOL_ERR_ZERO_LENGTH, "/lights/0/direction"},
+    {"{\"lights\":[{\"type\":\"laser\"}]}", SOL_ERR_FORMAT, "/lights/0/type"},
+    {"{\"lights\":[{\"type\":\"point\",\"clip\":0}]}", SOL_ERR_FORMAT, "/lights/0/clip"},
+    {"{\"materials\":[{\"roughnes\":1}]}", SOL_ERR_FORMAT, "/materials/0/roughnes"},
+    {"{\"materials\":[{}],\"objects\":[{\"type\":\"box\",\"min\":[0,0,0],\"max\":[1,-1,1]}]}",
+     SOL_ERR_INVALID_ARG, "/objects/0/max/1"},
+    {"{\"objects\":[{\"type\":\"plane\"}]}", SOL_ERR_FORMAT, "/objects/0/material"},
+    {"{\"materials\":[{}],\"objects\":[{\"type\":\"plane\",\"material\":\"steel\"}]}", SOL_ERR_FORMAT,
+     "/objects/0/material"},
+    {"{\"materials\":[{}],\"objects\":[{\"type\":\"heightfield\",\"size\":[0,1]}]}", SOL_ERR_OUT_OF_RANGE,
+     "/objects/0/size/0"},
+    {"{\"camera\":{\"width\":0}}", SOL_ERR_OUT_OF_RANGE, "/camera/width"},
+    {"{\"camera\":{\"width\":16384,\"height\":16384}}", SOL_ERR_LIMIT, "/camera/height"},
+    {"{\"camera\":{\"position\":[0,0,0],\"look_at\":[0,0,0]}}", SOL_ERR_INVALID_ARG, "/camera/look_at"},
+    {"{\"camera\":{\"znear\":2,\"zfar\":1}}", SOL_ERR_INVALID_ARG, "/camera/zfar"},
+    {"{\"camera\":{\"path\":[[0,0,0]]}}", SOL_ERR_FORMAT, "/camera/path"},
+    {"{\"camera\":{\"path\":[[0,0,0],[0,\"x\",0]]}}", SOL_ERR_FORMAT, "/camera/path/1/1"},
+    {"{\"pipeline\":{\"light_buffer\":\"rgb9e5\"}}", SOL_ERR_FORMAT, "/pipeline/light_buffer"},
+    {"{\"pipeline\":{\"exposure\":0}}", SOL_ERR_OUT_OF_RANGE, "/pipeline/exposure"},
+    {"{\"pipeline\":{\"lut_size\":16.5}}", SOL_ERR_FORMAT, "/pipeline/lut_size"},
+    {"{\"pipeline\":{\"ssao\":1}}", SOL_ERR_FORMAT, "/pipeline/ssao"},
+    {"{\"materials\":[{\"albedo_texture\":{\"file\":\"no-such.png\"}}]}", SOL_ERR_IO,
+     "/materials/0/albedo_texture/file"},
+    {"{\"materials\":[{\"albedo_texture\":{\"procedural\":\"bumps\"}}]}", SOL_ERR_FORMAT,
+     "/materials/0/albedo_texture/procedural"},
+    {"{\"materials\":[{\"albedo_texture\":{\"procedural\":\"checker\",\"colors\":[[0,0,0],[2,0,0]]}}]}",
+     SOL_ERR_OUT_OF_RANGE, "/materials/0/albedo_texture/colors/1/0"},
+    {"{\"materials\":[{}],\"objects\":[{\"type\":\"mesh\",\"file\":\"missing.gltf\"}]}", SOL_ERR_IO,
+     "/objects/0/file"},
+    {"{\"lights\":[{\"type\":\"environment\"}]}", SOL_ERR_FORMAT, "/lights/0"},
+    {"[1,2]", SOL_ERR_FORMAT, ""},
+};
+
+Test(scene, every_bad_value_is_rejected_naming_file_and_field)
+{
+    for (size_t i = 0; i < sizeof bad_docs / sizeof bad_docs[0]; ++i) {
+        sol_scene s;
+        memset(&s, 0x5a, sizeof s);
+        sol_scene_error e;
+        sol_status st = parse(bad_docs[i].json, &s, &e);
+        cr_expect_eq(st, bad_docs[i].status, "doc %zu: status %d (%s %s)", i, st, e.pointer, e.message);
+        cr_expect_str_eq(e.pointer, bad_docs[i].pointer, "doc %zu: %s", i, e.message);
+        cr_expect_str_eq(e.file, "mem/test.json");
+        cr_expect_eq(((unsigned char *)&s)[0], 0x5a, "doc %zu: output written on error", i);
+    }
+}
+
+Test(scene, syntax_error_names_the_line)
+{
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(parse("{\n\"name\": \"x\",\n\"camera\": {,}\n}", &s, &e), SOL_ERR_FORMAT);
+    cr_expect_eq(e.line, 3);
+    cr_expect(strstr(e.message, "line 3") != NULL, "%s", e.message);
+    cr_expect_eq(sol_scene_parse(NULL, 0, NULL, &s, &e), SOL_ERR_NULL_ARG);
+}
+
+Test(scene, load_names_a_missing_scene_file_and_reads_a_real_one)
+{
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(sol_scene_load("/nonexistent/x.json", &s, &e), SOL_ERR_IO);
+    cr_expect_str_eq(e.file, "/nonexistent/x.json");
+    FILE *f = fopen("/tmp/sol_test_scene.json", "w");
+    cr_assert(f);
+    fputs("{\"name\":\"disk\"}", f);
+    fclose(f);
+    cr_assert_eq(sol_scene_load("/tmp/sol_test_scene.json", &s, &e), SOL_OK);
+    cr_expect_str_eq(s.name, "disk");
+    sol_scene_free(&s);
+    remove("/tmp/sol_test_scene.json");
+}
+
+/* ---------------- the effect graph and the renderer ---------------- */
+
+static const char *const mixed_scene =
+    "{\"camera\":{\"position\":[0,2,-6],\"look_at\":[0,0.5,0],\"width\":48,\"height\":27},"
+    "\"materials\":[{\"name\":\"floor\",\"albedo_texture\":{\"procedural\":\"checker\",\"scale\":0.5}},"
+    "{\"name\":\"paint\",\"albedo\":[0.6,0.05,0.05],\"gloss\":0.8,\"normal_map\":{\"procedural\":\"bumps\"}}],"
+    "\"objects\":[{\"type\":\"plane\",\"material\":\"floor\"},{\"type\":\"sphere\",\"center\":[0,1,0],"
+    "\"material\":\"paint\"}],"
+    "\"lights\":[{\"type\":\"sun\",\"direction\":[0.5,-1,0.8],\"intensity\":3,\"shadows\":true}],"
+    "\"pipeline\":{\"ssao\":true,\"normal_map_codec\":\"none\"}}";
+
+Test(scene, plan_names_the_calling_element_and_why_others_are_skipped)
+{
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(parse(mixed_scene, &s, &e), SOL_OK, "%s %s", e.pointer, e.message);
+    sol_scene_plan p;
+    cr_assert_eq(sol_scene_plan_build(&s, &p), SOL_OK);
+    cr_expect_eq(p.run[SOL_FX_GBUFFER_NORMALS], 1);
+    cr_expect_eq(p.run[SOL_FX_ALBEDO_STORAGE], 1);
+    cr_expect_str_eq(p.element[SOL_FX_ALBEDO_STORAGE], "/materials/0/albedo_texture");
+    cr_expect_eq(p.run[SOL_FX_NORMAL_MAP_BC5], 0);
+    cr_expect_str_eq(p.element[SOL_FX_NORMAL_MAP_BC5], "/pipeline/normal_map_codec");
+    cr_expect_eq(p.run[SOL_FX_SSAO], 1);
+    cr_expect_eq(p.run[SOL_FX_SG_LOBES], 0);
+    cr_expect(strstr(p.reason[SOL_FX_SG_LOBES], "anisotropic") != NULL);
+    cr_expect_eq(p.run[SOL_FX_TEMPORAL], 0);
+    cr_expect_eq(p.run[SOL_FX_CULLING], 0);
+    cr_expect_eq(p.run[SOL_FX_CLIP_VOLUMES], 0);
+    for (int i = 0; i < SOL_FX_COUNT; ++i)
+        cr_expect(sol_effect_get((sol_effect)i) && *sol_effect_get((sol_effect)i)->name);
+    cr_expect_null(sol_effect_get(SOL_FX_COUNT));
+    cr_expect_eq(sol_scene_plan_build(NULL, &p), SOL_ERR_NULL_ARG);
+    sol_scene_free(&s);
+}
+
+Test(scene, skipped_effects_never_run_and_planned_ones_do)
+{
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(parse(mixed_scene, &s, &e), SOL_OK);
+    sol_scene_plan p;
+    sol_scene_plan_build(&s, &p);
+    sol_render_result r;
+    sol_render_stats st;
+    cr_assert_eq(sol_scene_render(&s, &p, NULL, &r, &st), SOL_OK);
+    for (int i = 0; i < SOL_FX_COUNT; ++i) {
+        if (p.run[i])
+            cr_expect_gt(st.effect_runs[i], 0, "%s planned but never ran", sol_effect_get((sol_effect)i)->name);
+        else
+            cr_expect_eq(st.effect_runs[i], 0, "%s skipped but ran", sol_effect_get((sol_effect)i)->name);
+    }
+    /* swapping an effect for its reference version stops its code too */
+    sol_render_options o = {0};
+    o.reference_effects = 1u << SOL_FX_SSAO;
+    sol_render_result r2;
+    cr_assert_eq(sol_scene_render(&s, &p, &o, &r2, &st), SOL_OK);
+    cr_expect_eq(st.effect_runs[SOL_FX_SSAO], 0);
+    /* and the reference path runs none */
+    o.reference = 1;
+    sol_render_result r3;
+    cr_assert_eq(sol_scene_render(&s, &p, &o, &r3, &st), SOL_OK);
+    for (int i = 0; i < SOL_FX_COUNT; ++i)
+        cr_expect_eq(st.effect_runs[i], 0, "%s ran in the reference path", sol_effect_get((sol_effect)i)->name);
+    sol_render_error err;
+    cr_assert_eq(sol_render_compare(&r, &r3, &err), SOL_OK);
+    cr_expect_gt(err.rms_code, 0.0);
+    cr_expect_lt(err.rms_code, 40.0);
+    cr_assert_eq(sol_render_compare(&r, &r, &err), SOL_OK);
+    cr_expect_eq(err.rms_code, 0.0);
+    cr_expect_eq(err.normal_max_deg, 0.0);
+    sol_render_result_free(&r);
+    sol_render_result_free(&r2);
+    sol_render_result_free(&r3);
+    sol_scene_free(&s);
+}
+
+Test(scene, render_is_deterministic_for_any_thread_count)
+{
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(parse(mixed_scene, &s, &e), SOL_OK);
+    sol_scene_plan p;
+    sol_scene_plan_build(&s, &p);
+    sol_render_result a, b;
+    omp_set_num_threads(1);
+    cr_assert_eq(sol_scene_render(&s, &p, NULL, &a, NULL), SOL_OK);
+    omp_set_num_threads(2);
+    cr_assert_eq(sol_scene_render(&s, &p, NULL, &b, NULL), SOL_OK);
+    size_t n = (size_t)a.display.width * a.display.height * 3;
+    cr_expect_eq(memcmp(a.display.data, b.display.data, n * sizeof(float)), 0);
+    cr_expect_eq(memcmp(a.hdr.data, b.hdr.data, n * sizeof(float)), 0);
+    sol_render_result_free(&a);
+    sol_render_result_free(&b);
+    sol_render_options o = {0};
+    o.width = -1;
+    cr_expect_eq(sol_scene_render(&s, &p, &o, &a, NULL), SOL_ERR_INVALID_ARG);
+    cr_expect_eq(sol_scene_render(NULL, &p, NULL, &a, NULL), SOL_ERR_NULL_ARG);
+    sol_scene_free(&s);
+}
