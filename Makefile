@@ -212,9 +212,10 @@ sanitize: deps-test
 	  echo "sanitize: sanitizer reports in $$log"; exit 1; fi; \
 	exit $$(cat $$log.rc)
 
-# Memcheck follows Criterion's forked children; as above, their exit status is lost, so each
-# process writes its own log and any error or definite/indirect leak in one fails the target.
-VALGRIND_FLAGS := --leak-check=full --errors-for-leak-kinds=definite,indirect --show-leak-kinds=definite,indirect \
+# Criterion's sandbox (BoxFort) forks and re-executes the test binary for each test, so memcheck
+# must trace children; as above, their exit status is lost, so each process writes its own log
+# and any error or definite/indirect leak in one fails the target.
+VALGRIND_FLAGS := --trace-children=yes --child-silent-after-fork=yes --leak-check=full --errors-for-leak-kinds=definite,indirect --show-leak-kinds=definite,indirect \
                   --error-exitcode=1 --track-origins=no
 valgrind: deps-test
 	@$(MAKE) --no-print-directory $(TEST_BIN) $(SOL_BIN)
