@@ -10,7 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sol_brdf.h"
 #include "sol_core.h"
+#include "sol_hdr.h"
+#include "sol_lighting.h"
 #include "sol_normalmaps.h"
 #include "sol_pipeline.h"
 #include "sol_screen.h"
@@ -173,4 +176,253 @@ Test(reliability, cbuffer_huge_block_is_one_texel_and_tests_in_bounds)
         cr_assert_eq(occluded, 1);
         sol_cbuffer_free(&cb);
     }
+}
+
+/* ---- item 6: microfacet terms at tiny and huge alpha, grazing v = l, huge exponents ---- */
+
+static long double ggx_ref(long double c, long double a)
+{
+    /* alpha^2 c^2 + sin^2: c^2 (alpha^2 - 1) + 1 cancels even in long double at alpha < 1e-4 */
+    long double a2 = a * a, d = a2 * c * c + (1.0L - c) * (1.0L + c);
+    return a2 / (3.14159265358979323846264338327950288L * d * d);
+}
+
+static long double beckmann_ref(long double c, long double a)
+{
+    long double c2 = c * c, t2 = (1.0L - c) * (1.0L + c) / c2;
+    return expl(-t2 / (a * a)) / (3.14159265358979323846264338327950288L * a * a * c2 * c2);
+}
+
+static void assert_rel(double got, long double want, double tol, const char *what)
+{
+    cr_assert(isfinite(got), "%s: %g not finite", what, got);
+    cr_assert(fabsl((long double)got - want) <= tol * fabsl(want), "%s: %.17g vs %.17Lg", what, got, want);
+}
+
+Test(reliability, ndf_peak_at_tiny_alpha_is_finite)
+{
+    static const double tiny[] = {1e-160, 1e-200, 1e-300, 5e-324};
+    for (size_t i = 0; i < sizeof tiny / sizeof *tiny; ++i) {
+        cr_assert_eq(sol_ggx_ndf(1.0, tiny[i]), DBL_MAX, "ggx alpha %g", tiny[i]);
+        cr_assert_eq(sol_beckmann_ndf(1.0, tiny[i]), DBL_MAX, "beckmann alpha %g", tiny[i]);
+        double h[3] = {0.0, 0.0, 1.0};
+        cr_assert_eq(sol_ward_ndf(h, tiny[i], tiny[i]), DBL_MAX, "ward alpha %g", tiny[i]);
+        /* off the peak the lobe is 0, not NaN */
+        double g = sol_ggx_ndf(0.999, tiny[i]);
+        cr_assert(g >= 0.0 && g < 1e-300, "%g", g);
+        cr_assert_eq(sol_beckmann_ndf(0.999, tiny[i]), 0.0);
+    }
+    /* alpha^2 subnormal but the answer representable: computed scaled */
+    assert_rel(sol_ggx_ndf(1.0, 1e-154), 1.0L / (3.14159265358979323846264338327950288L * 1e-308L), 1e-13, "ggx 1e-154");
+    assert_rel(sol_beckmann_ndf(1.0, 1e-154), 1.0L / (3.14159265358979323846264338327950288L * 1e-308L), 1e-12,
+               "beckmann 1e-154");
+}
+
+Test(reliability, ndf_below_alpha_1e_minus_4_matches_long_double)
+{
+    static const double alphas[] = {9e-5, 1e-5, 1e-7, 1e-10};
+    for (size_t i = 0; i < sizeof alphas / sizeof *alphas; ++i) {
+        double a = alphas[i];
+        static const double offs[] = {0.0, 0.25, 1.0, 3.0};
+        for (size_t k = 0; k < sizeof offs / sizeof *offs; ++k) {
+            /* theta_h = offs * alpha: inside the lobe */
+            double c = cos(offs[k] * a);
+            assert_rel(sol_ggx_ndf(c, a), ggx_ref(c, a), 1e-9, "ggx");
+            assert_rel(sol_beckmann_ndf(c, a), beckmann_ref(c, a), 1e-9, "beckmann");
+        }
+    }
+}
+
+Test(reliability, huge_and_infinite_alpha_stay_finite)
+{
+    static const double big[] = {1e154, 1e200, DBL_MAX, INFINITY};
+    static const double cs[] = {1.0, 0.5, 1e-3, 1e-200, 0.0};
+    for (size_t i = 0; i < sizeof big / sizeof *big; ++i)
+        for (size_t k = 0; k < sizeof cs / sizeof *cs; ++k) {
+            double a = big[i], c = cs[k];
+            double v[] = {sol_ggx_ndf(c, a), sol_beckmann_ndf(c, a), sol_smith_g1_ggx(c, a),
+                          sol_smith_g1_beckmann(c, a)};
+            for (int j = 0; j < 4; ++j)
+                cr_assert(isfinite(v[j]) && v[j] >= 0.0, "alpha %g c %g term %d: %g", a, c, j, v[j]);
+            cr_assert_leq(v[2], 1.0);
+        }
+    /* G1 at alpha = 1e200, c = 0.5: 2c / (c + sqrt(alpha^2 s^2 + c^2)) ~ 1 / (alpha * 0.866) */
+    assert_rel(sol_smith_g1_ggx(0.5, 1e200), 1.0L / (1e200L * sqrtl(0.75L) + 0.5L), 1e-12, "g1 ggx");
+}
+
+Test(reliability, cook_torrance_at_grazing_v_equal_l)
+{
+    /* v = l at the horizon: h = v, so D = D(h.z -> 0) and G1(v)/v.z -> 2/alpha (GGX); the whole
+     * BRDF tends to f0 / pi for GGX at alpha = 0.5 (D -> alpha^2 / pi) */
+    const double v[3] = {1.0, 0.0, 1e-200};
+    double g = sol_cook_torrance(v, v, SOL_NDF_GGX, 0.5, 0.04);
+    assert_rel(g, 0.04L / 3.14159265358979323846264338327950288L, 1e-12, "ct ggx grazing");
+    double b = sol_cook_torrance(v, v, SOL_NDF_BECKMANN, 0.5, 0.04);
+    cr_assert(isfinite(b) && b >= 0.0, "beckmann grazing %g", b);
+    /* continuous with a merely low angle */
+    double w[3] = {1.0, 0.0, 1e-6};
+    double n = sqrt(sol_dot3(w, w));
+    for (int i = 0; i < 3; ++i)
+        w[i] /= n;
+    assert_rel(sol_cook_torrance(w, w, SOL_NDF_GGX, 0.5, 0.04), 0.04L / 3.14159265358979323846264338327950288L, 1e-5,
+               "ct ggx low");
+    /* subnormal cosines, tiny alpha, infinite f0: finite */
+    const double s[3] = {1.0, 0.0, 5e-324};
+    cr_assert(isfinite(sol_cook_torrance(s, s, SOL_NDF_GGX, 0.5, 0.04)));
+    cr_assert(isfinite(sol_cook_torrance(s, s, SOL_NDF_GGX, 1e-300, 0.04)));
+    const double up[3] = {0.0, 0.0, 1.0};
+    cr_assert_eq(sol_cook_torrance(up, up, SOL_NDF_GGX, 1e-200, 0.04), DBL_MAX);
+    cr_assert(isfinite(sol_cook_torrance(up, up, SOL_NDF_BECKMANN, 0.5, INFINITY)));
+    cr_assert(isfinite(sol_cook_torrance(v, v, SOL_NDF_BECKMANN, 1e-300, -INFINITY)));
+    cr_assert(isfinite(sol_ward_brdf(v, v, 0.3, 0.3)));
+    cr_assert(isfinite(sol_ward_brdf(up, up, 1e-200, 1e-200)));
+}
+
+Test(reliability, blinn_phong_exponents_above_1000)
+{
+    /* exact factor (n+2)(n+4) / (8 pi (2^(-n/2) + n)) */
+    static const double ns[] = {1000.0, 2048.0, 1e4, 1e6, 1e12, 1e100, 1e160, 1e300, DBL_MAX};
+    for (size_t i = 0; i < sizeof ns / sizeof *ns; ++i) {
+        long double n = ns[i];
+        long double want = (n + 2.0L) / (8.0L * 3.14159265358979323846264338327950288L) *
+                           ((n + 4.0L) / (exp2l(-0.5L * n) + n));
+        assert_rel(sol_blinn_phong_norm_factor_exact(ns[i]), want, 1e-14, "blinn exact");
+        assert_rel(sol_blinn_phong_norm_factor_approx(ns[i]), (n + 8.0L) / (8.0L * 3.14159265358979323846264338327950288L),
+                   1e-14, "blinn approx");
+        cr_assert(isfinite(sol_phong_normalized(1.0, ns[i])));
+    }
+    assert_rel(sol_blinn_phong_norm_factor_exact(1e160), 1e160L / (8.0L * 3.14159265358979323846264338327950288L), 1e-14,
+               "1e160");
+    /* raw lobe at n = 2000: cos^n (theta) for a small theta */
+    assert_rel(sol_blinn_phong_raw(cos(0.01), 2000.0), powl(cosl(0.01L), 2000.0L), 1e-12, "raw 2000");
+}
+
+Test(reliability, infinite_exponent_and_sharpness_are_not_nan)
+{
+    cr_assert_eq(sol_phong_raw(1.0, INFINITY), 1.0);
+    cr_assert_eq(sol_phong_raw(0.999, INFINITY), 0.0);
+    cr_assert_eq(sol_phong_normalized(1.0, INFINITY), DBL_MAX);
+    cr_assert_eq(sol_phong_normalized(0.999, INFINITY), 0.0);
+    cr_assert_eq(sol_phong_norm_factor(INFINITY), DBL_MAX);
+    cr_assert_eq(sol_phong_lobe_norm_factor(INFINITY), DBL_MAX);
+    cr_assert_eq(sol_blinn_phong_norm_factor_exact(INFINITY), DBL_MAX);
+    cr_assert_eq(sol_blinn_phong_norm_factor_approx(INFINITY), DBL_MAX);
+    sol_sg g = {.axis = {0.0, 0.0, 1.0}, .sharpness = INFINITY, .amplitude = 2.0};
+    const double on[3] = {0.0, 0.0, 1.0}, off[3] = {0.0, 1e-8, 1.0};
+    cr_assert_eq(sol_sg_eval(&g, on), 2.0);
+    cr_assert_eq(sol_sg_eval(&g, off), 0.0);
+    cr_assert_eq(sol_sg_integral(&g), 0.0);
+    cr_assert_eq(sol_fresnel_schlick(INFINITY, 1.0), DBL_MAX);
+    cr_assert_eq(sol_fresnel_schlick(INFINITY, 0.0), 1.0);
+    cr_assert_eq(sol_fresnel_schlick(-INFINITY, 0.5), -DBL_MAX);
+}
+
+/* ---- item 6: inverse tone maps near 1, exposure, RGBM, lights, renormalisation ---- */
+
+Test(reliability, filmic_inverses_near_one_are_finite_and_consistent)
+{
+    static const sol_tonemap ops[] = {SOL_TONEMAP_EXPONENTIAL, SOL_TONEMAP_REINHARD, SOL_TONEMAP_FILMIC_HBD,
+                                      SOL_TONEMAP_FILMIC_SLIDE};
+    static const double ys[] = {1.0 - 1e-16, 1.0 - 1e-15, 1.0 - 1e-12, 1.0 - 1e-9, 1.0 - 1e-6};
+    for (size_t i = 0; i < sizeof ops / sizeof *ops; ++i) {
+        double prev = 0.0;
+        for (size_t k = sizeof ys / sizeof *ys; k-- > 0;) {
+            double x = -1.0;
+            cr_assert_eq(sol_tonemap_inverse(ops[i], ys[k], &x), SOL_OK);
+            cr_assert(isfinite(x) && x > prev, "%s y = 1 - %g: x = %g", sol_tonemap_name(ops[i]), 1.0 - ys[k], x);
+            prev = x;
+        }
+        double x = 123.0;
+        cr_assert_eq(sol_tonemap_inverse(ops[i], 1.0, &x), SOL_ERR_OUT_OF_RANGE);
+        cr_assert_eq(x, 123.0);
+    }
+    /* HBD near 1: g = 1 - eps, 6.2 eps x'^2 ~ 1.2 x'  =>  x' ~ 1.2 / (6.2 (1 - g)) */
+    double y = 1.0 - 1e-12, x = 0.0;
+    cr_assert_eq(sol_tonemap_inverse(SOL_TONEMAP_FILMIC_HBD, y, &x), SOL_OK);
+    long double omg = -expm1l(log1pl(-(1.0L - (long double)y)) / 2.2L);
+    long double a = 6.2L * omg, b = 0.5L - 1.7L * (1.0L - omg), c = 0.06L * (1.0L - omg);
+    long double want = 0.004L + (-b + sqrtl(b * b + 4.0L * a * c)) / (2.0L * a);
+    assert_rel(x, want, 1e-9, "hbd inverse at 1 - 1e-12");
+    /* the forward map of the inverse gives y back to its conditioning */
+    cr_assert(fabs(sol_tonemap_apply(SOL_TONEMAP_FILMIC_HBD, x) - y) < 1e-15);
+}
+
+Test(reliability, exposure_at_extreme_compensation)
+{
+    double e = -1.0;
+    cr_assert_eq(sol_exposure_from_luminance(1.0, 1e4, &e), SOL_ERR_OUT_OF_RANGE);
+    cr_assert_eq(e, -1.0);
+    /* representable although 2^ec overflows: 0.18 * 2^1100 / 2^1000 = 0.18 * 2^100 */
+    cr_assert_eq(sol_exposure_from_luminance(0x1p1000, 1100.0, &e), SOL_OK);
+    assert_rel(e, 0.18L * 0x1p100L, 1e-15, "exposure 2^1100 / 2^1000");
+    /* tiny luminance, ordinary compensation: 0.18 / 2^-1070 */
+    cr_assert_eq(sol_exposure_from_luminance(0x1p-1070, 0.0, &e), SOL_ERR_OUT_OF_RANGE);
+    cr_assert_eq(sol_exposure_from_luminance(0x1p-1000, -100.0, &e), SOL_OK);
+    assert_rel(e, 0.18L * 0x1p900L, 1e-15, "exposure 2^-100 / 2^-1000");
+    /* underflow is documented as 0 (or a subnormal) */
+    cr_assert_eq(sol_exposure_from_luminance(1.0, -1e4, &e), SOL_OK);
+    cr_assert_eq(e, 0.0);
+    cr_assert_eq(sol_exposure_from_luminance(DBL_MAX, -40.0, &e), SOL_OK); /* 9e-322 */
+    cr_assert(e > 0.0 && e < DBL_MIN);
+}
+
+Test(reliability, rgbm_decode_with_a_huge_range)
+{
+    const uint8_t px[4] = {255, 128, 0, 255};
+    float rgb[3] = {7.0f, 7.0f, 7.0f};
+    cr_assert_eq(sol_rgbm_decode(px, 1e300, rgb), SOL_ERR_OUT_OF_RANGE);
+    cr_assert_eq(rgb[0], 7.0f);
+    cr_assert_eq(sol_rgbm_decode(px, DBL_MAX, rgb), SOL_ERR_OUT_OF_RANGE);
+    cr_assert_eq(sol_rgbm_decode(px, FLT_MAX, rgb), SOL_OK);
+    cr_assert(isfinite(rgb[0]) && rgb[0] == FLT_MAX);
+    /* a huge range with a small multiplier still decodes when it fits */
+    const uint8_t small[4] = {1, 0, 0, 1};
+    cr_assert_eq(sol_rgbm_decode(small, 1e40, rgb), SOL_OK);
+    cr_assert(isfinite(rgb[0]) && rgb[0] > 1e35f);
+}
+
+Test(reliability, light_just_above_the_floor)
+{
+    sol_room_scene scene = {.walls = NULL, .wall_count = 0, .wall_height = 3.0, .light = {0.0, 0.0, 1e-300},
+                            .radius = 10.0};
+    double e = -1.0;
+    /* right below: height / d^3 = 1e600 */
+    cr_assert_eq(sol_room_irradiance(&scene, NULL, SOL_LIGHT_UNSHADOWED, 0.0, 0.0, &e), SOL_ERR_OUT_OF_RANGE);
+    cr_assert_eq(e, -1.0);
+    /* one unit away: cos / d^2 = 1e-300 * (1 - 0.01)^2 */
+    cr_assert_eq(sol_room_irradiance(&scene, NULL, SOL_LIGHT_UNSHADOWED, 1.0, 0.0, &e), SOL_OK);
+    assert_rel(e, 1e-300L * 0.99L * 0.99L, 1e-14, "irradiance 1 away");
+    /* 1e-110 away from a light 1e-120 high: d^2 = 1e-220 underflows nothing after scaling */
+    scene.light[2] = 1e-120;
+    cr_assert_eq(sol_room_irradiance(&scene, NULL, SOL_LIGHT_UNSHADOWED, 1e-110, 0.0, &e), SOL_OK);
+    assert_rel(e, 1e-120L / 1e-330L, 1e-12, "irradiance tiny distances");
+    /* a huge scene: light 1e160 high with radius 1e161 (d^2 = 1e320 overflows) */
+    scene.light[2] = 1e160;
+    scene.radius = 1e161;
+    cr_assert_eq(sol_room_irradiance(&scene, NULL, SOL_LIGHT_UNSHADOWED, 0.0, 0.0, &e), SOL_OK);
+    assert_rel(e, 1e-320L * 0.99L * 0.99L, 1e-3, "irradiance huge scene"); /* a subnormal answer */
+}
+
+Test(reliability, renormalisation_of_the_full_float_range)
+{
+    float data[4] = {-FLT_MAX, 0.0f, FLT_MAX, 1e30f};
+    sol_image img = {.width = 4, .height = 1, .channels = 1, .data = data};
+    sol_renorm r;
+    cr_assert_eq(sol_renorm_fit(&img, &r), SOL_OK);
+    cr_assert_eq(sol_renorm_apply(&r, &img), SOL_OK);
+    cr_assert_eq(data[0], 0.0f);
+    cr_assert_eq(data[1], 0.5f);
+    cr_assert_eq(data[2], 1.0f);
+    for (int i = 0; i < 4; ++i)
+        cr_assert(isfinite(data[i]) && data[i] >= 0.0f && data[i] <= 1.0f);
+    cr_assert_eq(sol_renorm_undo(&r, &img), SOL_OK);
+    cr_assert_eq(data[0], -FLT_MAX);
+    cr_assert_eq(data[1], 0.0f);
+    cr_assert_eq(data[2], FLT_MAX);
+    cr_assert(isfinite(data[3])); /* 1e30 is below the float step of the stored value there */
+    /* a stored value of 3 maps past FLT_MAX: refused, image untouched */
+    float bad[2] = {0.5f, 3.0f};
+    sol_image img2 = {.width = 2, .height = 1, .channels = 1, .data = bad};
+    cr_assert_eq(sol_renorm_undo(&r, &img2), SOL_ERR_OUT_OF_RANGE);
+    cr_assert_eq(bad[0], 0.5f);
 }

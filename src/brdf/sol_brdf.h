@@ -5,7 +5,13 @@
  * Conventions: directions are unit double[3] vectors in the shading frame unless said otherwise
  * (normal = +z, tangent = +x, bitangent = +y); angles in radians; BRDF values in 1/sr. Functions
  * that cannot fail return their value directly and are total: NaN input gives NaN output, every
- * other input gives a finite value (clamped cosines, no division by zero). Fallible functions return
+ * other input (including +-Inf, subnormals and the largest doubles) gives a finite value (clamped
+ * cosines, no division by zero; where a product or quotient would under- or overflow although
+ * the answer is representable, it is computed scaled or in logs, e.g. the Blinn-Phong factor at
+ * n = 1e160 is 3.98e158). A true value above DBL_MAX (the delta-like limits alpha -> 0, n -> inf,
+ * e.g. D at the peak for alpha < ~1e-154) saturates to DBL_MAX. Direction arguments far from
+ * unit length (or with an infinite component) are outside the domain: the result is then finite
+ * or NaN, never +-Inf. Fallible functions return
  * sol_status and leave outputs untouched on error.
  */
 #ifndef SOL_BRDF_H
@@ -55,7 +61,9 @@ double sol_ward_brdf(const double v[3], const double l[3], double alpha_x, doubl
 
 /* Isotropic microfacet terms (Walter et al. 2007): Beckmann and GGX NDFs (normalised like the
  * Ward NDF), Smith's masking G1 for each (GGX exact; Beckmann with Walter's rational
- * approximation), Schlick's Fresnel (Schlick 1994). cos arguments are clamped to [0,1]. */
+ * approximation), Schlick's Fresnel (Schlick 1994). cos arguments are clamped to [0,1]. Any alpha
+ * in (0, +Inf] is accepted (alpha <= 0 gives D = 0); Fresnel with f0 = +-Inf gives 1 at v.h <= 0
+ * and +-DBL_MAX otherwise. */
 double sol_beckmann_ndf(double n_dot_h, double alpha);
 double sol_ggx_ndf(double n_dot_h, double alpha);
 double sol_smith_g1_ggx(double n_dot_v, double alpha);
@@ -64,7 +72,10 @@ double sol_fresnel_schlick(double f0, double v_dot_h);
 
 typedef enum sol_ndf_kind { SOL_NDF_GGX = 0, SOL_NDF_BECKMANN } sol_ndf_kind;
 /* Cook-Torrance BRDF D G F / (4 (n.l)(n.v)) with the chosen NDF, the separable Smith G = G1(v)G1(l)
- * and Schlick's F with reflectance f0. Zero when n.l <= 0 or n.v <= 0. Claim D14 splits it into the
+ * and Schlick's F with reflectance f0. Zero when n.l <= 0 or n.v <= 0. At grazing angles (n.v n.l
+ * underflowing, e.g. v = l at the horizon) it is evaluated as D F (G1(v)/n.v) (G1(l)/n.l) / 4,
+ * which stays finite; where D saturates (alpha -> 0 at the peak) the BRDF gives +-DBL_MAX.
+ * Claim D14 splits it into the
  * NDF part (lighting) and G F (deferred). */
 double sol_cook_torrance(const double v[3], const double l[3], sol_ndf_kind ndf, double alpha, double f0);
 
@@ -105,7 +116,9 @@ sol_status sol_sphere_integrate_mc(sol_sphere_fn f, void *ctx, int strata, uint6
 /* ======================= Spherical Gaussians (spherical_gaussian.c) ======================= */
 
 /* G(v) = amplitude * exp(sharpness * (axis.v - 1)) (Wang et al. 2009). The value is in [0,
- * amplitude] for every sharpness >= 0 (no exp overflow: the exponent is never positive). */
+ * amplitude] for every sharpness >= 0 (no exp overflow: the exponent is never positive); with
+ * sharpness = +Inf it is the amplitude on the axis and 0 elsewhere. A negative sharpness (outside
+ * the domain) can overflow; the value then saturates at +-DBL_MAX. */
 typedef struct sol_sg {
     double axis[3];   /* unit vector */
     double sharpness; /* lambda >= 0 */

@@ -1,5 +1,6 @@
 /* spherical_gaussian.c - Spherical Gaussian algebra (Wang et al. 2009) and anisotropic SGs (Xu et al.
  * 2013), stable for sharpness from 0 to 1e6 and beyond (claims D15, D16). */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -14,7 +15,11 @@ static double one_minus_dot(const double a[3], const double b[3])
 
 double sol_sg_eval(const sol_sg *g, const double v[3])
 {
-    return g->amplitude * exp(-g->sharpness * one_minus_dot(g->axis, v));
+    double d = one_minus_dot(g->axis, v);
+    if (d == 0.0 && !isnan(g->sharpness)) /* v on the axis: exp(0) = 1 even for sharpness = Inf */
+        return g->amplitude;
+    double r = g->amplitude * exp(-g->sharpness * d);
+    return isinf(r) ? copysign(DBL_MAX, r) : r; /* a negative sharpness can overflow: saturate */
 }
 
 /* Integral of exp(lambda (mu.v - 1)) over the sphere: 2 pi (1 - exp(-2 lambda)) / lambda. */

@@ -3,6 +3,7 @@
  * brightest pixels, the Krawczyk-Myszkowski-Seidel 2005 key value curve, exponential adaptation. */
 #include "sol_hdr.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -11,6 +12,8 @@ double sol_luminance_from_ev100(double ev100) { return 0.125 * exp2(ev100); }
 
 double sol_krawczyk_key(double luminance)
 {
+    if (!(luminance > 0.0)) /* a negative luminance (log10 of <= 0) is taken as 0; NaN stays NaN */
+        return isnan(luminance) ? luminance : 1.03 - 2.0 / 2.0;
     return 1.03 - 2.0 / (log10(luminance + 1.0) + 2.0);
 }
 
@@ -29,7 +32,19 @@ sol_status sol_exposure_from_luminance(double luminance, double compensation_ev,
         return SOL_ERR_NONFINITE;
     if (luminance <= 0.0)
         return SOL_ERR_INVALID_ARG;
-    *exposure = 0.18 * exp2(compensation_ev) / luminance;
+    double e = 0.18 * exp2(compensation_ev) / luminance;
+    if (!(e <= DBL_MAX) || !(e >= DBL_MIN)) {
+        /* exp2(ec) or the quotient over/underflowed: with L = m 2^k (m in [0.5, 1)) and
+         * ec = i + f (i integer, f in [0, 1)), e = (0.18 2^f / m) 2^(i - k); the ldexp rounds once */
+        int k;
+        double m = frexp(luminance, &k), ei = floor(compensation_ev), scale = ei - k;
+        if (scale > 2100.0)
+            return SOL_ERR_OUT_OF_RANGE;
+        e = scale < -2100.0 ? 0.0 : ldexp(0.18 * exp2(compensation_ev - ei) / m, (int)scale);
+        if (!(e <= DBL_MAX))
+            return SOL_ERR_OUT_OF_RANGE;
+    }
+    *exposure = e;
     return SOL_OK;
 }
 

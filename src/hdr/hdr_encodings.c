@@ -2,6 +2,7 @@
  * to 0..2 (claim S9) and the two-channel rational depth x + y/255 (claim M2). */
 #include "sol_hdr.h"
 
+#include <float.h>
 #include <math.h>
 
 /* Clamps to [0, hi]; NaN gives 0 (the D3D float-to-UNORM rule). */
@@ -45,9 +46,14 @@ sol_status sol_rgbm_decode(const uint8_t rgbm[4], double range, float rgb[3])
         return SOL_ERR_NULL_ARG;
     if (!isfinite(range) || range <= 0.0)
         return SOL_ERR_INVALID_ARG;
-    double scale = sol_unorm_decode(rgbm[3], 8) * range;
+    double scale = sol_unorm_decode(rgbm[3], 8) * range, v[3];
+    for (int i = 0; i < 3; ++i) {
+        v[i] = sol_unorm_decode(rgbm[i], 8) * scale;
+        if (v[i] > FLT_MAX) /* a range above FLT_MAX: the float output cannot hold it */
+            return SOL_ERR_OUT_OF_RANGE;
+    }
     for (int i = 0; i < 3; ++i)
-        rgb[i] = (float)(sol_unorm_decode(rgbm[i], 8) * scale);
+        rgb[i] = (float)v[i];
     return SOL_OK;
 }
 

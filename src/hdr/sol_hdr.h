@@ -53,7 +53,8 @@ void sol_r11g11b10f_unpack(uint32_t packed, float rgb[3]);
  * stored as the UNORM8 code of c / (m * range), alpha holds m. `range` is the largest value the
  * encoding represents (6 or 8 are common); values above it are clamped to it, negative values
  * and NaN to 0 (documented clamping, like a render target write). Black encodes as (0,0,0,0)
- * and decodes to 0. Errors: NULL pointers, range not finite or <= 0 (SOL_ERR_INVALID_ARG). */
+ * and decodes to 0. Errors: NULL pointers, range not finite or <= 0 (SOL_ERR_INVALID_ARG); decode
+ * also SOL_ERR_OUT_OF_RANGE when a decoded value exceeds FLT_MAX (range > FLT_MAX; rgb untouched). */
 sol_status sol_rgbm_encode(const float rgb[3], double range, uint8_t rgbm[4]);
 sol_status sol_rgbm_decode(const uint8_t rgbm[4], double range, float rgb[3]);
 
@@ -102,12 +103,15 @@ double sol_tonemap_apply(sol_tonemap op, double x);
  * SOL_TONEMAP_ACES_REF has no closed form here: it is solved with the safeguarded Newton of
  * sol_tonemap_inverse_iterative to a relative 1e-14.
  * Errors: NULL x, op out of range (SOL_ERR_INVALID_ARG); y NaN (SOL_ERR_NONFINITE); y < 0 or
- * y at/above the curve's supremum (SOL_ERR_OUT_OF_RANGE: 1 for the asymptotic curves). */
+ * y at/above the curve's supremum (SOL_ERR_OUT_OF_RANGE: 1 for the asymptotic curves). Every y
+ * below the supremum gives a finite x: the filmic inverses form 1 - y^(1/2.2) without rounding
+ * it to 0, so y = 1 - 2^-53 gives x ~ 4e15, not +Inf. */
 sol_status sol_tonemap_inverse(sol_tonemap op, double y, double *x);
 
 /* Iterative inverse (for operators without a closed form, and to measure accuracy vs time).
  * Brackets [0, hi] by doubling, then runs `method`: bisection, or Newton with a bisection
- * safeguard (numeric derivative). Stops when the bracket is narrower than `tolerance * x` or
+ * safeguard (numeric derivative). Stops when the bracket is narrower than `tolerance * x`, when
+ * no double lies strictly inside it (x = its upper end: the smallest double reaching y), or
  * after `max_iterations`. Zero option fields mean: bisection, tolerance 1e-12, 200 iterations. */
 typedef enum sol_root_method { SOL_ROOT_BISECTION = 0, SOL_ROOT_SAFE_NEWTON } sol_root_method;
 typedef struct sol_root_options {
@@ -196,7 +200,8 @@ sol_status sol_lut3d_chart_read(const sol_image *image, int x0, int y0, int size
 /* EV100 of a luminance (cd/m^2): L = 0.125 * 2^EV100 (Narkowicz's notes, after Reed 2014). */
 double sol_ev100_from_luminance(double luminance);
 double sol_luminance_from_ev100(double ev100);
-/* Krawczyk, Myszkowski, Seidel 2005 key value: 1.03 - 2 / (log10(L + 1) + 2). */
+/* Krawczyk, Myszkowski, Seidel 2005 key value: 1.03 - 2 / (log10(L + 1) + 2), in [0.03, 1.03];
+ * L <= 0 is taken as 0 (0.03), +Inf gives 1.03, NaN gives NaN. */
 double sol_krawczyk_key(double luminance);
 
 /* Histogram metering: log2-luminance histogram of `bins` bins over [ev_min, ev_max) (EV100),
@@ -219,8 +224,10 @@ sol_status sol_histogram_meter(const float *luminance, size_t n, const sol_meter
 double sol_adapt_exponential(double previous, double target, double dt, double rate);
 
 /* Exposure multiplier 0.18 * 2^ec / L for a metered luminance L and a compensation ec in EV
- * (Narkowicz's form with an 18% middle grey). Errors: NULL, L or ec not finite
- * (SOL_ERR_NONFINITE), L <= 0 (SOL_ERR_INVALID_ARG). */
+ * (Narkowicz's form with an 18% middle grey), computed scaled so that any representable answer
+ * is returned (ec = 1e4 with L = 1e300 is fine; an answer below the smallest subnormal is 0).
+ * Errors: NULL, L or ec not finite (SOL_ERR_NONFINITE), L <= 0 (SOL_ERR_INVALID_ARG), an answer
+ * above DBL_MAX (SOL_ERR_OUT_OF_RANGE; *exposure untouched). */
 sol_status sol_exposure_from_luminance(double luminance, double compensation_ev, double *exposure);
 
 #ifdef __cplusplus

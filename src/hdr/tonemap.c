@@ -111,24 +111,29 @@ sol_status sol_tonemap_inverse(sol_tonemap op, double y, double *x)
         return SOL_OK;
     }
     double g = pow(y, 1.0 / FILMIC_GAMMA), slide_floor = filmic_slide_encoded(1e-300);
+    /* 1 - g from 1 - y without rounding g to 1 first (y = 1 - 1e-16 gave g = 1 and x = +Inf):
+     * 1 - y^(1/2.2) = -expm1(log1p(-(1 - y)) / 2.2); 1 - y is exact for y >= 0.5 */
+    double one_minus_g = -expm1(log1p(-(1.0 - y)) / FILMIC_GAMMA);
     switch (op) {
     case SOL_TONEMAP_EXPONENTIAL: *x = -log1p(-y); return SOL_OK;
     case SOL_TONEMAP_REINHARD: *x = y / (1.0 - y); return SOL_OK;
     case SOL_TONEMAP_FILMIC_HBD:
         /* g (x'(6.2x'+1.7)+0.06) = x'(6.2x'+0.5)  <=>  6.2(1-g) x'^2 + (0.5-1.7g) x' - 0.06g = 0 */
-        *x = FILMIC_TOE + positive_root(6.2 * (1.0 - g), 0.5 - 1.7 * g, 0.06 * g);
+        *x = FILMIC_TOE + positive_root(6.2 * one_minus_g, 0.5 - 1.7 * g, 0.06 * g);
         return SOL_OK;
     case SOL_TONEMAP_FILMIC_SLIDE:
         /* g = (6.2x'+0.5)/(6.2x'+10.6) for x' > 0, which never goes below 0.5/10.6: smaller y
          * are first reached just above the toe (the infimum 0.004 is returned). */
-        *x = FILMIC_TOE + (g <= slide_floor ? 0.0 : (10.6 * g - 0.5) / (6.2 * (1.0 - g)));
+        *x = FILMIC_TOE + (g <= slide_floor ? 0.0 : (10.6 * g - 0.5) / (6.2 * one_minus_g));
         return SOL_OK;
     case SOL_TONEMAP_ACES_FIT:
         /* y (2.43x^2+0.59x+0.14) = 2.51x^2+0.03x */
         *x = positive_root(2.51 - 2.43 * y, 0.03 - 0.59 * y, 0.14 * y);
         return SOL_OK;
     default: {
-        sol_root_options tight = {SOL_ROOT_SAFE_NEWTON, 1e-14, 400};
+        /* 2200 iterations: bisection alone reaches a relative 1e-14 bracket from [0, 1] down to
+         * the subnormals (1074 + 47 halvings), so tiny y (1e-300) converge too */
+        sol_root_options tight = {SOL_ROOT_SAFE_NEWTON, 1e-14, 2200};
         return sol_tonemap_inverse_iterative(op, y, &tight, x, NULL);
     }
     }
@@ -175,7 +180,10 @@ sol_status sol_tonemap_inverse_iterative(sol_tonemap op, double y, const sol_roo
             return SOL_ERR_OUT_OF_RANGE;
     }
     double guess = 0.5 * (lo + hi);
-    while (hi - lo > tol * hi && it < max_iter) {
+    /* also stop when no double lies strictly between lo and hi: hi is then the answer (this ends
+     * the search when the infimum is 0, e.g. ACES at y = 1e-300, where the relative width never
+     * shrinks) */
+    while (hi - lo > tol * hi && nextafter(lo, INFINITY) < hi && it < max_iter) {
         double f = residual(op, guess, y);
         if (f < 0.0)
             lo = guess;
@@ -190,10 +198,11 @@ sol_status sol_tonemap_inverse_iterative(sol_tonemap op, double y, const sol_roo
         }
         guess = isnan(next) ? 0.5 * (lo + hi) : next;
     }
-    *x = lo == hi ? lo : guess;
+    int adjacent = lo < hi && nextafter(lo, INFINITY) >= hi;
+    *x = lo == hi ? lo : adjacent ? hi : guess;
     if (iterations)
         *iterations = it;
-    return hi - lo > tol * hi ? SOL_ERR_NO_CONVERGENCE : SOL_OK;
+    return hi - lo > tol * hi && !adjacent ? SOL_ERR_NO_CONVERGENCE : SOL_OK;
 }
 
 sol_status sol_tonemap_lower_bound(sol_tonemap op, double threshold, double *c_min_over_l)

@@ -6,6 +6,9 @@
  * measured. */
 #include "sol_lighting.h"
 
+#include <float.h>
+#include <math.h>
+
 /* Does the segment light -> floor point pass through the solid part of `w`? */
 static int wall_blocks(const sol_wall *w, double wall_height, const double light[3], double x, double y)
 {
@@ -42,7 +45,15 @@ sol_status sol_room_irradiance(const sol_room_scene *scene, const sol_clip_box *
     double d2 = dx * dx + dy * dy + dz * dz;
     double q = d2 / (scene->radius * scene->radius);
     double e = 0.0;
-    if (q < 1.0) /* cos(theta) / d^2 with cos = height / d, windowed to zero at the radius */
+    if (!(d2 >= 1e-200 && d2 <= 1e200)) {
+        /* d^2 under- or overflows (a light 1e-300 above the floor, far-away points): the same
+         * quantities with the offsets divided by m = their largest magnitude, d = m n */
+        double m = fmax(fmax(fabs(dx), fabs(dy)), dz), ux = dx / m, uy = dy / m, uz = dz / m;
+        double n = sqrt(ux * ux + uy * uy + uz * uz), dr = m / scene->radius * n;
+        q = dr * dr;
+        if (q < 1.0)
+            e = uz / (n * n * n) / m / m * (1.0 - q) * (1.0 - q);
+    } else if (q < 1.0) /* cos(theta) / d^2 with cos = height / d, windowed to zero at the radius */
         e = dz / (d2 * sqrt(d2)) * (1.0 - q) * (1.0 - q);
     if (mode == SOL_LIGHT_CLIPPED && !(x >= clip->x0 && x <= clip->x1 && y >= clip->y0 && y <= clip->y1))
         e = 0.0;
@@ -52,6 +63,8 @@ sol_status sol_room_irradiance(const sol_room_scene *scene, const sol_clip_box *
                 e = 0.0;
                 break;
             }
+    if (!(e <= DBL_MAX))
+        return SOL_ERR_OUT_OF_RANGE; /* e.g. a light 1e-300 above the point: height / d^3 = 1e600 */
     *irradiance = e;
     return SOL_OK;
 }

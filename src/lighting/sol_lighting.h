@@ -199,8 +199,10 @@ typedef struct sol_clip_box {
 } sol_clip_box;
 
 /* Irradiance at floor point (x, y) (normal +z). `clip` is used by SOL_LIGHT_CLIPPED only (it may be
- * NULL otherwise). Errors: SOL_ERR_NULL_ARG, SOL_ERR_NONFINITE, SOL_ERR_INVALID_ARG (radius <= 0,
- * light at or below the floor, bad mode, negative wall count). */
+ * NULL otherwise). Distances are scaled before squaring, so any finite scene gives the
+ * representable answer. Errors: SOL_ERR_NULL_ARG, SOL_ERR_NONFINITE, SOL_ERR_INVALID_ARG (radius <= 0,
+ * light at or below the floor, bad mode, negative wall count), SOL_ERR_OUT_OF_RANGE (the
+ * irradiance exceeds DBL_MAX, e.g. a light 1e-300 right above the point; *irradiance untouched). */
 sol_status sol_room_irradiance(const sol_room_scene *scene, const sol_clip_box *clip, sol_light_mode mode,
                                double x, double y, double *irradiance);
 

@@ -16,8 +16,16 @@ sol_status sol_nm_unit_normals(const double in[16][3], double out[16][3])
         if (!isfinite(in[p][0]) || !isfinite(in[p][1]) || !isfinite(in[p][2]))
             return SOL_ERR_NONFINITE;
         double len = sqrt(in[p][0] * in[p][0] + in[p][1] * in[p][1] + in[p][2] * in[p][2]);
-        if (!(len > 0.0))
-            return SOL_ERR_ZERO_LENGTH;
+        if (!(len > 1e-150 && len < 1e150)) { /* the squares under- or overflowed: scale first */
+            double m = fmax(fmax(fabs(in[p][0]), fabs(in[p][1])), fabs(in[p][2]));
+            if (!(m > 0.0))
+                return SOL_ERR_ZERO_LENGTH;
+            double s[3] = {in[p][0] / m, in[p][1] / m, in[p][2] / m};
+            len = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+            for (int c = 0; c < 3; ++c)
+                out[p][c] = s[c] / len;
+            continue;
+        }
         for (int c = 0; c < 3; ++c)
             out[p][c] = in[p][c] / len;
     }

@@ -3,6 +3,7 @@
  * Talk, slide "Histogram renormalization": the texture's color range is stretched to [0,1] before
  * block compression and the original min/max are kept as two shader constants that restore it
  * after the texture fetch (value = lo + stored * (hi - lo)). */
+#include <float.h>
 #include <math.h>
 
 #include "sol_textures.h"
@@ -64,12 +65,18 @@ static sol_status check_pair(const sol_renorm *range, const sol_image *image)
 static float apply_value(float v, float lo, float hi)
 {
     float span = hi - lo;
+    if (isinf(span)) /* [-FLT_MAX, FLT_MAX]: the float span overflows, the double one does not */
+        return (float)fmin(1.0, fmax(0.0, ((double)v - lo) / ((double)hi - lo)));
     float t = span > 0.0f ? (v - lo) / span : 0.0f;
     return fminf(1.0f, fmaxf(0.0f, t));
 }
 
 static float undo_value(float v, float lo, float hi)
 {
+    if (isinf(hi - lo)) {
+        double r = (double)lo + (double)v * ((double)hi - lo);
+        return fabs(r) > FLT_MAX ? (float)copysign(INFINITY, r) : (float)r; /* no out-of-range cast */
+    }
     return lo + v * (hi - lo);
 }
 
@@ -79,6 +86,12 @@ static sol_status map_values(const sol_renorm *range, sol_image *image, float (*
     if (st)
         return st;
     size_t n = value_count(image);
+    /* first pass: a stored value outside [0, 1] can map past FLT_MAX; refuse before writing */
+    for (size_t i = 0; i < n; ++i) {
+        int c = (int)(i % (size_t)image->channels);
+        if (!isfinite(map(image->data[i], range->lo[c], range->hi[c])))
+            return SOL_ERR_OUT_OF_RANGE;
+    }
     for (size_t i = 0; i < n; ++i) {
         int c = (int)(i % (size_t)image->channels);
         image->data[i] = map(image->data[i], range->lo[c], range->hi[c]);

@@ -143,7 +143,10 @@ sol_status sol_renorm_fit(const sol_image *image, sol_renorm *out);
  * Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (channel count differs), SOL_ERR_NONFINITE
  * (checked before anything is written). */
 sol_status sol_renorm_apply(const sol_renorm *range, sol_image *image);
-/* In place: value = lo + stored * (hi - lo), the shader's reconstruction. Errors as apply. */
+/* In place: value = lo + stored * (hi - lo), the shader's reconstruction. Both work for any
+ * finite range, [-FLT_MAX, FLT_MAX] included (the span is then taken in double). Errors as apply,
+ * plus SOL_ERR_OUT_OF_RANGE when a result would exceed FLT_MAX (a stored value far outside
+ * [0, 1]); the image is then untouched. */
 sol_status sol_renorm_undo(const sol_renorm *range, sol_image *image);
 
 /* ---- linear vs gamma storage (storage.c), claim T4 ------------------------------------------ */
