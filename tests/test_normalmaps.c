@@ -239,8 +239,8 @@ Test(normalmaps, hard_cases_flat_axis_outlier_and_bad_input)
         n[p][1] = -0.0;
         n[p][2] = 0.0;
     }
-    /* The full-range optimum of this block is a known slow case (every 6-value x pair serves x = +-1
-     * exactly: ~33k tied x pairs under loose rim bounds), so it is checked over a window. */
+    /* Every 6-value x pair serves x = +-1 exactly (~33k tied x pairs under loose rim bounds): checked
+     * over a window here, over the full range in degenerate_blocks_are_decided_directly_and_exactly. */
     o.encoder = SOL_BC5_ADAPTIVE;
     cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
     cr_assert(info.error <= 16 * pow(2.0 / 14.0 / 255.0, 2) * 1.1, "axis block %g", info.error); /* y = 0 */
