@@ -348,6 +348,17 @@ Test(normalmaps, image_encode_is_independent_of_thread_count_and_decodes)
     img.data[7] = NAN;
     cr_assert_eq(sol_bc5_encode_image(&img, &o, a, NULL), SOL_ERR_NONFINITE);
     cr_assert_eq(sol_bc5_decode_image(a, 6, 8, 0, &dec), SOL_ERR_INVALID_ARG);
+    /* the optimal encoder too: same bytes, same work statistics for 1 and 2 threads */
+    img.data[7] = 0.1f;
+    o.encoder = SOL_BC5_OPTIMAL;
+    omp_set_num_threads(1);
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, a, &s1), SOL_OK);
+    omp_set_num_threads(2);
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, b, &s2), SOL_OK);
+    omp_set_num_threads(threads);
+    cr_assert_eq(memcmp(a, b, sizeof a), 0);
+    cr_assert(s1.candidates == s2.candidates && s1.max_block == s2.max_block && s1.bounded_blocks == 0 &&
+              s2.bounded_blocks == 0);
     sol_image_free(&img);
 }
 
