@@ -239,8 +239,8 @@ Test(normalmaps, hard_cases_flat_axis_outlier_and_bad_input)
         n[p][1] = -0.0;
         n[p][2] = 0.0;
     }
-    /* The full-range optimum of this block is a known slow case (every 6-value x pair serves x = +-1
-     * exactly: ~33k tied x pairs under loose rim bounds), so it is checked over a window. */
+    /* Every 6-value x pair serves x = +-1 exactly (~33k tied x pairs under loose rim bounds): checked
+     * over a window here, over the full range in degenerate_blocks_are_decided_directly_and_exactly. */
     o.encoder = SOL_BC5_ADAPTIVE;
     cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
     cr_assert(info.error <= 16 * pow(2.0 / 14.0 / 255.0, 2) * 1.1, "axis block %g", info.error); /* y = 0 */
@@ -348,6 +348,17 @@ Test(normalmaps, image_encode_is_independent_of_thread_count_and_decodes)
     img.data[7] = NAN;
     cr_assert_eq(sol_bc5_encode_image(&img, &o, a, NULL), SOL_ERR_NONFINITE);
     cr_assert_eq(sol_bc5_decode_image(a, 6, 8, 0, &dec), SOL_ERR_INVALID_ARG);
+    /* the optimal encoder too: same bytes, same work statistics for 1 and 2 threads */
+    img.data[7] = 0.1f;
+    o.encoder = SOL_BC5_OPTIMAL;
+    omp_set_num_threads(1);
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, a, &s1), SOL_OK);
+    omp_set_num_threads(2);
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, b, &s2), SOL_OK);
+    omp_set_num_threads(threads);
+    cr_assert_eq(memcmp(a, b, sizeof a), 0);
+    cr_assert(s1.candidates == s2.candidates && s1.max_block == s2.max_block && s1.bounded_blocks == 0 &&
+              s2.bounded_blocks == 0);
     sol_image_free(&img);
 }
 

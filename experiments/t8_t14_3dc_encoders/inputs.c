@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
 
 const char *input_name(input_kind kind)
 {
@@ -108,4 +109,50 @@ void input_quantize(const sol_image *exact, int bits, sol_image *out)
         for (int c = 0; c < 3; ++c)
             out->data[3 * i + c] = (float)(v[c] / len);
     }
+}
+
+/* A real terrain-derived map: the luminance of a game terrain texture (Debian's
+ * colobot-common-textures, desert4.png, 512x512) as a periodic height field, bilinearly resampled to
+ * `size` and differentiated by central differences: n = normalize(-dh/du, -dh/dv, 1), h = 0.01 lum. */
+int input_terrain_normals(int size, sol_image *out)
+{
+    static const char *path = "/usr/share/games/colobot/textures/desert4.png";
+    sol_image tex;
+    int bits;
+    if (sol_png_read(path, &tex, &bits) != SOL_OK)
+        return 0;
+    int w = tex.width, h = tex.height;
+    double *lum = malloc(sizeof *lum * (size_t)w * (size_t)h);
+    if (!lum)
+        exp_die("out of memory");
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const float *p = sol_image_pixel(&tex, x, y);
+            lum[(size_t)y * w + x] = tex.channels >= 3 ? 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2] : p[0];
+        }
+    sol_image_free(&tex);
+    exp_check(sol_image_alloc(out, size, size, 3), "allocating a %dx%d normal map", size, size);
+    const double amp = 0.01, step = 1.0 / size;
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            double hv[4];
+            const int off[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+            for (int k = 0; k < 4; ++k) { /* bilinear, wrapping */
+                double u = (x + 0.5 + off[k][0]) * w / size - 0.5, v = (y + 0.5 + off[k][1]) * h / size - 0.5;
+                int x0 = (int)floor(u), y0 = (int)floor(v);
+                double fx = u - x0, fy = v - y0;
+                int xa = ((x0 % w) + w) % w, xb = (xa + 1) % w, ya = ((y0 % h) + h) % h, yb = (ya + 1) % h;
+                hv[k] = amp * ((1 - fy) * ((1 - fx) * lum[(size_t)ya * w + xa] + fx * lum[(size_t)ya * w + xb]) +
+                               fy * ((1 - fx) * lum[(size_t)yb * w + xa] + fx * lum[(size_t)yb * w + xb]));
+            }
+            double gu = (hv[0] - hv[1]) / (2 * step), gv = (hv[2] - hv[3]) / (2 * step);
+            double len = sqrt(gu * gu + gv * gv + 1.0);
+            float *p = sol_image_pixel(out, x, y);
+            p[0] = (float)(-gu / len);
+            p[1] = (float)(-gv / len);
+            p[2] = (float)(1.0 / len);
+        }
+    free(lum);
+    return 1;
 }

@@ -13,4 +13,8 @@ void input_normals(input_kind kind, int size, sol_image *out);
  * normal map file of that depth), renormalised. */
 void input_quantize(const sol_image *exact, int bits, sol_image *out);
 
+/* The real terrain-derived map of make bench (a game terrain texture's luminance as height, see
+ * inputs.c); returns 0 if the texture is not installed. */
+int input_terrain_normals(int size, sol_image *out);
+
 #endif
