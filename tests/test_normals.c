@@ -280,3 +280,130 @@ Test(normals, d6_best_fit_scales_are_exact_8bit_codes)
         cr_assert(code >= 3.0 - 1e-9 && code <= 255.0 + 1e-9);
     }
 }
+
+/* Concrete codes for chosen directions, for every method whose codes follow exactly from the
+ * header's formulas (no transcendental functions, no ties broken by rounding noise): an encoder
+ * written from sol_normals.h must produce these. Directions: +-z, +-x, +-y, the upper fold
+ * diagonals (1,+-1,0)/sqrt 2, the lower half's (+-1,0,-1), (0,1,-1), and the cube diagonals. */
+static const double pin_dirs[][3] = {{0, 0, 1},  {0, 0, -1}, {1, 0, 0},  {-1, 0, 0}, {0, 1, 0},  {0, -1, 0}, {1, 1, 0},
+                                     {-1, 1, 0}, {1, 0, -1}, {-1, 0, -1}, {0, 1, -1}, {1, 1, -1}, {-1, -1, -1}, {1, 1, 1}};
+enum { PIN_DIRS = sizeof pin_dirs / sizeof pin_dirs[0], PIN_ALL = PIN_DIRS, PIN_AXES_AND_EDGES = 11, PIN_AXES = 6 };
+
+static void check_pinned(sol_normal_method m, const uint32_t *codes, int count)
+{
+    for (int i = 0; i < count; ++i) {
+        uint32_t code = 0;
+        cr_assert_eq(sol_normal_encode(m, pin_dirs[i], &code), SOL_OK);
+        cr_assert_eq(code, codes[i], "%s direction %d: 0x%06x, pinned 0x%06x", sol_normal_method_name(m), i, code,
+                     codes[i]);
+    }
+}
+
+Test(normals, pinned_codes_of_exact_methods)
+{
+    /* XYZ: channel code = round(255 (c/2 + 1/2)); 0 -> 128 (127.5 rounds up), 1/sqrt2 -> 218 = 0xda. */
+    static const uint32_t xyz[PIN_ALL] = {0xff8080, 0x008080, 0x8080ff, 0x808000, 0x80ff80, 0x800080, 0x80dada,
+                                          0x80da25, 0x2580da, 0x258025, 0x25da80, 0x36c9c9, 0x363636, 0xc9c9c9};
+    static const uint32_t maxc[PIN_ALL] = {0xff8080, 0x008080, 0x8080ff, 0x808000, 0x80ff80, 0x800080, 0x80ffff,
+                                           0x80ff00, 0x0080ff, 0x008000, 0x00ff80, 0x00ffff, 0x000000, 0xffffff};
+    /* Best fit, axes and edges: the zero components quantize to 128 (1/255) at every probe, so the
+     * error (1/255)/t is least at t = 1, the max-component cell. (On the cube diagonals every probe
+     * is exact and rounding noise picks the winner: not pinned.) */
+    /* Octahedral SNORM: u * 2047 rounded, + 2047. +z (0,0) -> 2047|2047<<12; -z folds to (1,1) ->
+     * 4094|4094<<12; (1,1,0) -> (0.5,0.5) -> 1024+2047 = 3071 = 0xbff; (1,1,-1) -> (1/3,1/3) folds
+     * to (2/3,2/3) -> 1365+2047 = 3412 = 0xd54. */
+    static const uint32_t oct[PIN_ALL] = {0x7ff7ff, 0xffeffe, 0x7ffffe, 0x7ff000, 0xffe7ff, 0x0007ff, 0xbffbff,
+                                          0xbff400, 0xbffffe, 0xbff000, 0xffebff, 0xd54d54, 0x2aa2aa, 0xaa9aa9};
+    static const uint32_t octp[PIN_ALL] = {0x7ff7ff, 0xffeffe, 0x7ffffe, 0x7ff000, 0xffe7ff, 0x0007ff, 0xbfebff,
+                                           0xbfe3ff, 0xbfeffe, 0xbfe000, 0xffebfe, 0xd54d54, 0x2aa2aa, 0xaaaaa9};
+    /* Mittring: G = normalize(xy) sqrt(z/2 + 1/2); +z -> (1, 0) -> (4095, 2048); -z -> G = 0 -> 2048, 2048;
+     * +x -> (sqrt(1/2), 0) -> 0xda7. */
+    static const uint32_t mit12[PIN_AXES] = {0x800fff, 0x800800, 0x800da7, 0x800258, 0xda7800, 0x258800};
+    static const uint32_t mit8[PIN_AXES] = {0x0080ff, 0x008080, 0x0080da, 0x008025, 0x00da80, 0x002580};
+    check_pinned(SOL_NORMAL_XYZ_NORMALIZED, xyz, PIN_ALL);
+    check_pinned(SOL_NORMAL_XYZ_MAX_COMPONENT, maxc, PIN_ALL);
+    check_pinned(SOL_NORMAL_XYZ_BEST_FIT, maxc, PIN_AXES_AND_EDGES);
+    check_pinned(SOL_NORMAL_XYZ_BEST_FIT_FLOAT, maxc, PIN_AXES_AND_EDGES);
+    check_pinned(SOL_NORMAL_OCTAHEDRAL_12, oct, PIN_ALL);
+    check_pinned(SOL_NORMAL_OCTAHEDRAL_12_PRECISE, octp, PIN_ALL);
+    check_pinned(SOL_NORMAL_MITTRING_12, mit12, PIN_AXES);
+    check_pinned(SOL_NORMAL_MITTRING_8, mit8, PIN_AXES);
+    /* The header's formula, checked on the pinned directions' decoded values: u = (a - 2047) / 2047. */
+    double back[3];
+    cr_assert_eq(sol_normal_decode(SOL_NORMAL_OCTAHEDRAL_12, 0x7ff7ff, back), SOL_OK);
+    cr_assert(back[0] == 0.0 && back[1] == 0.0 && back[2] == 1.0);
+    cr_assert_eq(sol_normal_decode(SOL_NORMAL_OCTAHEDRAL_12, 0xffeffe, back), SOL_OK);
+    cr_assert(back[0] == 0.0 && back[1] == 0.0 && back[2] == -1.0);
+}
+
+/* sol_oct_encode/decode: bits 12 SNORM are the 12:12 method's codes; UNORM is the other common rule
+ * (+z -> 2048, 2048: 0.5 * 4095 = 2047.5 rounds up); both round-trip within half a code step. */
+Test(normals, oct_any_bits_matches_the_method_and_pins_unorm_codes)
+{
+    static const uint32_t unorm12[PIN_ALL][2] = {{2048, 2048}, {4095, 4095}, {4095, 2048}, {0, 2048},
+                                                 {2048, 4095}, {2048, 0},    {3071, 3071}, {1024, 3071},
+                                                 {4095, 3071}, {0, 3071},    {3071, 4095}, {3413, 3413},
+                                                 {682, 682},   {2730, 2730}};
+    for (int i = 0; i < PIN_DIRS; ++i) {
+        uint32_t c[2], code;
+        for (int precise = 0; precise < 2; ++precise) {
+            sol_oct_options snorm = {12, precise, SOL_OCT_SNORM};
+            cr_assert_eq(sol_oct_encode(&snorm, pin_dirs[i], c), SOL_OK);
+            cr_assert_eq(sol_normal_encode(precise ? SOL_NORMAL_OCTAHEDRAL_12_PRECISE : SOL_NORMAL_OCTAHEDRAL_12,
+                                           pin_dirs[i], &code),
+                         SOL_OK);
+            cr_assert_eq(c[0] | (c[1] << 12), code, "direction %d precise %d", i, precise);
+        }
+        sol_oct_options unorm = {12, 0, SOL_OCT_UNORM};
+        cr_assert_eq(sol_oct_encode(&unorm, pin_dirs[i], c), SOL_OK);
+        cr_assert(c[0] == unorm12[i][0] && c[1] == unorm12[i][1], "direction %d: %u,%u", i, c[0], c[1]);
+    }
+    /* zero options = NULL options = 12-bit SNORM nearest */
+    uint32_t a[2], b[2];
+    sol_oct_options zero = {0};
+    cr_assert_eq(sol_oct_encode(&zero, pin_dirs[11], a), SOL_OK);
+    cr_assert_eq(sol_oct_encode(NULL, pin_dirs[11], b), SOL_OK);
+    cr_assert(a[0] == b[0] && a[1] == b[1] && a[0] == 0xd54);
+    /* every bit count, both quantizers, random directions: error within the step's bound */
+    uint64_t state = 17;
+    for (int bits = 2; bits <= 16; ++bits)
+        for (int q = 0; q < 2; ++q)
+            for (int k = 0; k < 300; ++k) {
+                double n[3], back[3];
+                sol_sphere_uniform(sol_rng_uniform(&state, 0, 1), sol_rng_uniform(&state, 0, 1), n);
+                sol_oct_options o = {bits, k & 1, (sol_oct_quantizer)q};
+                cr_assert_eq(sol_oct_encode(&o, n, a), SOL_OK);
+                cr_assert(a[0] < (1u << bits) && a[1] < (1u << bits));
+                cr_assert_eq(sol_oct_decode(&o, a, back), SOL_OK);
+                /* a code step in u is <= 2/(2^bits - 2); the map stretches angles by less than 3 */
+                double step = 2.0 / ((1 << bits) - 2);
+                cr_assert_leq(sol_angle3(n, back), 3.0 * step, "bits %d q %d: %g rad", bits, q, sol_angle3(n, back));
+            }
+}
+
+Test(normals, oct_bad_options_and_codes)
+{
+    uint32_t c[2] = {7, 7}, big[2] = {4096, 0};
+    double n[3] = {5, 5, 5};
+    const double up[3] = {0, 0, 1}, nan3[3] = {NAN, 0, 1}, zero3[3] = {0, 0, 0};
+    sol_oct_options bad_bits = {17, 0, 0}, one_bit = {1, 0, 0}, bad_q = {12, 0, (sol_oct_quantizer)2},
+                    bad_p = {12, 2, 0};
+    cr_assert_eq(sol_oct_encode(&bad_bits, up, c), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_oct_encode(&one_bit, up, c), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_oct_encode(&bad_q, up, c), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_oct_encode(&bad_p, up, c), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_oct_encode(NULL, nan3, c), SOL_ERR_NONFINITE);
+    cr_assert_eq(sol_oct_encode(NULL, zero3, c), SOL_ERR_ZERO_LENGTH);
+    cr_assert_eq(sol_oct_encode(NULL, NULL, c), SOL_ERR_NULL_ARG);
+    cr_assert_eq(sol_oct_encode(NULL, up, NULL), SOL_ERR_NULL_ARG);
+    cr_assert(c[0] == 7 && c[1] == 7);
+    cr_assert_eq(sol_oct_decode(NULL, big, n), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_oct_decode(&bad_bits, c, n), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_oct_decode(NULL, NULL, n), SOL_ERR_NULL_ARG);
+    cr_assert_eq(sol_oct_decode(NULL, c, NULL), SOL_ERR_NULL_ARG);
+    cr_assert_eq(n[0], 5.0);
+    /* the unused SNORM code 2^bits - 1 clamps to +1: (4095, 2047) decodes like (4094, 2047) = +x */
+    uint32_t top[2] = {4095, 2047};
+    cr_assert_eq(sol_oct_decode(NULL, top, n), SOL_OK);
+    cr_assert(n[0] == 1.0 && n[1] == 0.0 && n[2] == 0.0);
+}

@@ -38,11 +38,20 @@ typedef enum sol_normal_method {
      * arithmetic, input rounded to float). Ties between a cell and its odd multiples, exact in
      * double, break by rounding noise here. */
     SOL_NORMAL_XYZ_BEST_FIT_FLOAT,
-    /* S5: octahedral map (Cigolle et al. 2014; Narkowicz's notes), 12:12 bits, each coordinate in
-     * [-1,1] stored as round((u * 0.5 + 0.5) * 4095), nearest-code rounding ("oct24"). */
+    /* S5: octahedral map (Cigolle et al. 2014; Narkowicz's notes), 12:12 bits ("oct24"). The
+     * unit vector is projected onto |x|+|y|+|z| = 1 and, for z < 0, folded:
+     * (u, v) = ((1-|y|) sgn x, (1-|x|) sgn y) with sgn(0) = +1. Each coordinate u in [-1,1] is a
+     * 12-bit SNORM value, as in Cigolle et al.: k = floor(u * 2047 + 0.5) in -2047..2047, stored
+     * as k + 2047 (codes 0..4094; 0 is exact, +z is code 2047 | 2047 << 12). Code = a | b << 12.
+     * Decoding: u = (code - 2047) / 2047 (code 4095, never produced, clamps to +1).
+     * This is NOT the UNORM rule round((u * 0.5 + 0.5) * 4095), which has no exact 0 (+z is 2048,
+     * 2048 there) and agrees with this one on both codes for only about a quarter of directions;
+     * sol_oct_encode offers it (SOL_OCT_UNORM). */
     SOL_NORMAL_OCTAHEDRAL_12,
     /* S5: octahedral 12:12 with Cigolle et al.'s "precise" encoding: of the 4 codes around the
-     * projected point, the one whose decoded direction is closest in angle ("oct24P"). */
+     * projected point (floor and floor + 1 of u * 2047 per coordinate, codes above 4094 skipped),
+     * the one whose decoded direction is closest in angle, the first in the order
+     * (0,0), (1,0), (0,1), (1,1) on ties ("oct24P"). Same code layout and decoder as above. */
     SOL_NORMAL_OCTAHEDRAL_12_PRECISE,
     /* S5: spherical coordinates 12:12: theta = acos(z) in [0, pi] as round(theta / pi * 4095)
      * (poles exact), phi = atan2(y, x) as round(phi / (2 pi) * 4096) mod 4096 (periodic). */
@@ -74,6 +83,30 @@ sol_status sol_normal_decode(sol_normal_method method, uint32_t code, double n[3
  * (clamped; NaN gives 0), code -> code / 255 * 2 - 1. */
 uint32_t sol_quantize255(double c);
 double sol_dequantize255(uint32_t code);
+
+/* ---- S5: the octahedral map at any bit count (Cigolle et al. 2014) ----
+ * The same projection and fold as SOL_NORMAL_OCTAHEDRAL_12, with `bits` per coordinate and a choice
+ * of quantizer for u in [-1, 1]:
+ *  - SOL_OCT_SNORM (default): S = 2^(bits-1) - 1, code = floor(u * S + 0.5) + S (0..2S), decoded
+ *    as (code - S) / S; code 2^bits - 1 clamps to +1. bits = 12 gives SOL_NORMAL_OCTAHEDRAL_12's
+ *    codes (code[0] = a, code[1] = b).
+ *  - SOL_OCT_UNORM: M = 2^bits - 1, code = floor((u * 0.5 + 0.5) * M + 0.5), decoded as
+ *    code / M * 2 - 1 (no exact 0; the quantizer of many engines and of L. Tyler, "Analyzing
+ *    Octahedral Encoded Normals", whose 12:12 table sol reproduces in d6_d7).
+ * precise = 1 picks, of the 4 codes around the projected point, the one closest in angle (first in
+ * the order (0,0), (1,0), (0,1), (1,1) on ties; codes past the range are skipped).
+ * Options zero-initialised: bits 0 means 12, SNORM, nearest rounding; NULL options mean the same. */
+typedef enum sol_oct_quantizer { SOL_OCT_SNORM = 0, SOL_OCT_UNORM = 1 } sol_oct_quantizer;
+typedef struct sol_oct_options {
+    int bits;                    /* per coordinate, 2..16; 0 = 12 */
+    int precise;                 /* 0 nearest, 1 best of four by angle */
+    sol_oct_quantizer quantizer; /* SOL_OCT_SNORM (0) or SOL_OCT_UNORM */
+} sol_oct_options;
+/* Encodes `n` (any finite non-zero vector; the module's input rules and errors) into code[0..1].
+ * Bad options give SOL_ERR_INVALID_ARG. */
+sol_status sol_oct_encode(const sol_oct_options *opt, const double n[3], uint32_t code[2]);
+/* Decodes code[0..1] (each at most 2^bits - 1, else SOL_ERR_INVALID_ARG) into the unit vector n. */
+sol_status sol_oct_decode(const sol_oct_options *opt, const uint32_t code[2], double n[3]);
 
 /* ---- D6: the baked best-fit table, as the talk's shader uses it ----
  * One face of the cube map, reduced by the 8 octants and the diagonal symmetry, stored as a
