@@ -367,7 +367,7 @@ static int failing_residuals(void *ctx, const double *p, double *r, double *jac)
 Test(brdf, ceres_shim_solves_respects_bounds_and_reports_failure)
 {
     double p[2] = {1.0, 1.0};
-    sol_lsq_problem prob = {2, 10, decay_residuals, NULL, NULL, NULL, 0};
+    sol_lsq_problem prob = {2, 10, decay_residuals, NULL, NULL, NULL, 0, SOL_LSQ_DENSE_NORMAL_CHOLESKY};
     sol_lsq_summary s;
     cr_assert_eq(sol_lsq_solve(&prob, p, &s), SOL_OK);
     cr_assert_float_eq(p[0], 2.0, 1e-6);
@@ -383,11 +383,20 @@ Test(brdf, ceres_shim_solves_respects_bounds_and_reports_failure)
     cr_assert_eq(sol_lsq_solve(&prob, out_of_bounds, NULL), SOL_ERR_INVALID_ARG);
     cr_assert_eq(sol_lsq_solve(&prob, nan_start, NULL), SOL_ERR_NONFINITE);
     cr_assert_eq(sol_lsq_solve(NULL, keep, NULL), SOL_ERR_NULL_ARG);
-    sol_lsq_problem bad = {2, 10, failing_residuals, NULL, NULL, NULL, 0};
+    sol_lsq_problem bad = {2, 10, failing_residuals, NULL, NULL, NULL, 0, SOL_LSQ_DENSE_NORMAL_CHOLESKY};
     cr_assert_eq(sol_lsq_solve(&bad, keep, NULL), SOL_ERR_SOLVER);
     cr_assert(keep[0] == 1.0 && keep[1] == 1.0);
-    sol_lsq_problem empty = {0, 10, decay_residuals, NULL, NULL, NULL, 0};
+    sol_lsq_problem empty = {0, 10, decay_residuals, NULL, NULL, NULL, 0, SOL_LSQ_DENSE_NORMAL_CHOLESKY};
     cr_assert_eq(sol_lsq_solve(&empty, keep, NULL), SOL_ERR_INVALID_ARG);
+    /* Both linear solvers reach the same optimum; an unknown one is rejected, params untouched. */
+    double r[2] = {1.0, 1.0};
+    sol_lsq_problem qr = {2, 10, decay_residuals, NULL, NULL, NULL, 0, SOL_LSQ_DENSE_QR};
+    cr_assert_eq(sol_lsq_solve(&qr, r, NULL), SOL_OK);
+    cr_assert_float_eq(r[0], 2.0, 1e-6);
+    cr_assert_float_eq(r[1], 0.5, 1e-6);
+    sol_lsq_problem unknown = {2, 10, decay_residuals, NULL, NULL, NULL, 0, 7};
+    cr_assert_eq(sol_lsq_solve(&unknown, keep, NULL), SOL_ERR_INVALID_ARG);
+    cr_assert(keep[0] == 1.0 && keep[1] == 1.0);
 }
 
 /* ---------------- Ward -> SG fit (D15) ---------------- */
@@ -453,6 +462,33 @@ Test(brdf, d15_fit_works_at_the_documented_alpha_edges)
     cr_assert(e[0].rel_l2 < 0.5, "alpha 1e-3, K 1: %g", e[0].rel_l2);
 }
 
+/* The multi-start check of the last fit never raises its error, leaves the fits below k_max as
+ * they were, and is deterministic; the two linear solvers give the same fits. */
+Test(brdf, d15_extra_starts_only_lower_the_last_fit)
+{
+    sol_sg_fit_options base = {.radial_samples = 10, .angular_samples = 12, .eval_radial = 32, .eval_angular = 48};
+    sol_sg_fit_options more = base, again = base, qr = base;
+    more.extra_starts = again.extra_starts = 5;
+    qr.linear_solver = SOL_LSQ_DENSE_QR;
+    sol_sg l0[10], l1[10], l2[10], l3[10];
+    sol_sg_fit_error e0[4], e1[4], e2[4], e3[4];
+    cr_assert_eq(sol_ward_sg_fit(0.1, 0.3, 4, &base, l0, e0, NULL), SOL_OK);
+    cr_assert_eq(sol_ward_sg_fit(0.1, 0.3, 4, &more, l1, e1, NULL), SOL_OK);
+    cr_assert_eq(sol_ward_sg_fit(0.1, 0.3, 4, &again, l2, e2, NULL), SOL_OK);
+    cr_assert_eq(sol_ward_sg_fit(0.1, 0.3, 4, &qr, l3, e3, NULL), SOL_OK);
+    for (int k = 0; k < 3; ++k)
+        cr_assert(e1[k].rel_l2 == e0[k].rel_l2, "K %d changed", k + 1);
+    cr_assert(e1[3].rel_l2 <= e0[3].rel_l2);
+    cr_assert(memcmp(l1, l2, sizeof l1) == 0 && e1[3].rel_l2 == e2[3].rel_l2);
+    for (int k = 0; k < 4; ++k)
+        cr_assert(fabs(e3[k].rel_l2 - e0[k].rel_l2) < 1e-3, "K %d: QR %g, Cholesky %g", k + 1, e3[k].rel_l2,
+                  e0[k].rel_l2);
+    sol_sg_fit_options bad = {.extra_starts = -1};
+    cr_assert_eq(sol_ward_sg_fit(0.1, 0.3, 2, &bad, l0, e0, NULL), SOL_ERR_INVALID_ARG);
+    bad = (sol_sg_fit_options){.linear_solver = (sol_lsq_linear_solver)2};
+    cr_assert_eq(sol_ward_sg_fit(0.1, 0.3, 2, &bad, l0, e0, NULL), SOL_ERR_INVALID_ARG);
+}
+
 Test(brdf, d15_one_asg_fits_an_anisotropic_ward_lobe)
 {
     sol_asg g;
@@ -475,6 +511,12 @@ Test(brdf, d16_single_lobe_extraction_returns_its_axis_and_warped_sharpness)
     sol_sg w = sol_sg_warp_ndf_lobe(&ndf, v);
     cr_assert_float_eq(lobe.glossiness, w.sharpness, 1e-9);
     cr_assert_float_eq(w.sharpness, 200.0 / (4.0 * sol_dot3(ndf.axis, v)), 1e-9);
+    /* Energy-preserving glossiness of one lobe: lambda / (1 - exp(-2 lambda)) - 1. */
+    cr_assert_float_eq(lobe.glossiness_energy, w.sharpness / -expm1(-2.0 * w.sharpness) - 1.0, 1e-9);
+    /* A wide lobe (lambda 0.05): the normalised peak is below a uniform hemisphere's, g clamps at 0. */
+    sol_sg wide = sg(0.0, 0.0, 0.05, 1.0);
+    cr_assert_eq(sol_extract_phong_lobe(&wide, 1, &light, 1, Z, &lobe), SOL_OK);
+    cr_assert(lobe.glossiness_energy >= 0.0 && lobe.glossiness_energy < 0.1, "%g", lobe.glossiness_energy);
 }
 
 Test(brdf, d16_symmetric_lobes_and_lights_give_the_symmetric_normal)
@@ -495,13 +537,13 @@ Test(brdf, d16_extraction_hard_cases)
 {
     sol_sg ndf = sg(0, 0, 100, 1), light = sg(0, 0, 10, 1), nan_light = sg(0, 0, NAN, 1);
     double away[3] = {0, 0, -1}, nan_v[3] = {NAN, 0, 1};
-    sol_phong_lobe lobe = {{7, 7, 7}, 7, 7};
+    sol_phong_lobe lobe = {{7, 7, 7}, 7, 7, 7};
     cr_assert_eq(sol_extract_phong_lobe(&ndf, 1, &light, 1, away, &lobe), SOL_ERR_ZERO_LENGTH);
     cr_assert_eq(sol_extract_phong_lobe(&ndf, 1, &nan_light, 1, Z, &lobe), SOL_ERR_NONFINITE);
     cr_assert_eq(sol_extract_phong_lobe(&ndf, 1, &light, 1, nan_v, &lobe), SOL_ERR_NONFINITE);
     cr_assert_eq(sol_extract_phong_lobe(&ndf, 0, &light, 1, Z, &lobe), SOL_ERR_INVALID_ARG);
     cr_assert_eq(sol_extract_phong_lobe(NULL, 1, &light, 1, Z, &lobe), SOL_ERR_NULL_ARG);
-    cr_assert_eq(lobe.glossiness, 7);
+    cr_assert(lobe.glossiness == 7 && lobe.glossiness_energy == 7);
     /* A light entirely below the horizon of the lobe: falls back to the NDF's own weights. */
     sol_sg below = sg(M_PI, 0, 1e6, 1);
     cr_assert_eq(sol_extract_phong_lobe(&ndf, 1, &below, 1, Z, &lobe), SOL_OK);
@@ -510,6 +552,7 @@ Test(brdf, d16_extraction_hard_cases)
     sol_sg flat = sg(0, 0, 0, 1);
     cr_assert_eq(sol_extract_phong_lobe(&flat, 1, &light, 1, Z, &lobe), SOL_OK);
     cr_assert(isfinite(lobe.glossiness));
+    cr_assert(isfinite(lobe.glossiness_energy) && lobe.glossiness_energy >= 0.0);
 }
 
 Test(brdf, d16_hemisphere_cut_keeps_the_brightest_visible_lobes_in_order)

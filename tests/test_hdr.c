@@ -1,6 +1,7 @@
 /* test_hdr.c - small floats (bit-exact, hand-checked), HDR encodings, tone-map bounds (D10-D12),
  * the ACES reference and fit (S3), 3D LUTs and charts (M4), CIEDE2000, exposure (S6). */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -276,6 +277,44 @@ Test(hdr, s3_aces_reference_mid_grey_and_fit_error)
         worst = fmax(worst, fabs(sol_tonemap_apply(SOL_TONEMAP_ACES_FIT, x) - sol_aces_reference(2.0 * x)));
     }
     cr_assert_float_eq(worst, 0.0138, 5e-4, "one-stop pre-exposed max error %g", worst);
+}
+
+/* Hill's ACESFitted (S3's second reference): the published curve at mid grey, grey in -> grey out
+ * (matrix rows sum to 1), saturated colours stay in [0, 1], and the extremes. */
+Test(hdr, s3_hill_aces_fit_curve_grey_and_extremes)
+{
+    double v = 0.18, expect = (v * (v + 0.0245786) - 0.000090537) / (v * (0.983729 * v + 0.4329510) + 0.238081);
+    cr_assert_float_eq(sol_aces_hill_curve(0.18), expect, 1e-15);
+    cr_assert_float_eq(sol_aces_hill_curve(1e300), 1.0 / 0.983729, 1e-12);
+    cr_assert_float_eq(sol_aces_hill_curve(INFINITY), 1.0 / 0.983729, 1e-12);
+    cr_assert(isnan(sol_aces_hill_curve(NAN)));
+    cr_assert(sol_aces_hill_curve(0.0) < 0.0 && sol_aces_hill_curve(0.0) > -4e-4, "a small negative toe");
+    cr_assert(isfinite(sol_aces_hill_curve(-0.22)) && isfinite(sol_aces_hill_curve(5e-324)));
+    double grey[3] = {0.18, 0.18, 0.18}, out[3];
+    sol_aces_hill_fit(grey, out);
+    for (int c = 0; c < 3; ++c)
+        cr_assert_float_eq(out[c], expect, 1e-4, "channel %d: %g", c, out[c]);
+    const double cases[][3] = {{1e300, 0, 0}, {DBL_MAX, DBL_MAX, DBL_MAX}, {-DBL_MAX, DBL_MAX, 0}, {INFINITY, 0, 0},
+                               {-INFINITY, 1, 1}, {5e-324, 0, -0.0}, {100, 0, 0}, {0, 0, 100}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        sol_aces_hill_fit(cases[i], out);
+        for (int c = 0; c < 3; ++c)
+            cr_assert(out[c] >= 0.0 && out[c] <= 1.0, "case %zu channel %d: %g", i, c, out[c]);
+    }
+    double aliased[3] = {2, 1, 0.5}, copy[3];
+    sol_aces_hill_fit(aliased, copy);
+    sol_aces_hill_fit(aliased, aliased);
+    cr_assert(memcmp(copy, aliased, sizeof copy) == 0);
+    double nan_in[3] = {NAN, 0.5, 0.5};
+    sol_aces_hill_fit(nan_in, out);
+    cr_assert(isnan(out[0]));
+    /* Against the ACES 1.0 Rec.709 reference on grey the fit stays within a few hundredths. */
+    double worst = 0.0;
+    for (int i = 0; i <= 4000; ++i) {
+        double x = 16.0 * i / 4000.0;
+        worst = fmax(worst, fabs(fmin(fmax(sol_aces_hill_curve(x), 0.0), 1.0) - sol_aces_reference(x)));
+    }
+    cr_assert(worst < 0.05, "Hill vs ACES 1.0 reference on grey: %g", worst);
 }
 
 /* ---------------- LUTs and charts (M4) ---------------- */

@@ -445,6 +445,40 @@ Test(screen, temporal_reprojection_follows_a_sideways_camera_move)
     sol_history_free(&next);
 }
 
+/* D18's history filters: at a half-pixel reprojection Catmull-Rom reproduces a quadratic exactly
+ * (Keys 1981: third-order accurate), bilinear is off by 1/4 of the second difference; the edge
+ * columns stay finite (outer taps clamp to the inner ones) and the miss rule is bilinear's. */
+Test(screen, d18_catmull_rom_history_is_exact_on_a_quadratic)
+{
+    sol_history prev, next;
+    cr_assert_eq(sol_history_alloc(&prev, 8, 6, 1), SOL_OK);
+    cr_assert_eq(sol_history_alloc(&next, 8, 6, 1), SOL_OK);
+    for (int i = 0; i < 48; ++i) {
+        double x = i % 8;
+        prev.values[i] = (float)(x * x);
+        prev.depth[i] = 4.0f;
+        prev.frames[i] = 1.0f;
+    }
+    float depth[48], cur[48];
+    fill(depth, 48, 4.0f);
+    fill(cur, 48, 0.0f);
+    const double half_pixel[3] = {0.25, 0, 0};
+    sol_temporal_options cr = {.max_frames = 1e9, .filter = SOL_HISTORY_CATMULL_ROM}, bl = {.max_frames = 1e9};
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, half_pixel, &cr, &prev, &next), SOL_OK);
+    for (int x = 1; x <= 5; ++x)
+        cr_assert_float_eq(next.values[3 * 8 + x], 0.5f * (float)((x + 0.5) * (x + 0.5)), 1e-4f, "x %d", x);
+    cr_assert(isfinite(next.values[3 * 8]) && isfinite(next.values[3 * 8 + 6]));
+    cr_assert_eq(next.frames[3 * 8 + 7], 1.0f, "the right column is a miss, as with bilinear");
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, half_pixel, &bl, &prev, &next), SOL_OK);
+    for (int x = 1; x <= 5; ++x)
+        cr_assert_float_eq(next.values[3 * 8 + x], 0.5f * (float)((x + 0.5) * (x + 0.5) + 0.25), 1e-4f, "x %d", x);
+    sol_temporal_options unknown = {.filter = (sol_history_filter)5};
+    cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, half_pixel, &unknown, &prev, &next),
+                 SOL_ERR_INVALID_ARG);
+    sol_history_free(&prev);
+    sol_history_free(&next);
+}
+
 Test(screen, temporal_rejects_bad_input)
 {
     sol_history a, b, wrong;

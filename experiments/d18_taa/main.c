@@ -312,6 +312,67 @@ static void run_sequence(const run_config *rc, double rms[N_METHODS][N_REGIONS])
     buffers_free(&b);
 }
 
+/* ---- history sweep (panning camera): history cap x history filter, jitter + 3x3 depth test ---- */
+enum { N_CAPS = 5, N_FILTERS = 2, N_SWEEP = N_CAPS * N_FILTERS };
+static const double SWEEP_CAPS[N_CAPS] = {2, 4, 8, 16, 32};
+static const char *filter_names[N_FILTERS] = {"bilinear", "Catmull-Rom"};
+
+/* Far-region and all-pixel RMS (second half of the run) of every (cap, filter) setting, index
+ * filter * N_CAPS + cap, on the panning sequence of rc. */
+static void history_sweep(const run_config *rc, double far[N_SWEEP], double all[N_SWEEP])
+{
+    const sol_camera *cam = rc->cam;
+    const size_t n = (size_t)cam->width * cam->height;
+    sequence_buffers b;
+    buffers_alloc(&b, cam);
+    sol_history hist[N_SWEEP][2];
+    for (int i = 0; i < N_SWEEP; ++i)
+        for (int k = 0; k < 2; ++k)
+            exp_check(sol_history_alloc(&hist[i][k], cam->width, cam->height, 3), "history");
+    double far_sum[N_SWEEP] = {0}, all_sum[N_SWEEP] = {0};
+    long far_count = 0, all_count = 0;
+    frame_scene sc, prev_s;
+    for (int f = 0; f < rc->frames; ++f) {
+        setup_frame(&sc, f, rc->pan, rc->specular);
+        double motion[3] = {0, 0, 0};
+        if (f > 0)
+            for (int k = 0; k < 3; ++k)
+                motion[k] = sc.eye[k] - prev_s.eye[k];
+        render_frame(rc, &sc, f, &b);
+        for (int i = 0; i < N_SWEEP; ++i) {
+            sol_temporal_options o = {.max_frames = SWEEP_CAPS[i % N_CAPS], .edge_tolerant = 1,
+                                      .filter = i / N_CAPS ? SOL_HISTORY_CATMULL_ROM : SOL_HISTORY_BILINEAR};
+            exp_check(sol_temporal_accumulate(cam, b.jdepth, b.jittered, motion, &o, &hist[i][f % 2], &hist[i][(f + 1) % 2]),
+                      "accumulating (sweep)");
+        }
+        if (f >= rc->frames / 2) {
+            for (size_t p = 0; p < n; ++p) {
+                int is_far = region_of(b.ids[p]) == R_FAR;
+                for (int i = 0; i < N_SWEEP; ++i) {
+                    const float *out = hist[i][(f + 1) % 2].values;
+                    double e2 = 0.0;
+                    for (int c = 0; c < 3; ++c) {
+                        double d = (double)out[3 * p + (size_t)c] - b.ref[3 * p + (size_t)c];
+                        e2 += d * d / 3.0;
+                    }
+                    all_sum[i] += e2;
+                    far_sum[i] += is_far ? e2 : 0.0;
+                }
+                far_count += is_far;
+                all_count++;
+            }
+        }
+        prev_s = sc;
+    }
+    for (int i = 0; i < N_SWEEP; ++i) {
+        far[i] = sqrt(far_sum[i] / (double)far_count);
+        all[i] = sqrt(all_sum[i] / (double)all_count);
+        sol_history_free(&hist[i][0]);
+        sol_history_free(&hist[i][1]);
+    }
+    buffers_free(&b);
+}
+
 static void table_rows(exp_table *t, const char *camera, double rms[N_METHODS][N_REGIONS])
 {
     for (int m = 0; m < N_METHODS; ++m)
@@ -376,15 +437,58 @@ int main(int argc, char **argv)
               "TAA error below aliased", still[M_TAA][R_FAR] < still[M_ALIASED][R_FAR] ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "1 jittered sample per frame, history cap 16, 3x3 depth-range test; without jitter the accumulation "
               "converges to the aliased image");
-    const int pan_gain = panning[M_TAA][R_FAR] < panning[M_ALIASED][R_FAR];
-    snprintf(fig, sizeof fig, "far-region RMS, panning camera: aliased %.4f, TAA %.4f (1-pixel depth test %.4f)",
-             panning[M_ALIASED][R_FAR], panning[M_TAA][R_FAR], panning[M_TAA_PIXEL_TEST][R_FAR]);
-    exp_claim(&exp, "D18", "reprojection keeps the supersampling under camera motion", fig, "TAA error below aliased",
-              pan_gain ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
-              "every frame the history is re-fetched bilinearly at a fractional offset, and the repeated resampling blurs "
-              "texture detail below the pixel box filter of the reference; %s",
-              pan_gain ? "here the supersampling gain outweighs that blur"
-                       : "here that blur outweighs the supersampling gain (a sharper history filter would be needed)");
+    /* The verdict follows the sweep of history cap x history filter: the claim holds when some
+     * setting a renderer could ship brings the far-region error below the aliased one. */
+    double sweep_far[N_SWEEP], sweep_all[N_SWEEP];
+    rc.specular = 0.6;
+    rc.pan = pan;
+    history_sweep(&rc, sweep_far, sweep_all);
+    exp_table *sw = exp_table_new("History sweep, panning camera (jitter + 3x3 depth test): RMS error vs the supersampled "
+                                  "frame, second half of the run; aliased for comparison",
+                                  "history filter,history cap,far (z>=30),all,far / aliased far");
+    int best = 0, best_bil = 0, n_gain = 0;
+    for (int i = 0; i < N_SWEEP; ++i) {
+        exp_table_row(sw, "%s|%.0f|%.4f|%.4f|%.3f", filter_names[i / N_CAPS], SWEEP_CAPS[i % N_CAPS], sweep_far[i],
+                      sweep_all[i], sweep_far[i] / panning[M_ALIASED][R_FAR]);
+        best = sweep_far[i] < sweep_far[best] ? i : best;
+        if (i < N_CAPS)
+            best_bil = sweep_far[i] < sweep_far[best_bil] ? i : best_bil;
+        n_gain += sweep_far[i] < panning[M_ALIASED][R_FAR];
+    }
+    exp_table_row(sw, "aliased (centre sample)|-|%.4f|%.4f|1.000", panning[M_ALIASED][R_FAR], panning[M_ALIASED][R_ALL]);
+    exp_table_write(sw, &exp, "history_sweep");
+    FILE *sf = exp_open(&exp, "history_sweep.dat");
+    fprintf(sf, "# cap, far RMS bilinear, far RMS Catmull-Rom, aliased far RMS\n");
+    for (int c = 0; c < N_CAPS; ++c)
+        fprintf(sf, "%.0f %.6f %.6f %.6f\n", SWEEP_CAPS[c], sweep_far[c], sweep_far[N_CAPS + c], panning[M_ALIASED][R_FAR]);
+    fclose(sf);
+    exp_plot(&exp, "history_sweep",
+             "set logscale x 2; set xlabel 'history cap (frames)'; set ylabel 'far-region RMS error (panning camera)';"
+             "set grid; set key top left;"
+             "plot 'history_sweep.dat' u 1:2 w lp t 'TAA, bilinear history', '' u 1:3 w lp t 'TAA, Catmull-Rom history',"
+             " '' u 1:4 w l dt 2 t 'aliased'");
+    const int pan_gain = sweep_far[best] < panning[M_ALIASED][R_FAR];
+    snprintf(fig, sizeof fig,
+             "far-region RMS, panning camera: aliased %.4f; best TAA %.4f (%s, cap %.0f), best bilinear %.4f (cap %.0f); "
+             "%d of %d settings below aliased",
+             panning[M_ALIASED][R_FAR], sweep_far[best], filter_names[best / N_CAPS], SWEEP_CAPS[best % N_CAPS],
+             sweep_far[best_bil], SWEEP_CAPS[best_bil], n_gain, N_SWEEP);
+    exp_claim(&exp, "D18", "reprojection keeps the supersampling under camera motion", fig,
+              "some swept history setting below aliased", pan_gain ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
+              "swept: history cap 2..32 x bilinear / Catmull-Rom fetch (history_sweep table); every frame the history is "
+              "re-fetched at a fractional offset, which blurs texture detail below the reference's pixel box filter, so "
+              "the error is lowest at a cap of %.0f, not at the longest history; at cap 16 Catmull-Rom gives %.4f vs "
+              "bilinear %.4f; the former one-setting verdict (cap 16, bilinear) %s",
+              SWEEP_CAPS[best % N_CAPS], sweep_far[N_CAPS + 3], sweep_far[3],
+              sweep_far[3] < panning[M_ALIASED][R_FAR] ? "also lies below aliased" : "lies above aliased");
+    exp_number(&exp, "D18-pan-aliased-far", "%.4f", panning[M_ALIASED][R_FAR]);
+    exp_number(&exp, "D18-pan-best-far", "%.4f", sweep_far[best]);
+    exp_number(&exp, "D18-pan-best-filter", "%s", filter_names[best / N_CAPS]);
+    exp_number(&exp, "D18-pan-best-cap", "%.0f", SWEEP_CAPS[best % N_CAPS]);
+    exp_number(&exp, "D18-pan-best-bilinear-far", "%.4f", sweep_far[best_bil]);
+    exp_number(&exp, "D18-pan-cr16-far", "%.4f", sweep_far[N_CAPS + 3]);
+    exp_number(&exp, "D18-pan-bil16-far", "%.4f", sweep_far[3]);
+    exp_number(&exp, "D18-pan-settings-below-aliased", "%d", n_gain);
     snprintf(fig, sizeof fig,
              "ghost-region RMS (panning): 3x3 depth test %.4f, 1-pixel test %.4f, no test %.4f; aliased %.4f",
              panning[M_TAA][R_GHOST], panning[M_TAA_PIXEL_TEST][R_GHOST], panning[M_TAA_NO_DEPTH_TEST][R_GHOST],

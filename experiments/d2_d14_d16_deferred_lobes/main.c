@@ -114,7 +114,7 @@ static void make_environments(environment env[3], double *fit_rel_rms)
         target[i] = sky_radiance(dirs + 3 * i, sun);
     }
     env_fit_ctx ctx = {&env[2], dirs, target};
-    sol_lsq_problem prob = {32, FIT_POINTS, env_residuals, &ctx, lower, NULL, 50};
+    sol_lsq_problem prob = {32, FIT_POINTS, env_residuals, &ctx, lower, NULL, 50, SOL_LSQ_DENSE_NORMAL_CHOLESKY};
     sol_lsq_summary sum;
     exp_check(sol_lsq_solve(&prob, amp, &sum), "fitting the SG environment");
     for (int i = 0; i < 32; ++i)
@@ -241,6 +241,7 @@ typedef struct extraction_result {
     double rel_error;    /* |I_ext - I_ref| / I_ref */
     double shift_deg; /* angle between the extracted and the geometric reflection direction */
     double normal_shift_vs_full_deg; /* extracted normal with the cut vs with all lobes */
+    double i_ext_energy;             /* rendered with the energy-preserving glossiness (NAN: not computed) */
 } extraction_result;
 
 /* Renders one pixel with the extracted lobe: the deferred Phong pass sees all lights, the
@@ -249,7 +250,8 @@ typedef struct extraction_result {
  * the shading pass applies with Fresnel and geometry). */
 static void extract_and_render(const pixel *px, double ax, double ay, const sol_sg *ndf_local, int k,
                                const environment *env, int keep, double i_ref, double e_ref,
-                               const double full_normal[3], extraction_result *out, double normal_out[3])
+                               const double full_normal[3], extraction_result *out, double normal_out[3],
+                               int energy_too)
 {
     sol_sg brdf[K_MAX], kept[MAX_LIGHTS];
     for (int i = 0; i < k; ++i)
@@ -271,6 +273,13 @@ static void extract_and_render(const pixel *px, double ax, double ay, const sol_
     double r_geo[3];
     sol_reflect(px->v, px->n, r_geo);
     out->i_ext = i_ext;
+    out->i_ext_energy = NAN;
+    if (energy_too) { /* the same normal with the energy-preserving (peak-matching) glossiness */
+        phong_ctx ce = c;
+        ce.g = lobe.glossiness_energy;
+        double e_phong_e = integrate(phong_lit, &ce, ce.r, 1e-6);
+        out->i_ext_energy = phong_radiance(&ce, env) * e_ref / e_phong_e;
+    }
     out->i_ref = i_ref;
     out->rel_error = fabs(i_ext - i_ref) / i_ref;
     out->shift_deg = sol_angle3(c.r, r_geo) / DEG;
@@ -286,6 +295,17 @@ static double image_rel_l2(const extraction_result *r, int n)
     double num = 0, den = 0;
     for (int p = 0; p < n; ++p) {
         num += (r[p].i_ext - r[p].i_ref) * (r[p].i_ext - r[p].i_ref);
+        den += r[p].i_ref * r[p].i_ref;
+    }
+    return sqrt(num / den);
+}
+
+/* The same with the energy-preserving glossiness. */
+static double image_rel_l2_energy(const extraction_result *r, int n)
+{
+    double num = 0, den = 0;
+    for (int p = 0; p < n; ++p) {
+        num += (r[p].i_ext_energy - r[p].i_ref) * (r[p].i_ext_energy - r[p].i_ref);
         den += r[p].i_ref * r[p].i_ref;
     }
     return sqrt(num / den);
@@ -433,16 +453,16 @@ static void d16_pixel(int p, double ax, double ay, const sol_sg *ndf, const envi
         double i_ref = d->i_ref[e * n_pix + p] = ward_radiance(x, ax, ay, &env[e]);
         for (int k = 0; k < N_K; ++k)
             extract_and_render(x, ax, ay, ndf + K_LIST[k] * (K_LIST[k] - 1) / 2, K_LIST[k], &env[e], MAX_LIGHTS,
-                               i_ref, d->e_ref[p], NULL, &d->res_k[(e * N_K + k) * n_pix + p], NULL);
+                               i_ref, d->e_ref[p], NULL, &d->res_k[(e * N_K + k) * n_pix + p], NULL, K_LIST[k] == 7);
         extract_and_render(x, ax, ay, ndf7, 7, &env[e], 0, i_ref, d->e_ref[p], NULL, &d->res_base[e * n_pix + p],
-                           NULL);
+                           NULL, 1);
     }
     double full_normal[3];
     extract_and_render(x, ax, ay, ndf7, 7, &env[2], MAX_LIGHTS, d->i_ref[2 * n_pix + p], d->e_ref[p], NULL,
-                       &d->res_cut[(N_CUT - 1) * n_pix + p], full_normal);
+                       &d->res_cut[(N_CUT - 1) * n_pix + p], full_normal, 0);
     for (int c = 0; c < N_CUT; ++c)
         extract_and_render(x, ax, ay, ndf7, 7, &env[2], CUT_LIST[c], d->i_ref[2 * n_pix + p], d->e_ref[p], full_normal,
-                           &d->res_cut[c * n_pix + p], NULL);
+                           &d->res_cut[c * n_pix + p], NULL, 0);
 }
 
 static void d16_render(double ax, double ay, const sol_sg *ndf, const environment *env, d16_results *d)
@@ -528,26 +548,73 @@ static void d16_cut_table(const exp_run *exp, const d16_results *d, double rms_c
     exp_table_write(c, exp, "d16_cut");
 }
 
-/* D16: O(n*m) cost (timing fit), the cut to ~7 lobes, and the light-weighted lobe at n = 7. */
+/* D16, split in two rows: (1) O(n*m) cost (timing fit) and the cut to ~7 lobes; (2) "the highlight
+ * is slightly shifted, a rather small issue": the light-weighted lobe's highlight shift and its
+ * rendered error against the lobe extracted without lighting, with the variance-matched and the
+ * energy-preserving glossiness. */
 static void d16_claim(const exp_run *exp, const d16_results *d, double l2_k[3][N_K], const double rms_cut[N_CUT],
                       double r2, double per_pair)
 {
     int n_pix = d->n_pix;
-    double mean_shift = 0;
-    for (int p = 0; p < n_pix; ++p)
-        mean_shift += d->res_k[(2 * N_K + 4) * n_pix + p].shift_deg;
-    mean_shift /= n_pix;
-    double weighted = l2_k[2][4], fixed = image_rel_l2(&d->res_base[2 * n_pix], n_pix);
-    char fig[320];
+    (void)l2_k;
+    char fig[400];
     snprintf(fig, sizeof fig,
-             "time fits c0 + c1 n + c2 n*m (R^2 %.3f, %.1f ns per lobe pair); cut to 7 lobes: image error %.3f vs %.3f with all 32; "
-             "mean highlight shift %.1f deg; light-weighted lobe error %.3f vs %.3f light-independent (n = 7)",
-             r2, per_pair, rms_cut[4], rms_cut[N_CUT - 1], mean_shift, weighted, fixed);
+             "time fits c0 + c1 n + c2 n*m (R^2 %.3f, %.1f ns per lobe pair); cut to 7 lobes: image error %.3f vs %.3f "
+             "with all 32",
+             r2, per_pair, rms_cut[4], rms_cut[N_CUT - 1]);
     exp_verdict v = r2 >= 0.95 && rms_cut[4] <= 1.25 * rms_cut[N_CUT - 1] + 0.01 ? EXP_REPRODUCED : EXP_NOT_REPRODUCED;
-    exp_claim(exp, "D16", "O(n*m), ~7", fig, "R^2 >= 0.95; cut-to-7 image error within 1.25x (+0.01) of all lobes", v,
-              "cost and cut reproduce; the light-weighted normal leans towards the lights (a shift of several degrees, "
-              "32-lobe environment figures here) and renders worse than the lobe extracted without lighting in all three "
-              "test scenes (d16_error_vs_n table)");
+    exp_claim(exp, "D16", "O(n*m) per pixel; lighting cut to ~7 lobes by hemisphere", fig,
+              "R^2 >= 0.95; cut-to-7 image error within 1.25x (+0.01) of all lobes", v,
+              "timing table and fit (d16_timing), hemisphere cut table (d16_cut)");
+
+    /* Row 2, per environment at n = 7: mean shift, image error light-weighted vs light-independent,
+     * each with both glossiness fits. */
+    exp_table *t = exp_table_new("D16 at n = 7: light-weighted vs light-independent lobe, variance-matched vs "
+                                 "energy-preserving (peak-matching) glossiness: image relative L2 error and mean "
+                                 "highlight shift",
+                                 "environment,mean shift deg (weighted),mean shift deg (independent),"
+                                 "weighted: err variance gloss,weighted: err energy gloss,independent: err variance gloss,"
+                                 "independent: err energy gloss");
+    static const char *env_names[3] = {"sun + sky", "6 lights", "32-lobe SG env"};
+    double worst_ratio = 0.0, max_shift = 0.0;
+    for (int e = 0; e < 3; ++e) {
+        const extraction_result *w = &d->res_k[(e * N_K + 4) * n_pix], *b = &d->res_base[e * n_pix];
+        double sw = 0, sb = 0;
+        for (int p = 0; p < n_pix; ++p) {
+            sw += w[p].shift_deg;
+            sb += b[p].shift_deg;
+        }
+        sw /= n_pix, sb /= n_pix;
+        double wv = image_rel_l2(w, n_pix), we = image_rel_l2_energy(w, n_pix);
+        double bv = image_rel_l2(b, n_pix), be = image_rel_l2_energy(b, n_pix);
+        exp_table_row(t, "%s|%.2f|%.2f|%.4f|%.4f|%.4f|%.4f", env_names[e], sw, sb, wv, we, bv, be);
+        worst_ratio = fmax(worst_ratio, fmin(wv, we) / fmin(bv, be));
+        max_shift = fmax(max_shift, sw);
+        if (e == 2) {
+            exp_number(exp, "D16-shift-env32-deg", "%.1f", sw);
+            exp_number(exp, "D16-weighted-var-err", "%.3f", wv);
+            exp_number(exp, "D16-weighted-energy-err", "%.3f", we);
+            exp_number(exp, "D16-indep-var-err", "%.3f", bv);
+            exp_number(exp, "D16-indep-energy-err", "%.3f", be);
+        }
+    }
+    exp_table_write(t, exp, "d16_gloss_fits");
+    exp_number(exp, "D16-max-mean-shift-deg", "%.1f", max_shift);
+    exp_number(exp, "D16-worst-weighted-over-indep", "%.2f", worst_ratio);
+    snprintf(fig, sizeof fig,
+             "mean highlight shift up to %.1f deg over the 3 scenes; best light-weighted lobe renders %.2fx the error of "
+             "the best light-independent one (worst scene; both glossiness fits tried)",
+             max_shift, worst_ratio);
+    int small = max_shift <= 2.0 && worst_ratio <= 1.0;
+    exp_claim(exp, "D16", "highlight slightly shifted, a rather small issue", fig,
+              "mean shift <= 2 deg and the light-weighted lobe renders no worse than the light-independent one",
+              small ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
+              "the light-weighted normal leans towards the lights; with the energy-preserving (peak-matching) glossiness "
+              "as well as the variance match (d16_gloss_fits table) the light-weighted lobe %s the lobe extracted without "
+              "lighting%s",
+              worst_ratio <= 1.0 ? "renders no worse than" : "still renders worse than",
+              worst_ratio > 1.0 ? ": the weighting, not the glossiness fit, costs the accuracy"
+              : max_shift > 2.0 ? ", but the highlight moves by more than 2 deg" : "");
 }
 
 static void d16(const exp_run *exp)

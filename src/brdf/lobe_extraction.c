@@ -79,10 +79,30 @@ sol_status sol_extract_phong_lobe(const sol_sg *brdf, int n_brdf, const sol_sg *
     var = var / total + 2.0 * (1.0 - (resultant < 1.0 ? resultant : 1.0));
     if (!isfinite(len) || !isfinite(var) || !(var > 0.0))
         return SOL_ERR_NONFINITE;
+    /* Peak of the mixture of unit-integral lobes at its mean axis (the mean of the warped axes, or
+     * the reflection about the normal when they cancel). */
+    double r_mean[3], rl = sqrt(sol_dot3(mean_r, mean_r)), peak = 0.0;
+    if (rl > 0.0) {
+        for (int k = 0; k < 3; ++k)
+            r_mean[k] = mean_r[k] / rl;
+    } else {
+        double nn[3] = {normal[0] / len, normal[1] / len, normal[2] / len};
+        sol_reflect(v, nn, r_mean);
+    }
+    for (int i = 0; i < n_brdf; ++i)
+        if (w[i] > 0.0) {
+            double e = sol_sg_integral(&warped[i]);
+            if (e > 0.0)
+                peak += w[i] / total * sol_sg_eval(&warped[i], r_mean) / e;
+        }
+    double g_energy = 2.0 * M_PI * peak - 1.0;
+    if (!isfinite(g_energy))
+        return SOL_ERR_NONFINITE;
     for (int k = 0; k < 3; ++k)
         out->normal[k] = normal[k] / len;
     out->glossiness = 2.0 / var;
     out->energy = total;
+    out->glossiness_energy = g_energy > 0.0 ? g_energy : 0.0;
     return SOL_OK;
 }
 

@@ -176,6 +176,9 @@ static sol_status fit_setup_init(double ax, double ay, const sol_sg_fit_options 
     o->max_iterations = o->max_iterations > 0 ? o->max_iterations : 200;
     if (o->radial_samples > 256 || o->angular_samples > 4096 || o->eval_radial > 256 || o->eval_angular > 4096)
         return SOL_ERR_INVALID_ARG;
+    if (o->extra_starts < 0 || o->extra_starts > 1024 ||
+        (o->linear_solver != SOL_LSQ_DENSE_NORMAL_CHOLESKY && o->linear_solver != SOL_LSQ_DENSE_QR))
+        return SOL_ERR_INVALID_ARG;
     /* Isotropic lobes along the long axis of an anisotropic NDF are narrow in the scaled slope
      * coordinates; more azimuthal fit nodes keep them from hiding between nodes. */
     double ratio = ax > ay ? ax / ay : ay / ax;
@@ -251,6 +254,7 @@ typedef struct sg_fit_work {
     sol_sg *scratch, *out;
     sol_sg_fit_error *errs;
     sol_lsq_summary *sums;
+    double ax, ay;         /* the roughness being fitted */
     double lambda0;        /* sharpness of a new lobe at the default width */
     double log_lambda_cap; /* upper bound of log sharpness for this roughness */
 } sg_fit_work;
@@ -288,6 +292,7 @@ static sol_status sg_fit_work_alloc(int k_max, sg_fit_work *w)
 static void sg_fit_work_limits(double ax, double ay, sg_fit_work *w)
 {
     /* Lobes sharper than 4x the target's sharpest curvature would fall between fit nodes. */
+    w->ax = ax, w->ay = ay;
     double amin = ax < ay ? ax : ay;
     w->log_lambda_cap = fmin(log(8.0 / (amin * amin)), LOG_SHARPNESS_MAX);
     for (int j = 0; j < w->k_max; ++j) {
@@ -339,12 +344,94 @@ static void make_start(const fit_setup *s, sg_fit_work *w, int k, int c)
     clamp_to_bounds(w, np, w->trial);
 }
 
+/* A non-greedy start: k lobes on a line along the NDF's long axis, evenly spaced over +-spread
+ * times its long roughness (in slope units), each as sharp as the short axis's curvature
+ * (exp(-lambda th^2 / 2) = exp(-th^2 / a_short^2)) and with the amplitude that makes the row of
+ * lobes add up to the target's profile. */
+static void line_start(sg_fit_work *w, int k, double spread)
+{
+    int long_is_y = w->ay >= w->ax;
+    double a_long = long_is_y ? w->ay : w->ax, a_short = long_is_y ? w->ax : w->ay;
+    double lam = fmin(2.0 / (a_short * a_short), exp(w->log_lambda_cap));
+    double step = k > 1 ? 2.0 * spread / (k - 1) : 0.0; /* in units of a_long */
+    for (int j = 0; j < k; ++j) {
+        double t = k > 1 ? -spread + step * j : 0.0, slope = t * a_long;
+        double *p = w->trial + LOBE_PARAMS * j;
+        p[0] = atan(fabs(slope));
+        p[1] = (long_is_y ? 0.5 * M_PI : 0.0) + (slope < 0.0 ? M_PI : 0.0);
+        p[2] = log(lam);
+        p[3] = exp(-t * t) * fmin(1.0, k > 1 ? step * a_long / (sqrt(M_PI) * a_short) : 1.0);
+    }
+    for (int i = 0; i < LOBE_PARAMS * k; ++i)
+        w->trial[i] = fmin(fmax(w->trial[i], w->lower[i]), w->upper[i]);
+}
+
+/* A fresh random start: every lobe's axis at a fit node drawn with probability proportional to the
+ * target's weight there, log sharpness uniform between the long and short axes' curvatures
+ * (2 / a^2, widened by a factor 2 either way), amplitude uniform in (0.2, 1). */
+static void random_start(const fit_setup *s, sg_fit_work *w, int k, uint64_t *rng)
+{
+    double total = 0.0;
+    for (int i = 0; i < s->fit.n; ++i)
+        total += s->fit.target[i] * s->fit.weight[i];
+    double amax = fmax(w->ax, w->ay), amin = fmin(w->ax, w->ay);
+    double lo = log(0.5 * 2.0 / (amax * amax)), hi = log(2.0 * 2.0 / (amin * amin));
+    for (int j = 0; j < k; ++j) {
+        double u = sol_rng_uniform(rng, 0.0, total), acc = 0.0;
+        int pick = s->fit.n - 1;
+        for (int i = 0; i < s->fit.n; ++i) {
+            acc += s->fit.target[i] * s->fit.weight[i];
+            if (acc > u) {
+                pick = i;
+                break;
+            }
+        }
+        const double *h = s->fit.dir + 3 * pick;
+        double *p = w->trial + LOBE_PARAMS * j;
+        p[0] = acos(h[2] < 1.0 ? h[2] : 1.0);
+        p[1] = atan2(h[1], h[0]);
+        p[2] = sol_rng_uniform(rng, lo, hi);
+        p[3] = sol_rng_uniform(rng, 0.2, 1.0);
+    }
+    for (int i = 0; i < LOBE_PARAMS * k; ++i)
+        w->trial[i] = fmin(fmax(w->trial[i], w->lower[i]), w->upper[i]);
+}
+
+/* Moves every lobe of the start in w->trial by a random step of about its own width (axis offset
+ * up to 1/sqrt(lambda) in a random tangent direction), scales its sharpness by up to e^+-0.5 and its
+ * amplitude by 0.7..1.3, then clamps into the bounds: one hop of a basin-hopping search. */
+static void perturb_start(const sg_fit_work *w, int k, uint64_t *rng)
+{
+    for (int j = 0; j < k; ++j) {
+        double *p = w->trial + LOBE_PARAMS * j;
+        sol_sg g;
+        lobe_from_params(p, &g);
+        double st = sin(p[0]), ct = cos(p[0]), sp = sin(p[1]), cp = cos(p[1]);
+        double t1[3] = {ct * cp, ct * sp, -st}, t2[3] = {-sp, cp, 0.0}; /* orthonormal tangents */
+        double step = sol_rng_uniform(rng, 0.0, 1.0) / sqrt(g.sharpness > 1e-3 ? g.sharpness : 1e-3);
+        double dir = sol_rng_uniform(rng, 0.0, 2.0 * M_PI), c = cos(dir) * step, d = sin(dir) * step;
+        double a[3] = {g.axis[0] + c * t1[0] + d * t2[0], g.axis[1] + c * t1[1] + d * t2[1],
+                       g.axis[2] + c * t1[2] + d * t2[2]};
+        double len = sqrt(sol_dot3(a, a));
+        a[0] /= len, a[1] /= len, a[2] /= len;
+        if (a[2] < 0.0)
+            a[2] = -a[2];
+        p[0] = acos(a[2] < 1.0 ? a[2] : 1.0);
+        p[1] = atan2(a[1], a[0]);
+        p[2] += sol_rng_uniform(rng, -0.5, 0.5);
+        p[3] *= sol_rng_uniform(rng, 0.7, 1.3);
+    }
+    for (int i = 0; i < LOBE_PARAMS * k; ++i)
+        w->trial[i] = fmin(fmax(w->trial[i], w->lower[i]), w->upper[i]);
+}
+
 /* Solves the k-lobe fit from w->trial in place; *rel_l2 is its error on the (finer) evaluation
  * nodes, which ranks the starts. */
 static sol_status solve_start(const fit_setup *s, sg_fit_work *w, int k, sol_lsq_summary *sum, double *rel_l2)
 {
     sg_fit_ctx ctx = {&s->fit, s->sqrt_w, k};
-    sol_lsq_problem prob = {LOBE_PARAMS * k, s->fit.n, sg_residuals, &ctx, w->lower, w->upper, s->o.max_iterations};
+    sol_lsq_problem prob = {LOBE_PARAMS * k, s->fit.n, sg_residuals, &ctx, w->lower, w->upper, s->o.max_iterations,
+                            s->o.linear_solver};
     sol_status st = sol_lsq_solve(&prob, w->trial, sum);
     if (st != SOL_OK)
         return st;
@@ -367,6 +454,35 @@ static sol_status fit_k_lobes(const fit_setup *s, sg_fit_work *w, int k, double 
     sol_lsq_summary best_sum = {0};
     for (int c = 0; c < n_cand; ++c) {
         make_start(s, w, k, c);
+        sol_lsq_summary sum;
+        double l2;
+        sol_status st = solve_start(s, w, k, &sum, &l2);
+        if (st != SOL_OK)
+            return st;
+        if (l2 < best_l2) {
+            best_l2 = l2;
+            best_sum = sum;
+            memcpy(w->best, w->trial, (size_t)np * sizeof(double));
+            have_best = 1;
+        }
+        total_seconds += sum.solve_seconds;
+        total_iterations += sum.iterations;
+    }
+    /* Extra starts of the last fit (multi-start check): lines, random starts and basin hops. */
+    uint64_t rng = sol_mix64(0x5347u * 131u + (uint64_t)k);
+    for (int r = 0; k > 1 && k == w->k_max && r < s->o.extra_starts; ++r) {
+        static const double spreads[3] = {1.0, 1.5, 2.0};
+        if (r < 3) {
+            line_start(w, k, spreads[r]);
+        } else if (r % 2 == 1) {
+            random_start(s, w, k, &rng);
+        } else {
+            if (have_best)
+                memcpy(w->trial, w->best, (size_t)np * sizeof(double));
+            else
+                make_start(s, w, k, 1);
+            perturb_start(w, k, &rng);
+        }
         sol_lsq_summary sum;
         double l2;
         sol_status st = solve_start(s, w, k, &sum, &l2);
@@ -510,7 +626,7 @@ sol_status sol_ward_asg_fit(double alpha_x, double alpha_y, const sol_sg_fit_opt
     for (int i = 0; i < 2; ++i)
         p[i] = p[i] > upper[i] ? upper[i] : p[i];
     asg_fit_ctx ctx = {&s.fit, s.sqrt_w};
-    sol_lsq_problem prob = {3, s.fit.n, asg_residuals, &ctx, lower, upper, s.o.max_iterations};
+    sol_lsq_problem prob = {3, s.fit.n, asg_residuals, &ctx, lower, upper, s.o.max_iterations, s.o.linear_solver};
     sol_lsq_summary sum;
     if ((st = sol_lsq_solve(&prob, p, &sum)) == SOL_OK) {
         sol_asg g = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, exp(p[0]), exp(p[1]), p[2]};

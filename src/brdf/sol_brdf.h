@@ -163,12 +163,20 @@ double sol_asg_eval(const sol_asg *g, const double v[3]);
  * success and non-zero when p is outside its domain. */
 typedef int (*sol_lsq_residual_fn)(void *ctx, const double *params, double *residuals, double *jacobian);
 
+/* Linear solver of each Levenberg-Marquardt step. */
+typedef enum sol_lsq_linear_solver {
+    SOL_LSQ_DENSE_NORMAL_CHOLESKY = 0, /* Cholesky of J^T J: the default, ~4x cheaper than QR */
+    SOL_LSQ_DENSE_QR                   /* QR of J: for ill-conditioned Jacobians */
+} sol_lsq_linear_solver;
+
 typedef struct sol_lsq_problem {
     int n_params, n_residuals;
     sol_lsq_residual_fn fn;
     void *ctx;
     const double *lower, *upper; /* n_params bounds each, or NULL for unbounded */
     int max_iterations;          /* 0 = 100 */
+    int linear_solver;           /* a sol_lsq_linear_solver (an int: the C++ shim checks any value);
+                                  * 0 = dense normal Cholesky */
 } sol_lsq_problem;
 
 typedef struct sol_lsq_summary {
@@ -178,9 +186,9 @@ typedef struct sol_lsq_summary {
     double solve_seconds;
 } sol_lsq_summary;
 
-/* Solves with Ceres (Levenberg-Marquardt, dense QR, one thread, silent). `params` holds the start
+/* Solves with Ceres (Levenberg-Marquardt, dense normal Cholesky or QR, one thread, silent). `params` holds the start
  * point and receives the solution on SOL_OK; `summary` may be NULL. Deterministic.
- * Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (sizes < 1, start outside bounds),
+ * Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (sizes < 1, start outside bounds, unknown linear_solver),
  * SOL_ERR_NONFINITE (start point), SOL_ERR_SOLVER (Ceres failed or threw; params untouched). */
 sol_status sol_lsq_solve(const sol_lsq_problem *problem, double *params, sol_lsq_summary *summary);
 
@@ -192,6 +200,9 @@ typedef struct sol_sg_fit_options {
     int eval_radial;     /* error evaluation quadrature (finer than the fit); 0 = 64 */
     int eval_angular;    /* 0 = 96 */
     int max_iterations;  /* Ceres iterations per fit; 0 = 200 */
+    int extra_starts;    /* multi-start check of the last fit (K = k_max >= 2 only): starts beyond the
+                          * four greedy ones, see sol_ward_sg_fit; 0 = none */
+    sol_lsq_linear_solver linear_solver; /* passed to sol_lsq_solve; 0 = dense normal Cholesky */
 } sol_sg_fit_options;
 
 typedef struct sol_sg_fit_error {
@@ -205,7 +216,11 @@ typedef struct sol_sg_fit_error {
  * sol_lsq_solve). Greedy: fit K starts from fit K-1 plus one lobe at the largest residual, tried
  * at three widths, and from fit K-1 with its widest lobe split in two; the start whose Ceres
  * result has the smallest error on the (finer) evaluation nodes wins, and fit K-1 padded with a
- * zero lobe is kept when none beats it, so the error never rises with K. Bounds: sharpness in
+ * zero lobe is kept when none beats it, so the error never rises with K. With extra_starts = S > 0
+ * the last fit (K = k_max) also tries S more starts, the best is kept: the first three put the K
+ * lobes on a line along the long axis (spread 1, 1.5, 2 x the long roughness, sharpness of the
+ * short axis), then fresh random starts (axes drawn from the target, SplitMix64, fixed seed)
+ * alternate with basin hops (the best fit so far with every lobe moved by up to its width). Bounds: sharpness in
  * [0.01, min(1e6, 8 / min(alpha)^2)] (sharper lobes would fall between fit nodes), amplitude in
  * [0, 1e3] x the NDF's peak scale, axis in the upper hemisphere; every start is clamped into these
  * bounds, so the whole documented alpha range [1e-3, 10] fits for every k_max.
@@ -213,7 +228,8 @@ typedef struct sol_sg_fit_error {
  * entries each (summaries may be NULL; costs are those of the chosen start, iterations and
  * solve_seconds are summed over the four starts). Amplitudes are in the NDF's units.
  * Deterministic. Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (alpha outside [1e-3, 10], k_max
- * outside 1..16, radial node counts above 256, azimuthal above 4096), SOL_ERR_NONFINITE (NaN
+ * outside 1..16, radial node counts above 256, azimuthal above 4096, extra_starts outside 0..1024,
+ * an unknown linear_solver), SOL_ERR_NONFINITE (NaN
  * alpha), SOL_ERR_NO_MEMORY, SOL_ERR_SOLVER (outputs untouched). */
 sol_status sol_ward_sg_fit(double alpha_x, double alpha_y, int k_max, const sol_sg_fit_options *opts, sol_sg *lobes,
                            sol_sg_fit_error *errors, sol_lsq_summary *summaries);
@@ -236,13 +252,20 @@ typedef struct sol_phong_lobe {
     double normal[3];  /* the normal to store in the G-buffer */
     double glossiness; /* Phong exponent for reflect(v, normal) */
     double energy;     /* sum of the BRDF-lobe x light-lobe products (lighting-weighted energy) */
+    /* Energy-preserving alternative to `glossiness`: the exponent g whose lobe-normalised Phong lobe
+     * (g + 1) / (2 pi) (r.l)^g has the same peak as the weighted mixture of the warped lobes, each
+     * normalised to unit integral, evaluated at the mixture's mean axis: g = 2 pi peak - 1 (>= 0).
+     * For one lobe of warped sharpness lambda it is lambda / (1 - exp(-2 lambda)) - 1 (the variance
+     * match gives lambda); for lobes spread apart the mean axis falls between them and it is lower. */
+    double glossiness_energy;
 } sol_phong_lobe;
 
 /* Extracts the principal Phong lobe of an SG NDF (n_brdf lobes over half vectors, world frame)
  * under SG lighting (n_light lobes) for view v: each NDF lobe is warped to light space and
  * convolved (sol_sg_inner_product) with each light lobe, O(n_brdf * n_light). The products weight
  * the NDF lobe axes (-> normal); the glossiness matches the angular variance of the weighted
- * mixture of warped lobes (each lobe's 2 / lambda plus the spread of their axes), g = 2 / variance.
+ * mixture of warped lobes (each lobe's 2 / lambda plus the spread of their axes), g = 2 / variance;
+ * glossiness_energy matches the mixture's peak at the same energy instead (see sol_phong_lobe).
  * With no light reaching any lobe, the lobes' own energies are the weights.
  * Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (counts < 1, n_brdf > 64), SOL_ERR_ZERO_LENGTH
  * (weighted normal vanishes or all lobes face away from v), SOL_ERR_NONFINITE. */

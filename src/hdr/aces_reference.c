@@ -88,3 +88,40 @@ double sol_aces_reference(double x)
     double y = pow(fmax(linear_cv, 0.0), dim_surround_gamma); /* dim surround acts on Y only */
     return y < 1.0 ? y : 1.0;
 }
+
+/* Stephen Hill's fit of the ACES RRT + sRGB ODT ("ACESFitted", BakingLab's ACES.hlsl, 2016, as
+ * published with Hill's MJP BakingLab sample; written here from the published formula): input
+ * matrix (sRGB -> XYZ -> D65-to-D60 -> AP1 -> RRT saturation), the rational RRTAndODTFit per
+ * channel, output matrix (ODT saturation -> XYZ -> D60-to-D65 -> sRGB), clamp to [0, 1]. */
+static const double hill_in[9] = {0.59719, 0.35458, 0.04823, 0.07600, 0.90834, 0.01566, 0.02840, 0.13383, 0.83777};
+static const double hill_out[9] = {1.60475, -0.53108, -0.07367, -0.10208, 1.10813, -0.00605, -0.00327, -0.07276, 1.07602};
+
+double sol_aces_hill_curve(double v)
+{
+    if (isnan(v))
+        return v;
+    /* Past |v| = 1e15 the curve equals its limit 1 / 0.983729 to double precision; clamping there
+     * keeps v * v finite (1e200 would give Inf / Inf). */
+    v = v > 1e15 ? 1e15 : v < -1e15 ? -1e15 : v;
+    double a = v * (v + 0.0245786) - 0.000090537, b = v * (0.983729 * v + 0.4329510) + 0.238081;
+    return a / b; /* b >= 0.1904 for every v (the quadratic's minimum, at v = -0.22) */
+}
+
+void sol_aces_hill_fit(const double rgb[3], double out[3])
+{
+    double t[3], u[3];
+    for (int i = 0; i < 3; ++i) {
+        double x = hill_in[3 * i] * rgb[0] + hill_in[3 * i + 1] * rgb[1] + hill_in[3 * i + 2] * rgb[2];
+        if (!isfinite(x)) /* overflow of huge finite inputs: only the sign matters (the curve is at its
+                           * limit past 1e15), so redo the sum scaled by 2^-1000 */
+            x = hill_in[3 * i] * ldexp(rgb[0], -1000) + hill_in[3 * i + 1] * ldexp(rgb[1], -1000) +
+                hill_in[3 * i + 2] * ldexp(rgb[2], -1000);
+        t[i] = sol_aces_hill_curve(x);
+    }
+    for (int i = 0; i < 3; ++i) {
+        u[i] = hill_out[3 * i] * t[0] + hill_out[3 * i + 1] * t[1] + hill_out[3 * i + 2] * t[2];
+        u[i] = isnan(u[i]) ? u[i] : u[i] < 0.0 ? 0.0 : u[i] > 1.0 ? 1.0 : u[i];
+    }
+    for (int i = 0; i < 3; ++i)
+        out[i] = u[i];
+}

@@ -138,6 +138,19 @@ sol_status sol_tonemap_lower_bound(sol_tonemap op, double threshold, double *c_m
  * so the chain is this scalar function. x <= 0 is clamped like the reference (to HALF_MIN). */
 double sol_aces_reference(double x);
 
+/* Stephen Hill's fit of the ACES RRT + ODT ("ACESFitted", published with the BakingLab sample,
+ * 2016): the second ACES reference of claim S3. sol_aces_hill_curve is the per-channel rational
+ * RRTAndODTFit (v (v + 0.0245786) - 0.000090537) / (v (0.983729 v + 0.4329510) + 0.238081), defined
+ * for every finite v (the denominator is >= 0.19); sol_aces_hill_fit applies Hill's input matrix
+ * (linear sRGB -> AP1 with the RRT's saturation), the curve per channel, the output matrix (the
+ * ODT's saturation -> linear sRGB) and clamps to [0, 1]. Both matrices have rows summing to 1
+ * (to 5 digits), so a grey input gives the curve's value on each channel. Output is display-linear
+ * (before the sRGB encoding). NaN input, or +Inf and -Inf in one input, give NaN on the channels
+ * they reach; every other input (huge values and +-Inf included) gives a value in [0, 1].
+ * `out` may alias `rgb`. */
+double sol_aces_hill_curve(double v);
+void sol_aces_hill_fit(const double rgb[3], double out[3]);
+
 /* 8-bit display code (sRGB curve from sol_core.h) of a linear value: round(255 * sol_srgb_encode(y)). */
 int sol_display_code8(double linear);
 

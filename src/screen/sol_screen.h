@@ -208,6 +208,14 @@ typedef struct sol_history {
 sol_status sol_history_alloc(sol_history *out, int width, int height, int channels);
 void sol_history_free(sol_history *history);
 
+/* How the history is fetched at the reprojected (fractional) position. */
+typedef enum sol_history_filter {
+    SOL_HISTORY_BILINEAR = 0, /* 2x2 taps: cheap, but every re-fetch blurs the history a little */
+    SOL_HISTORY_CATMULL_ROM   /* 4x4 taps, Catmull-Rom weights (Keys 1981 with a = -1/2; Catmull and
+                               * Rom 1974): interpolating and sharper, as production TAA fetches its
+                               * history; may overshoot near edges (no clamp here) */
+} sol_history_filter;
+
 typedef struct sol_temporal_options {
     double max_frames;      /* the current frame gets weight max(1/(n+1), 1/max_frames); 0 = 16 */
     double depth_tolerance; /* relative depth change |z_hist - z_expected| / z_expected above which
@@ -219,6 +227,9 @@ typedef struct sol_temporal_options {
      * frame to frame; this keeps accumulating there (the talk's "take into account edge
      * discontinuities") at the price of up to one pixel of ghosting around moving objects. */
     int edge_tolerant;
+    sol_history_filter filter; /* 0 = bilinear. Catmull-Rom: the inner 2x2 taps decide the miss and the
+                                * frame count exactly as bilinear does; an outer tap outside the image
+                                * or empty takes the value of the nearest inner tap */
 } sol_temporal_options;
 
 /* One accumulation step (reverse reprojection caching, Nehab et al. 2007, as the talk uses it):
@@ -230,7 +241,8 @@ typedef struct sol_temporal_options {
  * edge_tolerant, the 3x3 depth range there) is within the tolerance of P's previous depth; then next = lerp(history, current, w), otherwise next = current
  * and the count restarts at 1. `current` holds camera-size * channels values (channels = the
  * histories' channels); prev may be an empty history. next must not alias prev.
- * Errors: NULL, SOL_ERR_INVALID_ARG (history sizes differ from the camera's, negative options),
+ * Errors: NULL, SOL_ERR_INVALID_ARG (history sizes differ from the camera's, negative options, an
+ * unknown filter),
  * SOL_ERR_NONFINITE (NaN/Inf motion, depth or current values). */
 sol_status sol_temporal_accumulate(const sol_camera *camera, const float *depth, const float *current,
                                    const double motion[3], const sol_temporal_options *options,

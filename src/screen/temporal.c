@@ -70,6 +70,53 @@ static int fetch_history(const sol_history *h, double x, double y, float *values
     return 1;
 }
 
+/* Catmull-Rom weights of the 4 taps at offsets -1, 0, 1, 2 for fraction t in [0, 1) (Keys 1981,
+ * a = -1/2): they sum to 1 and give weight 1 to the tap at 0 when t = 0. */
+static void catmull_rom_weights(double t, double w[4])
+{
+    double t2 = t * t, t3 = t2 * t;
+    w[0] = 0.5 * (-t3 + 2.0 * t2 - t);
+    w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0);
+    w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t);
+    w[3] = 0.5 * (t3 - t2);
+}
+
+/* Catmull-Rom fetch: the bilinear fetch decides hit/miss and the frame count (inner 2x2 taps); the
+ * values come from the 4x4 taps, an outer tap outside the image or empty replaced by the nearest
+ * inner tap. */
+static int fetch_history_catmull_rom(const sol_history *h, double x, double y, float *values, float *frames)
+{
+    float bil[4];
+    if (!fetch_history(h, x, y, bil, frames))
+        return 0;
+    double fx = floor(x), fy = floor(y), wx[4], wy[4], acc[4] = {0};
+    int x0 = (int)fx, y0 = (int)fy;
+    catmull_rom_weights(x - fx, wx);
+    catmull_rom_weights(y - fy, wy);
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            double w = wx[i] * wy[j];
+            if (w == 0.0)
+                continue;
+            int tx = x0 - 1 + i, ty = y0 - 1 + j;
+            int ix = i < 1 ? 1 : i > 2 ? 2 : i, iy = j < 1 ? 1 : j > 2 ? 2 : j; /* nearest inner tap */
+            int inner_x = x0 - 1 + ix, inner_y = y0 - 1 + iy;
+            int outside = tx < 0 || ty < 0 || tx >= h->width || ty >= h->height;
+            size_t t = outside ? 0 : (size_t)ty * (size_t)h->width + (size_t)tx;
+            if (outside || h->frames[t] <= 0.0f) {
+                /* the inner tap may itself be outside when its bilinear weight was 0: clamp it */
+                inner_x = inner_x < 0 ? 0 : inner_x >= h->width ? h->width - 1 : inner_x;
+                inner_y = inner_y < 0 ? 0 : inner_y >= h->height ? h->height - 1 : inner_y;
+                t = (size_t)inner_y * (size_t)h->width + (size_t)inner_x;
+            }
+            for (int c = 0; c < h->channels; ++c)
+                acc[c] += w * h->values[t * (size_t)h->channels + (size_t)c];
+        }
+    for (int c = 0; c < h->channels; ++c)
+        values[c] = (float)acc[c];
+    return 1;
+}
+
 /* The cache-miss test of D18: does the previous depth around pixel (x, y) agree with the depth z
  * the point should have had? Nearest pixel, or the 3x3 depth range when edge_tolerant. */
 static int depth_matches(const sol_history *prev, long x, long y, double z, double tolerance, int edge_tolerant)
@@ -98,7 +145,8 @@ sol_status sol_temporal_accumulate(const sol_camera *camera, const float *depth,
         return SOL_ERR_NULL_ARG;
     sol_temporal_options opt = options ? *options : (sol_temporal_options){0};
     if (!history_matches(prev, camera) || !history_matches(next, camera) || prev->channels != next->channels ||
-        opt.max_frames < 0.0 || opt.depth_tolerance < 0.0 || prev->values == next->values)
+        opt.max_frames < 0.0 || opt.depth_tolerance < 0.0 || prev->values == next->values ||
+        (opt.filter != SOL_HISTORY_BILINEAR && opt.filter != SOL_HISTORY_CATMULL_ROM))
         return SOL_ERR_INVALID_ARG;
     if (!isfinite(motion[0]) || !isfinite(motion[1]) || !isfinite(motion[2]) || !isfinite(opt.max_frames) ||
         !isfinite(opt.depth_tolerance))
@@ -127,7 +175,8 @@ sol_status sol_temporal_accumulate(const sol_camera *camera, const float *depth,
             if (hit) {
                 sx = 0.5 * width + camera->focal * p[0] / p[2] - 0.5; /* pixel-centre coordinates */
                 sy = 0.5 * height + camera->focal * p[1] / p[2] - 0.5;
-                hit = fetch_history(prev, sx, sy, hist, &frames);
+                hit = opt.filter == SOL_HISTORY_CATMULL_ROM ? fetch_history_catmull_rom(prev, sx, sy, hist, &frames)
+                                                            : fetch_history(prev, sx, sy, hist, &frames);
             }
             if (hit && !opt.no_depth_test)
                 hit = depth_matches(prev, lround(sx), lround(sy), p[2], tolerance, opt.edge_tolerant);
