@@ -176,7 +176,7 @@ paper:
 	      for (i = 1; i <= 3; i++) printf "\\solnumdef{claims-%s}{%d}\n", v[i], c[v[i]] }' \
 	      $(wildcard results/*/claims.tsv) /dev/null; \
 	  } > results/numbers.tex; \
-	  cd paper && latexmk -pdf -interaction=nonstopmode -halt-on-error -quiet sol.tex >/dev/null \
+	  cd paper && latexmk -g -pdf -interaction=nonstopmode -halt-on-error -quiet sol.tex >/dev/null \
 	    || { grep "undefined solnum key" sol.log | sed 's/^! Package sol Error: /paper: /; s/$$/ (no results\/*\/numbers.tex defines it: add exp_number to its driver and rerun it)/'; \
 	         echo "paper: LaTeX failed, see paper/sol.log"; exit 1; }; \
 	  cp sol.pdf ../results/sol.pdf; \
