@@ -308,8 +308,8 @@ static void precision_plot(const exp_run *exp)
 {
     FILE *f = exp_open(exp, "relative_step.csv");
     fputs("value", f);
-    for (int k = 0; k < FORMAT_COUNT; ++k)
-        fprintf(f, ",%s", format_name[k]);
+    for (int k = 0; k < FORMAT_COUNT; ++k) /* quoted: a name such as "RGBM (RGBA8, range 8)" has a comma */
+        fprintf(f, ",\"%s\"", format_name[k]);
     fputc('\n', f);
     for (int i = 0; i <= 600; ++i) {
         double v = pow(10.0, -7.0 + 12.0 * i / 600.0);
@@ -319,10 +319,17 @@ static void precision_plot(const exp_run *exp)
         fputc('\n', f);
     }
     fclose(f);
+    /* titles from the names, not columnheader(): gnuplot cuts a quoted header at its comma */
+    char clauses[2048] = "";
+    for (int k = 0; k < FORMAT_COUNT; ++k) {
+        size_t used = strlen(clauses);
+        snprintf(clauses + used, sizeof clauses - used, "%s'relative_step.csv' using 1:%d with lines lw 2 title '%s'",
+                 k ? ", " : "", k + 2, format_name[k]);
+    }
     exp_plot(exp, "relative_step",
              "set datafile separator comma\nset logscale xy\nset grid\nset format x '10^{%%L}'\nset format y '10^{%%L}'\n"
              "set xlabel 'stored value'\nset ylabel 'quantisation step / value'\nset yrange [1e-4:10]\n"
-             "set key bottom left\nplot for [i=2:6] 'relative_step.csv' using 1:i with lines lw 2 title columnheader(i)");
+             "set key bottom left\nplot %s", clauses);
 }
 
 /* Mean display-code error of each format and policy as the scene's absolute level changes. */
