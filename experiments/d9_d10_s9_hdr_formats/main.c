@@ -340,7 +340,7 @@ static void level_sweep(const exp_run *exp, const sol_image *base, double *r11_n
     fputs("level", f);
     for (int k = 0; k < FORMAT_COUNT; ++k)
         for (int p = 0; p < POLICY_COUNT; ++p)
-            fprintf(f, ",%s / %s", format_name[k], p == RANGE_NONE ? "none" : p == RANGE_AVERAGE ? "c/l" : "window");
+            fprintf(f, ",\"%s / %s\"", format_name[k], p == RANGE_NONE ? "none" : p == RANGE_AVERAGE ? "c/l" : "window");
     fputc('\n', f);
     sol_image scaled;
     exp_check(sol_image_alloc(&scaled, SCENE_W, SCENE_H, 3), "image");
