@@ -22,7 +22,11 @@ for f in $(cd "$a" && find . -name '*.csv' | sort); do
   [ -f "$b/$f" ] || { echo "$f: missing in $b"; bad=1; continue; }
   cmp -s "$a/$f" "$b/$f" && continue
   # columns whose cells differ (rows compared in order; a row-count change is reported as such)
-  cols=$(awk -F',' 'NR == FNR { row[FNR] = $0; n = FNR; next }
+  # (commas inside "quoted" cells are masked first, so a name such as "RGBM (RGBA8, range 8)" is one cell)
+  cols=$(awk -F',' 'function mask(s,   out, i, c, q) { for (i = 1; i <= length(s); i++) { c = substr(s, i, 1);
+                        if (c == "\"") q = !q; out = out ((q && c == ",") ? "\001" : c) } return out }
+    { $0 = mask($0) }
+    NR == FNR { row[FNR] = $0; n = FNR; next }
     FNR == 1 || blank { blank = 0; for (i = 1; i <= NF; i++) head[i] = $i }   # file or block header
     $0 == "" { blank = 1 }
     { split(row[FNR], o, ","); for (i = 1; i <= NF; i++) if (o[i] != $i) d[i] = head[i] }
