@@ -556,6 +556,9 @@ static void claim_s9_normals(const exp_run *exp)
     char fig[256];
     snprintf(fig, sizeof fig, "RGB8 world-space normals: mean %.3f deg, max %.3f deg (rounding bound %.3f deg)",
              normal_mean, normal_max, bound_deg);
+    exp_number(exp, "S9-rgb8-normals-mean-deg", "%.3f", normal_mean);
+    exp_number(exp, "S9-rgb8-normals-max-deg", "%.3f", normal_max);
+    exp_number(exp, "S9-rgb8-normals-bound-deg", "%.3f", bound_deg);
     exp_claim(exp, "S9", "world-space RGB8 normals", fig, "max within the rounding bound asin(sqrt(3)/255)",
               isfinite(normal_max) && normal_max <= bound_deg ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the notes make no quantitative claim; this is the precision the layout buys: n/2 + 1/2 in three UNORM8 "
