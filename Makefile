@@ -173,12 +173,13 @@ claims-table:
 paper:
 	@if [ -f paper/sol.tex ]; then \
 	  { cat $(wildcard results/*/numbers.tex) /dev/null; \
-	    cat $(wildcard results/*/claims.tsv) /dev/null | awk -F'\t' 'NF >= 5 { n++; c[$$5]++ } END { \
+	    awk -F'\t' 'FNR > 1 && NF >= 5 { n++; c[$$5]++ } END { \
 	      printf "\\solnumdef{claims-rows}{%d}\n", n; \
 	      split("reproduced differs-explained not-reproduced", v, " "); \
-	      for (i = 1; i <= 3; i++) printf "\\solnumdef{claims-%s}{%d}\n", v[i], c[v[i]] }'; \
+	      for (i = 1; i <= 3; i++) printf "\\solnumdef{claims-%s}{%d}\n", v[i], c[v[i]] }' \
+	      $(wildcard results/*/claims.tsv) /dev/null; \
 	  } > results/numbers.tex; \
-	  cd paper && latexmk -pdf -interaction=nonstopmode -halt-on-error -quiet sol.tex >/dev/null \
+	  cd paper && latexmk -g -pdf -interaction=nonstopmode -halt-on-error -quiet sol.tex >/dev/null \
 	    || { grep "undefined solnum key" sol.log | sed 's/^! Package sol Error: /paper: /; s/$$/ (no results\/*\/numbers.tex defines it: add exp_number to its driver and rerun it)/'; \
 	         echo "paper: LaTeX failed, see paper/sol.log"; exit 1; }; \
 	  cp sol.pdf ../results/sol.pdf; \

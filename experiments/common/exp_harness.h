@@ -28,7 +28,7 @@ FILE *exp_open(const exp_run *exp, const char *file);
 /* Reports a failed library call and exits 1: `exp_check(st, "encoding %s", what)`. */
 void exp_check(int status, const char *what_fmt, ...);
 /* Prints a message on stderr and exits 1. */
-void exp_die(const char *fmt, ...);
+void exp_die(const char *fmt, ...) __attribute__((noreturn, format(printf, 1, 2)));
 
 /* ---- tables: one call writes <name>.csv, <name>.md and <name>.tex ---- */
 typedef struct exp_table exp_table;

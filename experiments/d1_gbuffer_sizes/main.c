@@ -52,6 +52,11 @@ int main(int argc, char **argv)
                       layout->source);
     }
     exp_table_write(t, &exp, "sizes");
+    {
+        const sol_gbuffer_layout *cry;
+        exp_number(&exp, "D1-cryengine3-bpp", "%u", layout_bits(SOL_GBUFFER_CRYENGINE3, &cry));
+        exp_number(&exp, "D1-cryengine3-msaa4-mib", "%.0f", frame_mib(cry, 4));
+    }
     exp_plot(&exp, "sizes",
              "set datafile separator comma\nset style fill solid 0.6\nset boxwidth 0.6\nset ylabel 'bits per pixel'\n"
              "set yrange [0:*]\nset xrange [-0.6:3.6]\nset xtics rotate by -15 font ',8'\nset rmargin 12\nset bmargin 6\nset grid ytics\n"

@@ -308,8 +308,8 @@ static void precision_plot(const exp_run *exp)
 {
     FILE *f = exp_open(exp, "relative_step.csv");
     fputs("value", f);
-    for (int k = 0; k < FORMAT_COUNT; ++k)
-        fprintf(f, ",%s", format_name[k]);
+    for (int k = 0; k < FORMAT_COUNT; ++k) /* quoted: a name such as "RGBM (RGBA8, range 8)" has a comma */
+        fprintf(f, ",\"%s\"", format_name[k]);
     fputc('\n', f);
     for (int i = 0; i <= 600; ++i) {
         double v = pow(10.0, -7.0 + 12.0 * i / 600.0);
@@ -319,10 +319,17 @@ static void precision_plot(const exp_run *exp)
         fputc('\n', f);
     }
     fclose(f);
+    /* titles from the names, not columnheader(): gnuplot cuts a quoted header at its comma */
+    char clauses[2048] = "";
+    for (int k = 0; k < FORMAT_COUNT; ++k) {
+        size_t used = strlen(clauses);
+        snprintf(clauses + used, sizeof clauses - used, "%s'relative_step.csv' using 1:%d with lines lw 2 title '%s'",
+                 k ? ", " : "", k + 2, format_name[k]);
+    }
     exp_plot(exp, "relative_step",
              "set datafile separator comma\nset logscale xy\nset grid\nset format x '10^{%%L}'\nset format y '10^{%%L}'\n"
              "set xlabel 'stored value'\nset ylabel 'quantisation step / value'\nset yrange [1e-4:10]\n"
-             "set key bottom left\nplot for [i=2:6] 'relative_step.csv' using 1:i with lines lw 2 title columnheader(i)");
+             "set key bottom left\nplot %s", clauses);
 }
 
 /* Mean display-code error of each format and policy as the scene's absolute level changes. */
@@ -333,7 +340,7 @@ static void level_sweep(const exp_run *exp, const sol_image *base, double *r11_n
     fputs("level", f);
     for (int k = 0; k < FORMAT_COUNT; ++k)
         for (int p = 0; p < POLICY_COUNT; ++p)
-            fprintf(f, ",%s / %s", format_name[k], p == RANGE_NONE ? "none" : p == RANGE_AVERAGE ? "c/l" : "window");
+            fprintf(f, ",\"%s / %s\"", format_name[k], p == RANGE_NONE ? "none" : p == RANGE_AVERAGE ? "c/l" : "window");
     fputc('\n', f);
     sol_image scaled;
     exp_check(sol_image_alloc(&scaled, SCENE_W, SCENE_H, 3), "image");
@@ -549,6 +556,9 @@ static void claim_s9_normals(const exp_run *exp)
     char fig[256];
     snprintf(fig, sizeof fig, "RGB8 world-space normals: mean %.3f deg, max %.3f deg (rounding bound %.3f deg)",
              normal_mean, normal_max, bound_deg);
+    exp_number(exp, "S9-rgb8-normals-mean-deg", "%.3f", normal_mean);
+    exp_number(exp, "S9-rgb8-normals-max-deg", "%.3f", normal_max);
+    exp_number(exp, "S9-rgb8-normals-bound-deg", "%.3f", bound_deg);
     exp_claim(exp, "S9", "world-space RGB8 normals", fig, "max within the rounding bound asin(sqrt(3)/255)",
               isfinite(normal_max) && normal_max <= bound_deg ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the notes make no quantitative claim; this is the precision the layout buys: n/2 + 1/2 in three UNORM8 "

@@ -167,6 +167,9 @@ int main(int argc, char **argv)
     exp_verdict t3 = fabs(strict[0] - talk_t3) <= tol255  ? EXP_REPRODUCED
                      : fabs(talk_x - talk_t3) <= tol255 ? EXP_DIFFERS_EXPLAINED
                                                         : EXP_NOT_REPRODUCED;
+    exp_number(&exp, "T3-point", "%.3f", strict[0]);
+    exp_number(&exp, "T3-point-255", "%.0f", strict[0] * 255);
+    exp_number(&exp, "T3-gamma-code-255", "%.0f", encode(&curves[0], strict[0]) * 255);
     exp_claim(&exp, "T3", "x = 5/11 = 0.45 ~ 116/255 (linear)", sol_fig, "1/255", t3,
               "equal quantisation step of 8-bit gamma-2.2 and linear storage is where d(x^(1/2.2))/dx = 1, x = "
               "2.2^(-2.2/1.2); the talk's 5/11 = 1/2.2 solves 2.2 x = 1, i.e. the derivative of x^2.2 with its exponent "
@@ -189,6 +192,11 @@ int main(int argc, char **argv)
                      : fabs(gamma90 - talk_t5_gamma) <= tol255  ? EXP_REPRODUCED
                      : fabs(decode90 - talk_t5_gamma) <= tol255 ? EXP_DIFFERS_EXPLAINED
                                                                 : EXP_NOT_REPRODUCED;
+    exp_number(&exp, "T5-range-lo-255", "%.0f", lo[2] * 255);
+    exp_number(&exp, "T5-range-hi-255", "%.0f", hi[2] * 255);
+    exp_number(&exp, "T5-crossing-255", "%.1f", strict[2] * 255);
+    exp_number(&exp, "T5-gamma90-255", "%.0f", gamma90 * 255);
+    exp_number(&exp, "T5-decode90-255", "%.1f", decode90 * 255);
     exp_claim(&exp, "T5", "~90/255 linear, \"25/255 in gamma space\"", sol_fig,
               "90/255 inside the equal-density range; 25/255 within 1/255", t5,
               "the PWL curve's third segment has slope 1023/1020, so densities match (within 1%%) for every linear value "
