@@ -15,6 +15,7 @@
 #include "sol_hdr.h"
 #include "sol_normalmaps.h"
 #include "sol_normals.h"
+#include "sol_textures.h"
 
 #ifndef SOL_TEST_BUILD_DIR
 #define SOL_TEST_BUILD_DIR "build"
@@ -552,6 +553,18 @@ Test(check_cli, normals_octahedral_sign0_bug)
                  1);
 }
 
+Test(check_cli, normals_gbuffer_dump)
+{
+    cr_assert_eq(run("$SOL check normals --method octahedral-12 --emit dirs.exr --size 64"), 0);
+    cr_assert_eq(run("$ENGINE gbuffer dirs.exr g.png && "
+                     "$SOL check normals --method octahedral-12 --directions dirs.exr --gbuffer g.png"),
+                 0);
+    cr_assert_eq(run("$ENGINE --bug oct-sign0 gbuffer dirs.exr g.png && "
+                     "$SOL check normals --method octahedral-12 --directions dirs.exr --gbuffer g.png"),
+                 1);
+    cr_assert_eq(run("$SOL check normals --method octahedral-12 --directions dirs.exr"), 2);
+}
+
 Test(check_cli, pack_truncation_bugs)
 {
     const char *fmts[2] = {"r11g11b10f", "fp16"}, *bugs[2] = {"r11-trunc", "fp16-trunc"};
@@ -596,6 +609,8 @@ Test(check_cli, bc1_decoder_rounding_bug)
     cr_assert_eq(run("$ENGINE bc1 32 . && $SOL check bc1 --dds bc1.dds --decoded bc1_decoded.png"), 0);
     cr_assert_eq(run("$ENGINE --bug bc1-round bc1 32 . && $SOL check bc1 --dds bc1.dds --decoded bc1_decoded.png"), 1);
     cr_assert_eq(run("$SOL check bc1 --dds bc1.dds --decoded bc1_decoded.png --tolerance 1"), 0);
+    cr_assert_eq(run("$ENGINE bc1 32 . && $SOL check bc1 --dds bc1.dds --source bc1_source.png"), 0);
+    cr_assert_eq(run("$ENGINE --bug bc1-encoder bc1 32 . && $SOL check bc1 --dds bc1.dds --source bc1_source.png"), 1);
 }
 
 Test(check_cli, lut_graded_in_linear_bug)
@@ -629,4 +644,92 @@ Test(check_cli, malformed_inputs_exit_2_naming_the_problem)
     cr_assert(err_has("wrong entry count"));
     cr_assert_eq(run("printf '0.5,300\\n' > range.csv && $SOL check srgb --csv range.csv"), 2);
     cr_assert(err_has("0..255"));
+}
+
+/* ---- block checks at the library level ---- */
+
+Test(check_blocks, decoders_bit_exact_and_argument_errors)
+{
+    uint8_t blocks[2 * 16];
+    uint64_t rng = 3;
+    for (int i = 0; i < 32; ++i)
+        blocks[i] = (uint8_t)sol_rng_next(&rng);
+    /* sol's own BC5 decode at 16 bits, as 16-bit codes */
+    uint16_t tex[8 * 4 * 2];
+    for (int b = 0; b < 2; ++b) {
+        sol_bc5_block blk;
+        sol_bc4_unpack(blocks + 16 * b, &blk.x);
+        sol_bc4_unpack(blocks + 16 * b + 8, &blk.y);
+        double px[8], py[8];
+        sol_bc4_palette(blk.x.e0, blk.x.e1, SOL_BC4_INTERP_16BIT, px);
+        sol_bc4_palette(blk.y.e0, blk.y.e1, SOL_BC4_INTERP_16BIT, py);
+        for (int t = 0; t < 16; ++t) {
+            uint16_t *p = tex + 2 * ((t / 4) * 8 + 4 * b + t % 4);
+            p[0] = (uint16_t)sol_unorm_encode(px[blk.x.index[t]], 16);
+            p[1] = (uint16_t)sol_unorm_encode(py[blk.y.index[t]], 16);
+        }
+    }
+    sol_check_report r;
+    cr_assert_eq(sol_check_bc5_decode(blocks, 8, 4, SOL_BC4_INTERP_16BIT, tex, 2, 16, 0, &r), SOL_OK);
+    cr_assert(r.passed && r.count == 32 && r.mismatches == 0);
+    tex[5] ^= 1;
+    cr_assert_eq(sol_check_bc5_decode(blocks, 8, 4, SOL_BC4_INTERP_16BIT, tex, 2, 16, 0, &r), SOL_OK);
+    cr_assert(!r.passed && r.failures == 1 && r.max == 1);
+    cr_assert_eq(sol_check_bc5_decode(blocks, 8, 4, SOL_BC4_INTERP_16BIT, tex, 2, 16, 1, &r), SOL_OK);
+    cr_assert(r.passed && r.mismatches == 1);
+    cr_assert_eq(sol_check_bc5_decode(blocks, 6, 4, SOL_BC4_INTERP_16BIT, tex, 2, 16, 0, &r), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_check_bc5_decode(blocks, 8, 4, SOL_BC4_PRECISION_COUNT, tex, 2, 16, 0, &r), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_check_bc5_decode(blocks, 8, 4, SOL_BC4_INTERP_16BIT, tex, 2, 12, 0, &r), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_check_bc5_decode(blocks, 8, 4, SOL_BC4_INTERP_16BIT, tex, 2, 16, NAN, &r), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_check_bc5_decode(NULL, 8, 4, SOL_BC4_INTERP_16BIT, tex, 2, 16, 0, &r), SOL_ERR_NULL_ARG);
+    /* BC1: sol's decode as 8-bit RGB, then at 16 bits (x 257) */
+    uint16_t rgb8[4 * 4 * 3], rgb16[4 * 4 * 3];
+    uint8_t rgba[16][4];
+    sol_bc1_decode_block(blocks, rgba);
+    for (int t = 0; t < 16; ++t)
+        for (int c = 0; c < 3; ++c) {
+            rgb8[3 * t + c] = rgba[t][c];
+            rgb16[3 * t + c] = (uint16_t)(rgba[t][c] * 257);
+        }
+    cr_assert_eq(sol_check_bc1_decode(blocks, 4, 4, rgb8, 3, 8, 0, &r), SOL_OK);
+    cr_assert(r.passed);
+    cr_assert_eq(sol_check_bc1_decode(blocks, 4, 4, rgb16, 3, 16, 0, &r), SOL_OK);
+    cr_assert(r.passed);
+    cr_assert_eq(sol_check_bc1_decode(blocks, 4, 4, rgb8, 2, 8, 0, &r), SOL_ERR_INVALID_ARG);
+}
+
+Test(check_blocks, encoders_against_the_source)
+{
+    sol_image src;
+    cr_assert_eq(sol_image_alloc(&src, 8, 8, 3), SOL_OK);
+    for (int i = 0; i < 64; ++i) {
+        src.data[3 * i] = (float)(0.3 * sin(i * 0.7));
+        src.data[3 * i + 1] = (float)(0.2 * cos(i * 0.3));
+        src.data[3 * i + 2] = 0.9f;
+    }
+    uint8_t blocks[64];
+    sol_bc5_options o = {0};
+    cr_assert_eq(sol_bc5_encode_image(&src, &o, blocks, NULL), SOL_OK);
+    sol_check_report r;
+    double ref = -1;
+    cr_assert_eq(sol_check_bc5_encode(&src, blocks, SOL_BC4_INTERP_16BIT, &r, &ref), SOL_OK);
+    cr_assert(r.passed && r.mean == ref && r.count == 64);
+    memset(blocks, 0, sizeof blocks); /* every texel decodes to x = y = -1 */
+    cr_assert_eq(sol_check_bc5_encode(&src, blocks, SOL_BC4_INTERP_16BIT, &r, NULL), SOL_OK);
+    cr_assert(!r.passed);
+    src.data[0] = src.data[1] = src.data[2] = 0; /* a zero normal */
+    cr_assert_eq(sol_check_bc5_encode(&src, blocks, SOL_BC4_INTERP_16BIT, &r, NULL), SOL_ERR_INVALID_ARG);
+    /* BC1 on colours in [0,1] */
+    for (int i = 0; i < 64 * 3; ++i)
+        src.data[i] = (float)(0.5 + 0.4 * sin(i * 0.37));
+    uint8_t b1[32];
+    cr_assert_eq(sol_bc1_encode(&src, NULL, b1), SOL_OK);
+    cr_assert_eq(sol_check_bc1_encode(&src, b1, &r, &ref), SOL_OK);
+    cr_assert(r.passed && r.mean == ref);
+    memset(b1, 0, sizeof b1);
+    cr_assert_eq(sol_check_bc1_encode(&src, b1, &r, NULL), SOL_OK);
+    cr_assert(!r.passed);
+    src.data[4] = 2.0f;
+    cr_assert_eq(sol_check_bc1_encode(&src, b1, &r, NULL), SOL_ERR_OUT_OF_RANGE);
+    sol_image_free(&src);
 }

@@ -192,3 +192,63 @@ sol_status sol_check_bc5_encode(const sol_image *source, const uint8_t *blocks, 
     sol_image_free(&dec_engine);
     return st;
 }
+
+/* Mean per-texel RGB error (8-bit codes) of BC1 blocks against the source; items go to acc. */
+static double bc1_mean_error(const sol_image *src, const uint8_t *blocks, check_acc *acc)
+{
+    double sum = 0.0;
+    const int bw = src->width / 4, bh = src->height / 4;
+    for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw; ++bx) {
+            uint8_t rgba[16][4];
+            sol_bc1_decode_block(blocks + 8 * ((size_t)by * (size_t)bw + (size_t)bx), rgba);
+            for (int t = 0; t < 16; ++t) {
+                int x = 4 * bx + t % 4, y = 4 * by + t / 4;
+                const float *p = sol_image_pixel(src, x, y);
+                double se = 0.0;
+                sol_check_item it;
+                memset(&it, 0, sizeof it);
+                for (int c = 0; c < 3; ++c) {
+                    double d = 255.0 * p[c] - rgba[t][c];
+                    se += d * d;
+                    it.expected[c] = 255.0 * p[c];
+                    it.got[c] = rgba[t][c];
+                }
+                it.error = sqrt(se / 3.0);
+                sum += it.error;
+                if (acc) {
+                    it.index = (size_t)y * (size_t)src->width + (size_t)x;
+                    it.input[0] = x;
+                    it.input[1] = y;
+                    check_add(acc, &it, 0, 0);
+                }
+            }
+        }
+    return sum / ((double)src->width * (double)src->height);
+}
+
+sol_status sol_check_bc1_encode(const sol_image *source, const uint8_t *blocks, sol_check_report *report,
+                                double *reference_mean)
+{
+    if (!source || !source->data || !blocks || !report)
+        return SOL_ERR_NULL_ARG;
+    if (bad_size(source->width, source->height) || source->channels < 3)
+        return SOL_ERR_INVALID_ARG;
+    uint8_t *ref = malloc(sol_bc1_size(source->width, source->height));
+    if (!ref)
+        return SOL_ERR_NO_MEMORY;
+    sol_status st = sol_bc1_encode(source, NULL, ref); /* validates the source values too */
+    if (st == SOL_OK) {
+        double ref_mean = bc1_mean_error(source, ref, NULL);
+        check_acc acc;
+        check_begin(&acc, "code", ref_mean * (1.0 + SOL_CHECK_BC1_ENCODER_SLACK));
+        bc1_mean_error(source, blocks, &acc);
+        check_end(&acc, report);
+        report->failures = report->mean <= report->tolerance ? 0 : 1;
+        report->passed = report->failures == 0;
+        if (reference_mean)
+            *reference_mean = ref_mean;
+    }
+    free(ref);
+    return st;
+}

@@ -117,6 +117,16 @@ sol_status sol_check_bc1_decode(const uint8_t *blocks, int width, int height, co
 sol_status sol_check_bc5_encode(const sol_image *source, const uint8_t *blocks, sol_bc4_precision precision,
                                 sol_check_report *report, double *reference_mean_deg);
 
+/* ---- BC1 encoder quality: an engine's blocks against the source colours ----
+ * Error unit: 8-bit codes, per texel sqrt of the mean over R, G, B of (255 source - decoded)^2
+ * (source values in [0,1], what the texture stores, 3 or more channels). The engine passes when
+ * its mean is at most (1 + SOL_CHECK_BC1_ENCODER_SLACK) times that of sol's default encoder
+ * (SOL_BC1_CLUSTER) on the same source. width, height multiples of 4. reference_mean (may be NULL)
+ * receives sol's mean. Errors: SOL_ERR_OUT_OF_RANGE / SOL_ERR_NONFINITE for a bad source value. */
+#define SOL_CHECK_BC1_ENCODER_SLACK 0.05
+sol_status sol_check_bc1_encode(const sol_image *source, const uint8_t *blocks, sol_check_report *report,
+                                double *reference_mean);
+
 /* ---- packed HDR formats: bit-exact packing of given values ----
  * values: n x `sol_check_pack_inputs(format)` floats (r, g, b or one value); bits: the engine's
  * packed result per value, as one integer (R11G11B10F: the 32-bit word, r in bits 0-10; fp16: the

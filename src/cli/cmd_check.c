@@ -17,7 +17,7 @@
 #include "sol_normals.h"
 
 typedef struct args {
-    const char *csv, *dds, *decoded, *source, *cube, *chart, *emit;
+    const char *csv, *dds, *decoded, *source, *cube, *chart, *emit, *directions, *gbuffer;
     const char *method, *format, *op, *precision;
     int json, exact, count, size, have_tolerance;
     double tolerance, range;
@@ -46,11 +46,15 @@ static void help(FILE *to)
                 "\n"
                 "  normals --method M --csv FILE [--exact]  CSV rows x,y,z,code: the engine's encoder output\n"
                 "          M: xyz-normalized xyz-max-component best-fit-search octahedral-12 spherical-12 ...\n"
+            "  normals --method M --directions EXR --gbuffer PNG   a G-buffer dump: the engine encoded each\n"
+            "          direction of the EXR (from --emit FILE.exr) into an 8-bit RGB(A) PNG, code = r | g<<8 | b<<16\n"
                 "  bc5 --dds FILE --decoded PNG [--precision 16|8|float] [--tolerance CODES]\n"
                 "          the engine's decoder: its decoded texels (R = x, G = y) against sol's decoder\n"
                 "  bc5 --dds FILE --source IMAGE            the engine's encoder: angular error against the\n"
                 "          source normals (PNG/EXR, xyz in [-1,1] as (v+1)/2 for PNG) vs sol's common encoder\n"
                 "  bc1 --dds FILE --decoded PNG [--tolerance CODES]   the engine's BC1 decoder, bit-exact\n"
+            "  bc1 --dds FILE --source PNG              the engine's BC1 encoder: RGB error against the source\n"
+            "          (mean within 5%% of sol's encoder)\n"
                 "  pack --format F --csv FILE [--range R]   CSV rows: value(s), the engine's packed bits\n"
                 "          F: r11g11b10f fp16 rgbm rgb10 depth-rg8 (rgbm: --range, default 6)\n"
                 "  tonemap --op OP --csv FILE               CSV rows x,y: the engine's curve, y linear display\n"
@@ -59,7 +63,8 @@ static void help(FILE *to)
                 "          LOOK: --saturation S --contrast C --hue DEG --lift R,G,B --gamma R,G,B --gain R,G,B\n"
                 "  srgb --csv FILE                          CSV rows linear,code: the engine's 8-bit sRGB codes\n"
                 "\n"
-                "  --emit FILE [--count N]  (normals, pack, tonemap, srgb; lut: a .cube of sol's bake, --size N)\n"
+                "  --emit FILE [--count N]  (normals, pack, tonemap, srgb; lut: a .cube of sol's bake, --size N;\n"
+            "          normals with FILE.exr: an N x N float direction image, --size N, default 1024)\n"
                 "          write the inputs to run the engine on: sol's edge cases plus N spread values\n"
                 "  --json   machine-readable report on stdout\n"
                 "\n"
@@ -116,6 +121,10 @@ static int parse_args(int argc, char **argv, args *a)
             a->chart = v;
         else if (!strcmp(o, "--emit"))
             a->emit = v;
+        else if (!strcmp(o, "--directions"))
+            a->directions = v;
+        else if (!strcmp(o, "--gbuffer"))
+            a->gbuffer = v;
         else if (!strcmp(o, "--method"))
             a->method = v;
         else if (!strcmp(o, "--format"))
@@ -315,6 +324,80 @@ static int find_normal_method(const char *name)
     return -1;
 }
 
+/* The direction image: sol's edge directions first, then R2 directions, row-major. */
+static int emit_direction_image(const args *a)
+{
+    int size = a->size ? a->size : 1024;
+    sol_image img = {0};
+    sol_status st = sol_image_alloc(&img, size, size, 3);
+    if (st != SOL_OK)
+        return bad_file(a->emit, sol_status_string(st));
+    size_t ne, n = (size_t)size * (size_t)size;
+    const double(*e)[3] = sol_check_edge_normals(&ne);
+    for (size_t i = 0; i < n; ++i) {
+        double d[3], u, v;
+        if (i < ne)
+            memcpy(d, e[i], sizeof d);
+        else {
+            sol_r2_point((uint64_t)(i - ne), &u, &v);
+            sol_sphere_uniform(u, v, d);
+        }
+        for (int c = 0; c < 3; ++c)
+            img.data[3 * i + (size_t)c] = (float)d[c];
+    }
+    st = sol_exr_write(a->emit, &img, 0);
+    sol_image_free(&img);
+    return st == SOL_OK ? CLI_EXIT_OK : bad_file(a->emit, sol_status_string(st));
+}
+
+/* A G-buffer dump: directions (float EXR) and the engine's codes as 8-bit RGB(A) PNG. */
+static int check_gbuffer(const args *a, int m)
+{
+    if (!a->directions || !a->gbuffer)
+        return usage_error("%s needs both --directions EXR and --gbuffer PNG", "normals");
+    sol_image dir = {0}, gb = {0};
+    int bits = 0, rc = -1;
+    sol_status st = sol_exr_read(a->directions, &dir);
+    if (st != SOL_OK)
+        return bad_file(a->directions, sol_status_string(st));
+    st = sol_png_read(a->gbuffer, &gb, &bits);
+    if (st != SOL_OK)
+        rc = bad_file(a->gbuffer, sol_status_string(st));
+    else if (bits != 8 || gb.channels < 3)
+        rc = bad_file(a->gbuffer, "the G-buffer PNG must be 8-bit RGB or RGBA");
+    else if (dir.channels < 3 || gb.width != dir.width || gb.height != dir.height)
+        rc = bad_file(a->gbuffer, "size differs from the directions image (or it has fewer than 3 channels)");
+    size_t n = (size_t)dir.width * (size_t)dir.height;
+    double(*dirs)[3] = rc < 0 ? malloc(n * sizeof *dirs) : NULL;
+    uint32_t *codes = rc < 0 ? malloc(n * sizeof *codes) : NULL;
+    if (rc < 0 && (!dirs || !codes))
+        rc = bad_file(a->gbuffer, "out of memory");
+    for (size_t i = 0; rc < 0 && i < n; ++i) {
+        const float *d = dir.data + i * (size_t)dir.channels, *g = gb.data + i * (size_t)gb.channels;
+        uint32_t c;
+        for (int k = 0; k < 3; ++k)
+            dirs[i][k] = d[k];
+        codes[i] = (uint32_t)floor(g[0] * 255.0f + 0.5f) | (uint32_t)floor(g[1] * 255.0f + 0.5f) << 8 |
+                   (uint32_t)floor(g[2] * 255.0f + 0.5f) << 16;
+        if (sol_normal_encode((sol_normal_method)m, dirs[i], &c) != SOL_OK) {
+            fprintf(stderr, "%s: %s: pixel %zu: direction is zero or not finite\n", prog, a->directions, i);
+            rc = CLI_EXIT_USAGE;
+        }
+    }
+    if (rc < 0) {
+        sol_check_report r;
+        sol_check_normal_options o = {.exact = a->exact};
+        st = sol_check_normals((sol_normal_method)m, (const double(*)[3])dirs, codes, n, &o, &r);
+        rc = st != SOL_OK ? bad_file(a->gbuffer, sol_status_string(st))
+                          : report(a, "normals", a->method, &r, 3, 2, NULL, NULL);
+    }
+    free(dirs);
+    free(codes);
+    sol_image_free(&dir);
+    sol_image_free(&gb);
+    return rc;
+}
+
 static int check_normals(const args *a)
 {
     if (!a->method)
@@ -322,6 +405,11 @@ static int check_normals(const args *a)
     int m = find_normal_method(a->method);
     if (m < 0)
         return usage_error("unknown normal method '%s'", a->method);
+    size_t elen = a->emit ? strlen(a->emit) : 0;
+    if (a->emit && elen > 4 && !strcmp(a->emit + elen - 4, ".exr"))
+        return emit_direction_image(a);
+    if (a->directions || a->gbuffer)
+        return check_gbuffer(a, m);
     if (a->emit) {
         FILE *f = emit_open(a->emit);
         if (!f)
@@ -395,10 +483,8 @@ static int check_blocks(const args *a, int bc5)
     sol_bc4_precision prec;
     if (!parse_precision(a->precision, &prec))
         return usage_error("--precision must be 16, 8 or float, not '%s'", a->precision);
-    if (!a->dds || (!a->decoded && !(bc5 && a->source)))
-        return usage_error(bc5 ? "%s needs --dds FILE and --decoded PNG or --source IMAGE"
-                               : "%s needs --dds FILE and --decoded PNG",
-                           what);
+    if (!a->dds || (!a->decoded && !a->source))
+        return usage_error("%s needs --dds FILE and --decoded PNG or --source IMAGE", what);
     sol_dds d;
     int rc = read_dds(a->dds, bc5 ? SOL_DDS_BC5 : SOL_DDS_BC1, &d);
     if (rc >= 0)
@@ -422,6 +508,27 @@ static int check_blocks(const args *a, int bc5)
         free(codes);
     } else {
         sol_image src = {0};
+        if (!bc5) {
+            sol_status st = sol_png_read(a->source, &src, NULL);
+            double ref = 0;
+            if (st == SOL_OK && (src.width != d.width || src.height != d.height || src.channels < 3))
+                rc = bad_file(a->source, "size differs from the .dds or fewer than 3 channels");
+            else if (st != SOL_OK)
+                rc = bad_file(a->source, sol_status_string(st));
+            else if ((st = sol_check_bc1_encode(&src, d.blocks, &r, &ref)) != SOL_OK)
+                rc = bad_file(a->source, sol_status_string(st));
+            else {
+                char text[160], json[96];
+                snprintf(text, sizeof text,
+                         "  sol's encoder on the same source: mean %.6g codes (pass: engine <= %.0f%% of it)\n", ref,
+                         100.0 * (1.0 + SOL_CHECK_BC1_ENCODER_SLACK));
+                snprintf(json, sizeof json, "\"sol_mean\": %.10g", ref);
+                rc = report(a, what, "encoder vs source", &r, 2, 3, text, json);
+            }
+            sol_image_free(&src);
+            sol_dds_free(&d);
+            return rc;
+        }
         size_t n = strlen(a->source);
         int exr = n > 4 && !strcmp(a->source + n - 4, ".exr");
         sol_status st = exr ? sol_exr_read(a->source, &src) : sol_png_read(a->source, &src, NULL);
