@@ -11,10 +11,19 @@ typedef struct subcommand {
     const char *summary;
 } subcommand;
 
+static int version_main(int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    printf("sol %s\n", sol_version());
+    return CLI_EXIT_OK;
+}
+
 static const subcommand subcommands[] = {
     {"plan", cli_plan_main, "list the effects a scene calls for, and those skipped and why"},
     {"render", cli_render_main, "render a scene's reference and engine paths, attribute the error per effect"},
     {"check", cli_check_main, "compare an engine's own output with sol's reference (sol check help)"},
+    {"version", version_main, "print the library's version"},
 };
 
 static void usage(FILE *to)

@@ -19,6 +19,15 @@
 extern "C" {
 #endif
 
+/* Version of this header (semantic versioning); sol_version() gives the library's, so a program
+ * can check that the library it loaded matches the header it was built with. */
+#define SOL_VERSION_MAJOR 0
+#define SOL_VERSION_MINOR 1
+#define SOL_VERSION_PATCH 0
+#define SOL_VERSION_STRING "0.1.0"
+/* The library's version string ("0.1.0"), static, never NULL. */
+const char *sol_version(void);
+
 typedef enum sol_status {
     SOL_OK = 0,
     SOL_ERR_NULL_ARG,       /* a required pointer was NULL */
@@ -138,6 +147,34 @@ sol_status sol_exr_read(const char *path, sol_image *out);
 #define SOL_EXR_MAX_CHANNELS 1024
 sol_status sol_exr_read_ex(const char *path, const sol_read_limits *limits, sol_image *out);
 sol_status sol_exr_write(const char *path, const sol_image *image, int half_precision);
+
+/* ---- DDS block-compressed textures (read side; sol writes them in src/normalmaps/dds.c) ----
+ * The container is in core because two modules decode its blocks: textures (BC1) and normalmaps
+ * (BC4/BC5). Reads the top mip level of a 2D texture: the 128-byte DirectDraw Surface header with
+ * FourCC "DXT1" (BC1), "ATI1"/"BC4U" (BC4), "ATI2"/"BC5U" (BC5), or "DX10" with its 20-byte
+ * extension and DXGI format 71/72 (BC1), 80 (BC4_UNORM), 83 (BC5_UNORM). Blocks are kept as
+ * stored (row-major block order, 8 or 16 bytes each). Sizes are checked with
+ * sol_read_limits_check (decoded RGBA8) before anything is allocated.
+ * Errors: SOL_ERR_FORMAT (not a DDS, wrong header sizes, truncated data), SOL_ERR_UNSUPPORTED
+ * (another FourCC/DXGI format, cube maps, volumes), SOL_ERR_LIMIT, SOL_ERR_IO, SOL_ERR_NO_MEMORY;
+ * *problem (may be NULL) then names what was wrong (static string). Free with sol_dds_free. */
+typedef enum sol_dds_format { SOL_DDS_BC1 = 1, SOL_DDS_BC4, SOL_DDS_BC5 } sol_dds_format;
+typedef struct sol_dds {
+    sol_dds_format format;
+    int width, height;
+    size_t size;     /* bytes of blocks: ceil(w/4) * ceil(h/4) * (8 for BC1/BC4, 16 for BC5) */
+    uint8_t *blocks; /* owned */
+} sol_dds;
+sol_status sol_dds_parse(const uint8_t *data, size_t size, const sol_read_limits *limits, sol_dds *out,
+                         const char **problem);
+sol_status sol_dds_read(const char *path, const sol_read_limits *limits, sol_dds *out, const char **problem);
+/* Frees the blocks and zeroes the struct; safe on NULL or a zeroed struct. */
+void sol_dds_free(sol_dds *dds);
+
+/* Reads a whole file into a new buffer (NUL-terminated for text parsers; *size excludes the NUL).
+ * Files larger than max_bytes (0: SOL_READ_MAX_BYTES_DEFAULT) give SOL_ERR_LIMIT.
+ * Errors: SOL_ERR_NULL_ARG, SOL_ERR_IO, SOL_ERR_LIMIT, SOL_ERR_NO_MEMORY. Free with free(). */
+sol_status sol_file_read_all(const char *path, uint64_t max_bytes, uint8_t **data, size_t *size);
 
 /* ---- small shared numeric helpers (header-only so hot loops inline them) ---- */
 

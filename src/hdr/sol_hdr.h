@@ -206,6 +206,29 @@ sol_status sol_lut3d_chart_write(const sol_lut3d *lut, sol_image *image, int x0,
 /* Reads such a chart back into a new table of the given size. Errors as above + NO_MEMORY. */
 sol_status sol_lut3d_chart_read(const sol_image *image, int x0, int y0, int size, sol_lut3d *out);
 
+/* .cube 3D LUT files (Adobe "Cube LUT Specification" 1.0, as Resolve and grading tools write
+ * them): keywords TITLE "text", LUT_3D_SIZE N (2..256), DOMAIN_MIN/DOMAIN_MAX r g b (default 0 0 0
+ * and 1 1 1), Resolve's LUT_3D_INPUT_RANGE lo hi (the same domain on all channels), '#' comments
+ * and blank lines anywhere; then exactly N^3 lines "r g b", red changing fastest (sol_lut3d's
+ * order). Keywords must come before the data; other keywords there are ignored.
+ * Reading checks N^3 against `limits` (12 bytes per entry) before allocating.
+ * Errors: SOL_ERR_FORMAT (no LUT_3D_SIZE, a bad line, wrong entry count, DOMAIN_MIN >= MAX),
+ * SOL_ERR_UNSUPPORTED (a 1D LUT), SOL_ERR_LIMIT, SOL_ERR_IO, SOL_ERR_NO_MEMORY; *bad_line (may be
+ * NULL) = the 1-based line at fault (0 when no single line is), *problem (may be NULL) a static
+ * description. `info` may be NULL. Free the table with sol_lut3d_free. */
+typedef struct sol_cube_info {
+    char title[128]; /* truncated to 127 bytes */
+    double domain_min[3], domain_max[3];
+} sol_cube_info;
+sol_status sol_cube_parse(const char *text, size_t length, const sol_read_limits *limits, sol_lut3d *out,
+                          sol_cube_info *info, size_t *bad_line, const char **problem);
+sol_status sol_cube_read(const char *path, const sol_read_limits *limits, sol_lut3d *out, sol_cube_info *info,
+                         size_t *bad_line, const char **problem);
+/* Writes `lut` on the domain [0,1]^3 with %.9g entries (a float round-trips), to a temporary name
+ * renamed on success. title may be NULL. Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (bad
+ * table), SOL_ERR_IO. */
+sol_status sol_cube_write(const char *path, const sol_lut3d *lut, const char *title);
+
 /* ======================================================================================
  * Automatic exposure (claim S6)
  * ====================================================================================== */
