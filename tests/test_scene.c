@@ -2,6 +2,7 @@
  * (sol_scene_plan) and the two-path renderer. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <omp.h>
 #include <string.h>
@@ -257,4 +258,66 @@ Test(scene, render_is_deterministic_for_any_thread_count)
     cr_expect_eq(sol_scene_render(&s, &p, &o, &a, NULL), SOL_ERR_INVALID_ARG);
     cr_expect_eq(sol_scene_render(NULL, &p, NULL, &a, NULL), SOL_ERR_NULL_ARG);
     sol_scene_free(&s);
+}
+
+/* ---------------- the shipped scenes (experiments/scenes/) ---------------- */
+
+/* Per shipped scene: the effects its plan runs, and the engine-vs-reference error of a 64x36
+ * render (display-code RMS, CIEDE2000 mean) recorded when the scene was added. A change of the
+ * renderer or of a technique that moves these figures beyond the tolerance must be looked at. */
+static const struct shipped {
+    const char *name;
+    const char *runs; /* the effects that run, space-separated, in effect order */
+    double rms, de;
+} shipped[] = {
+#include "scene_expected.inc"
+};
+
+static void effects_run(const sol_scene_plan *p, char *out, size_t size)
+{
+    out[0] = 0;
+    for (int e = 0; e < SOL_FX_COUNT; ++e)
+        if (p->run[e]) {
+            if (*out)
+                strncat(out, " ", size - strlen(out) - 1);
+            strncat(out, sol_effect_get((sol_effect)e)->name, size - strlen(out) - 1);
+        }
+}
+
+Test(scene, shipped_scenes_plan_and_small_render_match_their_expected_figures, .timeout = 600)
+{
+    int print = getenv("SOL_SCENE_EXPECT_PRINT") != NULL;
+    for (size_t i = 0; i < sizeof shipped / sizeof shipped[0]; ++i) {
+        char path[256], runs[512];
+        snprintf(path, sizeof path, "experiments/scenes/%s.json", shipped[i].name);
+        sol_scene s;
+        sol_scene_error e;
+        cr_assert_eq(sol_scene_load(path, &s, &e), SOL_OK, "%s: %s %s", path, e.pointer, e.message);
+        sol_scene_plan p;
+        cr_assert_eq(sol_scene_plan_build(&s, &p), SOL_OK);
+        effects_run(&p, runs, sizeof runs);
+        sol_render_options o = {64, 36, 0, 0};
+        sol_render_result eng, ref;
+        sol_render_stats st;
+        cr_assert_eq(sol_scene_render(&s, &p, &o, &eng, &st), SOL_OK, "%s", path);
+        for (int k = 0; k < SOL_FX_COUNT; ++k)
+            cr_expect_eq(st.effect_runs[k] > 0, p.run[k] != 0, "%s: %s ran %llu times", shipped[i].name,
+                         sol_effect_get((sol_effect)k)->name, (unsigned long long)st.effect_runs[k]);
+        o.reference = 1;
+        cr_assert_eq(sol_scene_render(&s, &p, &o, &ref, NULL), SOL_OK, "%s", path);
+        sol_render_error err;
+        cr_assert_eq(sol_render_compare(&eng, &ref, &err), SOL_OK);
+        if (print)
+            printf("    {\"%s\", \"%s\", %.3f, %.3f},\n", shipped[i].name, runs, err.rms_code, err.de2000_mean);
+        else {
+            cr_expect_str_eq(runs, shipped[i].runs, "%s: plan changed", shipped[i].name);
+            cr_expect(fabs(err.rms_code - shipped[i].rms) <= 0.15 * shipped[i].rms + 0.3, "%s: RMS %.3f, expected %.3f",
+                      shipped[i].name, err.rms_code, shipped[i].rms);
+            cr_expect(fabs(err.de2000_mean - shipped[i].de) <= 0.15 * shipped[i].de + 0.05,
+                      "%s: dE %.3f, expected %.3f", shipped[i].name, err.de2000_mean, shipped[i].de);
+        }
+        sol_render_result_free(&eng);
+        sol_render_result_free(&ref);
+        sol_scene_free(&s);
+    }
 }

@@ -18,6 +18,7 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "sol_brdf.h"
 #include "sol_hdr.h"
@@ -688,13 +689,14 @@ static void light_loop(const frame *f, const surface *sf, const double v[3], dou
         double dir[3], e[3], dist;
         if (!light_at(l, sf->p, dir, e, &dist) || sol_dot3(sf->ng, dir) <= 0)
             continue;
-        /* visibility: shadowed lights trace; a clipped light uses its clip volume in the engine
-         * path (D13) and a shadow ray in the reference; other lights are unshadowed */
+        /* visibility: the reference traces a shadow ray for every light (exact lighting). The
+         * engine traces only lights with shadows; a clipped light uses its clip volume (D13, in
+         * its reference version a shadow ray); other lights are unshadowed deferred lights */
         int clipped = l->clip >= 0 && !l->shadows;
         if (clipped && !f->reference && fx(f, SOL_FX_CLIP_VOLUMES)) {
             if (!inside_clip(&s->clips[l->clip], sf->p))
                 continue;
-        } else if (l->shadows || clipped) {
+        } else if (l->shadows || clipped || f->reference) {
             if (occluded(f, sf->p, sf->ng, dir, dist))
                 continue;
         }
@@ -855,16 +857,33 @@ static sol_status render_frame(frame *f, double jx, double jy, unsigned ao_frame
     } else if (f->culled) {
         memset(f->culled, 0, (size_t)s->object_count);
     }
-    /* depth and normals at the pixel centres (jittered in the engine path) */
+    /* the per-pixel effects run inside the passes below; they are counted once per pass */
+    static const sol_effect per_pixel[] = {SOL_FX_GBUFFER_NORMALS, SOL_FX_LIGHT_BUFFER, SOL_FX_RANGE_SCALING,
+                                           SOL_FX_CLIP_VOLUMES};
+    for (size_t k = 0; k < sizeof per_pixel / sizeof per_pixel[0]; ++k)
+        if (!f->reference && fx(f, per_pixel[k]))
+            f->stats->effect_runs[per_pixel[k]]++;
+    /* depth and normals at the pixel centres (jittered in the engine path). With one sample per
+     * pixel and no obscurance (which needs the whole depth buffer first) the same pass shades. */
+    const int ss = f->reference ? s->pipeline.reference_supersample : 1;
+    const int one_pass = ss == 1 && !s->pipeline.ssao;
 #pragma omp parallel for schedule(dynamic, 4)
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             surface sf;
             size_t i = (size_t)y * W + x;
+            if (one_pass)
+                fb->hdr[3 * i] = fb->hdr[3 * i + 1] = fb->hdr[3 * i + 2] = 0;
             if (gbuffer_sample(f, x + 0.5 + jx, y + 0.5 + jy, &sf)) {
                 fb->depth[i] = (float)sf.depth;
                 for (int c = 0; c < 3; ++c)
                     fb->normals[3 * i + c] = (float)sf.n[c];
+                if (one_pass) {
+                    double rgb[3];
+                    shade(f, &sf, 1.0, rgb);
+                    for (int c = 0; c < 3; ++c)
+                        fb->hdr[3 * i + c] = (float)rgb[c];
+                }
             } else {
                 fb->depth[i] = (float)s->camera.zfar;
                 fb->normals[3 * i] = fb->normals[3 * i + 1] = fb->normals[3 * i + 2] = 0;
@@ -903,14 +922,9 @@ static sol_status render_frame(frame *f, double jx, double jy, unsigned ao_frame
         for (size_t i = 0; i < n; ++i) /* obscurance 0.5 on a flat floor: visibility 2 (1 - vo) */
             fb->ao[i] = fb->depth[i] >= (float)s->camera.zfar ? 1.0f : fminf(1.0f, 2.0f * (1.0f - fb->ao[i]));
     }
-    /* the per-pixel effects run inside the passes below; they are counted once per pass */
-    static const sol_effect per_pixel[] = {SOL_FX_GBUFFER_NORMALS, SOL_FX_LIGHT_BUFFER, SOL_FX_RANGE_SCALING,
-                                           SOL_FX_CLIP_VOLUMES};
-    for (size_t k = 0; k < sizeof per_pixel / sizeof per_pixel[0]; ++k)
-        if (!f->reference && fx(f, per_pixel[k]))
-            f->stats->effect_runs[per_pixel[k]]++;
+    if (one_pass)
+        return SOL_OK;
     /* lighting and composition */
-    const int ss = f->reference ? s->pipeline.reference_supersample : 1;
 #pragma omp parallel for schedule(dynamic, 2)
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
@@ -1090,6 +1104,7 @@ sol_status sol_scene_render(const sol_scene *scene, const sol_scene_plan *plan, 
     memset(&st_local, 0, sizeof st_local);
     f.stats = &st_local;
     double t0 = omp_get_wtime();
+    clock_t c0 = clock();
     const size_t n = (size_t)f.width * f.height;
     sol_render_result r;
     memset(&r, 0, sizeof r);
@@ -1158,6 +1173,7 @@ sol_status sol_scene_render(const sol_scene *scene, const sol_scene_plan *plan, 
         return st;
     }
     st_local.seconds = omp_get_wtime() - t1;
+    st_local.cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
     *out = r;
     if (stats)
         *stats = st_local;
