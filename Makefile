@@ -23,7 +23,7 @@ LDFLAGS ?=
 # NVIDIA Texture Tools are peers for side-by-side comparison; colobot-common-textures ships real
 # game textures for the colour-texture experiments T1-T7).
 TEST_PKGS := gcc g++ make pkg-config libcriterion-dev libceres-dev libgoogle-glog-dev libeigen3-dev \
-             libopenexr-dev libpng-dev libcjson-dev
+             libopenexr-dev libpng-dev libcjson-dev libassimp-dev assimp-testmodels
 REPRODUCE_PKGS := $(TEST_PKGS) gnuplot-nox libsquish-dev libnvtt-dev colobot-common-textures texlive-latex-base \
                   texlive-latex-recommended texlive-fonts-recommended latexmk
 
@@ -41,7 +41,7 @@ CPPFLAGS_ALL = $(addprefix -Isrc/,$(MODULES)) -Isrc/cli -Iexperiments/common $(E
                -I/usr/include/eigen3 -MMD -MP
 WARNINGS := -Wall -Wextra -Wshadow -Wpointer-arith -Wstrict-prototypes -Wmissing-prototypes
 C_STD := -std=c11 -D_DEFAULT_SOURCE -fopenmp  # _DEFAULT_SOURCE: M_PI, POSIX calls
-LDLIBS_ALL := -lpng -lOpenEXRCore-3_1 -lcjson -lceres -lglog -lgomp -lm
+LDLIBS_ALL := -lpng -lOpenEXRCore-3_1 -lcjson -lassimp -lceres -lglog -lgomp -lm
 
 LIB_C := $(foreach m,$(MODULES),$(wildcard src/$(m)/*.c))
 LIB_CXX := $(foreach m,$(MODULES),$(wildcard src/$(m)/*.cpp))

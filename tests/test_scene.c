@@ -321,3 +321,67 @@ Test(scene, shipped_scenes_plan_and_small_render_match_their_expected_figures, .
         sol_scene_free(&s);
     }
 }
+
+/* ---------------- models through assimp (assimp-testmodels) ---------------- */
+
+#define GLTF2 "/usr/share/assimp/models/glTF2/"
+
+Test(scene, real_gltf_models_load_plan_and_render_unmodified, .timeout = 300)
+{
+    static const char *const models[] = {GLTF2 "ClearCoat-glTF/ClearCoatTest.gltf", GLTF2 "cameras/Cameras.gltf",
+                                         GLTF2 "BoxTextured-glTF/BoxTextured.gltf"};
+    for (size_t i = 0; i < sizeof models / sizeof models[0]; ++i) {
+        sol_scene s;
+        sol_scene_error e;
+        cr_assert_eq(sol_scene_load(models[i], &s, &e), SOL_OK, "%s: %s", models[i], e.message);
+        cr_expect_eq(s.object_count, 1);
+        cr_expect_eq(s.objects[0].kind, SOL_GEOM_MESH);
+        sol_scene_plan p;
+        cr_assert_eq(sol_scene_plan_build(&s, &p), SOL_OK);
+        cr_expect_eq(p.run[SOL_FX_GBUFFER_NORMALS], 1);
+        sol_render_options o = {48, 27, 0, 0};
+        sol_render_result r;
+        cr_assert_eq(sol_scene_render(&s, &p, &o, &r, NULL), SOL_OK, "%s", models[i]);
+        size_t covered = 0;
+        for (size_t k = 0; k < (size_t)48 * 27; ++k)
+            covered += r.normals.data[3 * k] != 0 || r.normals.data[3 * k + 1] != 0 || r.normals.data[3 * k + 2] != 0;
+        cr_expect_gt(covered, 0, "%s: the model covers no pixel", models[i]);
+        sol_render_result_free(&r);
+        sol_scene_free(&s);
+    }
+}
+
+Test(scene, broken_gltf_models_are_rejected_with_a_clear_error)
+{
+    static const struct {
+        const char *path;
+        sol_status status;
+        const char *says;
+    } broken[] = {
+        {GLTF2 "IndexOutOfRange/IndexOutOfRange.gltf", SOL_ERR_FORMAT, "out-of-range"},
+        {GLTF2 "IndexOutOfRange/AllIndicesOutOfRange.gltf", SOL_ERR_FORMAT, "no faces"},
+        {GLTF2 "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", SOL_ERR_NONFINITE, "not finite"},
+        {GLTF2 "MissingBin/BoxTextured.gltf", SOL_ERR_FORMAT, "BoxTextured0.bin"},
+        {GLTF2 "SchemaFailures/sceneWrongType.gltf", SOL_ERR_FORMAT, "scene"},
+        {"/nonexistent/model.gltf", SOL_ERR_IO, "cannot open"},
+    };
+    for (size_t i = 0; i < sizeof broken / sizeof broken[0]; ++i) {
+        sol_scene s;
+        memset(&s, 0x5a, sizeof s);
+        sol_scene_error e;
+        cr_expect_eq(sol_scene_load(broken[i].path, &s, &e), broken[i].status, "%s: %s", broken[i].path, e.message);
+        cr_expect(strstr(e.message, broken[i].says) != NULL, "%s: message '%s'", broken[i].path, e.message);
+        cr_expect_str_eq(e.file, broken[i].path);
+        cr_expect_eq(((unsigned char *)&s)[0], 0x5a);
+    }
+    /* a scene file naming a broken mesh names the field */
+    FILE *f = fopen("/tmp/sol_test_mesh_scene.json", "w");
+    cr_assert(f);
+    fputs("{\"materials\":[{}],\"objects\":[{\"type\":\"mesh\",\"file\":\"" GLTF2 "MissingBin/BoxTextured.gltf\"}]}", f);
+    fclose(f);
+    sol_scene s;
+    sol_scene_error e;
+    cr_expect_eq(sol_scene_load("/tmp/sol_test_mesh_scene.json", &s, &e), SOL_ERR_FORMAT);
+    cr_expect_str_eq(e.pointer, "/objects/0/file");
+    remove("/tmp/sol_test_mesh_scene.json");
+}

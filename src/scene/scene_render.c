@@ -25,6 +25,7 @@
 #include "sol_lighting.h"
 #include "sol_normalmaps.h"
 #include "sol_normals.h"
+#include "scene_internal.h"
 #include "sol_scene.h"
 #include "sol_screen.h"
 #include "sol_textures.h"
@@ -102,6 +103,7 @@ typedef struct hit {
     double t;
     int object;
     double p[3], n[3]; /* position, geometric normal (facing the ray) */
+    double color[3];   /* meshes: the triangle's base colour; else -1 */
 } hit;
 
 /* Height field y = base + A (1 + sin(2 pi f x) sin(2 pi f z)) / 2 in local x, z. */
@@ -112,7 +114,7 @@ static double hf_height(const sol_scene_object *o, double x, double z)
 }
 
 static int intersect(const sol_scene_object *o, const double org[3], const double dir[3], double tmax, double *t_out,
-                     double n[3])
+                     double n[3], double color[3])
 {
     switch (o->kind) {
     case SOL_GEOM_PLANE: {
@@ -224,8 +226,8 @@ static int intersect(const sol_scene_object *o, const double org[3], const doubl
         }
         return 0;
     }
-    case SOL_GEOM_MESH:
-        return 0; /* meshes are not drawn by this renderer */
+    case SOL_GEOM_MESH: /* triangles through the mesh's BVH; the triangle's base colour */
+        return o->mesh && sol_mesh_intersect(o->mesh, org, dir, tmax, t_out, n, color);
     }
     return 0;
 }
@@ -237,14 +239,15 @@ static int trace(const frame *f, const double org[3], const double dir[3], doubl
     int found = 0;
     double best = tmax, n[3];
     for (int i = 0; i < s->object_count; ++i) {
-        double t;
+        double t, color[3] = {-1, -1, -1};
         if (skip_culled && f->culled && f->culled[i])
             continue;
-        if (intersect(&s->objects[i], org, dir, best, &t, n)) {
+        if (intersect(&s->objects[i], org, dir, best, &t, n, color)) {
             best = t;
             found = 1;
             h->object = i;
             memcpy(h->n, n, sizeof n);
+            memcpy(h->color, color, sizeof color);
         }
     }
     if (!found)
@@ -593,6 +596,8 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
             memcpy(sf->n, h.n, sizeof h.n);
     }
     memcpy(sf->albedo, m->albedo, sizeof sf->albedo);
+    if (h.color[0] >= 0) /* a mesh triangle's base colour */
+        memcpy(sf->albedo, h.color, sizeof sf->albedo);
     if (pm->albedo.data) {
         double a[3];
         tex_sample(&pm->albedo, uv[0] * pm->albedo_scale, uv[1] * pm->albedo_scale, a);
