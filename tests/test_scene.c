@@ -2,10 +2,12 @@
  * (sol_scene_plan) and the two-path renderer. */
 #include <criterion/criterion.h>
 #include <math.h>
-#include <stdlib.h>
-#include <stdio.h>
 #include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 
 #include "sol_scene.h"
 
@@ -384,4 +386,27 @@ Test(scene, broken_gltf_models_are_rejected_with_a_clear_error)
     cr_expect_eq(sol_scene_load("/tmp/sol_test_mesh_scene.json", &s, &e), SOL_ERR_FORMAT);
     cr_expect_str_eq(e.pointer, "/objects/0/file");
     remove("/tmp/sol_test_mesh_scene.json");
+}
+
+/* ---------------- the sol program ---------------- */
+
+Test(scene, cli_exit_status_and_no_output_on_bad_input)
+{
+    FILE *f = fopen("/tmp/sol_cli_bad.json", "w");
+    cr_assert(f);
+    fputs("{\"materials\":[{\"gloss\":-1}]}", f);
+    fclose(f);
+    (void)!system("rm -rf /tmp/sol_cli_out");
+    int rc = system("build/sol render /tmp/sol_cli_bad.json --out /tmp/sol_cli_out 2>/dev/null");
+    cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2, "render of a bad scene: status %d", rc);
+    struct stat st;
+    cr_expect_neq(stat("/tmp/sol_cli_out", &st), 0, "output written for a bad scene");
+    rc = system("build/sol plan /tmp/sol_cli_bad.json 2>&1 | grep -q '/materials/0/gloss'");
+    cr_expect_eq(rc, 0, "the message names the field");
+    rc = system("build/sol plan experiments/scenes/wall_bleed.json --json | grep -q "
+                "'\"clip-volumes\", \"claims\": \"D13\", \"run\": true'");
+    cr_expect_eq(rc, 0, "plan --json");
+    rc = system("build/sol plan 2>/dev/null");
+    cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2);
+    remove("/tmp/sol_cli_bad.json");
 }

@@ -477,6 +477,7 @@ typedef struct surface {
     double lobe_scale;        /* specular scale from the lobe extraction (1 otherwise) */
     int exact_ward;           /* shade with the exact Ward BRDF (reference of sg-lobes) */
     double ax, ay;            /* Ward roughness pair */
+    int quad_base;            /* first R2 point of this sample's quadrature (reference supersampling) */
     double t_axis[3], b_axis[3];
     double depth;             /* view z */
 } surface;
@@ -668,15 +669,19 @@ static void light_loop(const frame *f, const surface *sf, const double v[3], dou
                 sol_sg g = {{l->lobes[j].axis[0], l->lobes[j].axis[1], l->lobes[j].axis[2]}, l->lobes[j].sharpness, 1};
                 double e = l->intensity * lobe_irradiance(f, li, j, g.axis, sf->n);
                 double sp;
-                if (sf->exact_ward) { /* quadrature: 128 R2 directions over the sphere */
+                if (sf->exact_ward) {
+                    /* quadrature over R2 directions on the sphere: 128 per pixel in the engine
+                     * path; in the supersampled reference 32 per sample, each sample taking the
+                     * next 32 points of the sequence (288 per pixel at 3x3) */
+                    const int count = f->reference ? 32 : 128;
                     sp = 0;
-                    for (int k = 0; k < 128; ++k) {
+                    for (int k = 0; k < count; ++k) {
                         double u, w, d[3];
-                        sol_r2_point((uint64_t)k, &u, &w);
+                        sol_r2_point((uint64_t)(sf->quad_base + k), &u, &w);
                         sol_sphere_uniform(u, w, d);
                         sp += sol_sg_eval(&g, d) * specular(sf, v, d);
                     }
-                    sp *= l->intensity * 4 * M_PI / 128;
+                    sp *= l->intensity * 4 * M_PI / count;
                 } else { /* the Phong lobe as an SG about the reflection vector, times n.r */
                     double r[3], vn = sol_dot3(v, sf->n);
                     for (int i = 0; i < 3; ++i)
@@ -940,8 +945,10 @@ static sol_status render_frame(frame *f, double jx, double jy, unsigned ao_frame
                     surface sf;
                     double px = ss == 1 ? x + 0.5 + jx : x + (sx + 0.5) / ss, py = ss == 1 ? y + 0.5 + jy : y + (sy + 0.5) / ss;
                     double rgb[3] = {0, 0, 0};
-                    if (gbuffer_sample(f, px, py, &sf))
+                    if (gbuffer_sample(f, px, py, &sf)) {
+                        sf.quad_base = 32 * (sy * ss + sx);
                         shade(f, &sf, fb->ao[i], rgb);
+                    }
                     for (int c = 0; c < 3; ++c)
                         sum[c] += rgb[c];
                 }
