@@ -26,7 +26,7 @@ LDFLAGS ?=
 # NVIDIA Texture Tools are peers for side-by-side comparison; colobot-common-textures ships real
 # game textures for the colour-texture experiments T1-T7).
 TEST_PKGS := gcc g++ make pkg-config libcriterion-dev libceres-dev libgoogle-glog-dev libeigen3-dev \
-             libopenexr-dev libpng-dev clang libclang-rt-14-dev libomp-14-dev valgrind libcjson-dev
+             libopenexr-dev libpng-dev clang libclang-rt-14-dev libomp-14-dev valgrind libcjson-dev libassimp-dev assimp-testmodels
 REPRODUCE_PKGS := $(TEST_PKGS) gnuplot-nox libsquish-dev libnvtt-dev colobot-common-textures texlive-latex-base \
                   texlive-latex-recommended texlive-fonts-recommended latexmk
 
@@ -60,7 +60,8 @@ EXR_LIBS = $(shell pkg-config --libs-only-L OpenEXR 2>/dev/null) \
 PNG_LIBS = $(shell pkg-config --libs libpng 2>/dev/null)
 GLOG_LIBS = $(shell pkg-config --libs libglog 2>/dev/null)
 CJSON_LIBS = $(shell pkg-config --libs libcjson 2>/dev/null)
-LDLIBS_ALL = $(PNG_LIBS) $(EXR_LIBS) $(CJSON_LIBS) -lceres $(GLOG_LIBS) -lgomp -lm
+ASSIMP_LIBS = $(shell pkg-config --libs assimp 2>/dev/null)
+LDLIBS_ALL = $(PNG_LIBS) $(EXR_LIBS) $(CJSON_LIBS) $(ASSIMP_LIBS) -lceres $(GLOG_LIBS) -lgomp -lm
 
 LIB_C := $(foreach m,$(MODULES),$(wildcard src/$(m)/*.c))
 LIB_CXX := $(foreach m,$(MODULES),$(wildcard src/$(m)/*.cpp))

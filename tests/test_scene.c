@@ -2,9 +2,12 @@
  * (sol_scene_plan) and the two-path renderer. */
 #include <criterion/criterion.h>
 #include <math.h>
-#include <stdio.h>
 #include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 
 #include "sol_scene.h"
 
@@ -259,6 +262,132 @@ Test(scene, render_is_deterministic_for_any_thread_count)
     sol_scene_free(&s);
 }
 
+/* ---------------- the shipped scenes (experiments/scenes/) ---------------- */
+
+/* Per shipped scene: the effects its plan runs, and the engine-vs-reference error of a 64x36
+ * render (display-code RMS, CIEDE2000 mean) recorded when the scene was added. A change of the
+ * renderer or of a technique that moves these figures beyond the tolerance must be looked at. */
+static const struct shipped {
+    const char *name;
+    const char *runs; /* the effects that run, space-separated, in effect order */
+    double rms, de;
+} shipped[] = {
+#include "scene_expected.inc"
+};
+
+static void effects_run(const sol_scene_plan *p, char *out, size_t size)
+{
+    out[0] = 0;
+    for (int e = 0; e < SOL_FX_COUNT; ++e)
+        if (p->run[e]) {
+            if (*out)
+                strncat(out, " ", size - strlen(out) - 1);
+            strncat(out, sol_effect_get((sol_effect)e)->name, size - strlen(out) - 1);
+        }
+}
+
+Test(scene, shipped_scenes_plan_and_small_render_match_their_expected_figures, .timeout = 600)
+{
+    int print = getenv("SOL_SCENE_EXPECT_PRINT") != NULL;
+    for (size_t i = 0; i < sizeof shipped / sizeof shipped[0]; ++i) {
+        char path[256], runs[512];
+        snprintf(path, sizeof path, "experiments/scenes/%s.json", shipped[i].name);
+        sol_scene s;
+        sol_scene_error e;
+        cr_assert_eq(sol_scene_load(path, &s, &e), SOL_OK, "%s: %s %s", path, e.pointer, e.message);
+        sol_scene_plan p;
+        cr_assert_eq(sol_scene_plan_build(&s, &p), SOL_OK);
+        effects_run(&p, runs, sizeof runs);
+        sol_render_options o = {64, 36, 0, 0};
+        sol_render_result eng, ref;
+        sol_render_stats st;
+        cr_assert_eq(sol_scene_render(&s, &p, &o, &eng, &st), SOL_OK, "%s", path);
+        for (int k = 0; k < SOL_FX_COUNT; ++k)
+            cr_expect_eq(st.effect_runs[k] > 0, p.run[k] != 0, "%s: %s ran %llu times", shipped[i].name,
+                         sol_effect_get((sol_effect)k)->name, (unsigned long long)st.effect_runs[k]);
+        o.reference = 1;
+        cr_assert_eq(sol_scene_render(&s, &p, &o, &ref, NULL), SOL_OK, "%s", path);
+        sol_render_error err;
+        cr_assert_eq(sol_render_compare(&eng, &ref, &err), SOL_OK);
+        if (print)
+            printf("    {\"%s\", \"%s\", %.3f, %.3f},\n", shipped[i].name, runs, err.rms_code, err.de2000_mean);
+        else {
+            cr_expect_str_eq(runs, shipped[i].runs, "%s: plan changed", shipped[i].name);
+            cr_expect(fabs(err.rms_code - shipped[i].rms) <= 0.15 * shipped[i].rms + 0.3, "%s: RMS %.3f, expected %.3f",
+                      shipped[i].name, err.rms_code, shipped[i].rms);
+            cr_expect(fabs(err.de2000_mean - shipped[i].de) <= 0.15 * shipped[i].de + 0.05,
+                      "%s: dE %.3f, expected %.3f", shipped[i].name, err.de2000_mean, shipped[i].de);
+        }
+        sol_render_result_free(&eng);
+        sol_render_result_free(&ref);
+        sol_scene_free(&s);
+    }
+}
+
+/* ---------------- models through assimp (assimp-testmodels) ---------------- */
+
+#define GLTF2 "/usr/share/assimp/models/glTF2/"
+
+Test(scene, real_gltf_models_load_plan_and_render_unmodified, .timeout = 300)
+{
+    static const char *const models[] = {GLTF2 "ClearCoat-glTF/ClearCoatTest.gltf", GLTF2 "cameras/Cameras.gltf",
+                                         GLTF2 "BoxTextured-glTF/BoxTextured.gltf"};
+    for (size_t i = 0; i < sizeof models / sizeof models[0]; ++i) {
+        sol_scene s;
+        sol_scene_error e;
+        cr_assert_eq(sol_scene_load(models[i], &s, &e), SOL_OK, "%s: %s", models[i], e.message);
+        cr_expect_eq(s.object_count, 1);
+        cr_expect_eq(s.objects[0].kind, SOL_GEOM_MESH);
+        sol_scene_plan p;
+        cr_assert_eq(sol_scene_plan_build(&s, &p), SOL_OK);
+        cr_expect_eq(p.run[SOL_FX_GBUFFER_NORMALS], 1);
+        sol_render_options o = {48, 27, 0, 0};
+        sol_render_result r;
+        cr_assert_eq(sol_scene_render(&s, &p, &o, &r, NULL), SOL_OK, "%s", models[i]);
+        size_t covered = 0;
+        for (size_t k = 0; k < (size_t)48 * 27; ++k)
+            covered += r.normals.data[3 * k] != 0 || r.normals.data[3 * k + 1] != 0 || r.normals.data[3 * k + 2] != 0;
+        cr_expect_gt(covered, 0, "%s: the model covers no pixel", models[i]);
+        sol_render_result_free(&r);
+        sol_scene_free(&s);
+    }
+}
+
+Test(scene, broken_gltf_models_are_rejected_with_a_clear_error)
+{
+    static const struct {
+        const char *path;
+        sol_status status;
+        const char *says;
+    } broken[] = {
+        {GLTF2 "IndexOutOfRange/IndexOutOfRange.gltf", SOL_ERR_FORMAT, "out-of-range"},
+        {GLTF2 "IndexOutOfRange/AllIndicesOutOfRange.gltf", SOL_ERR_FORMAT, "no faces"},
+        {GLTF2 "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", SOL_ERR_NONFINITE, "not finite"},
+        {GLTF2 "MissingBin/BoxTextured.gltf", SOL_ERR_FORMAT, "BoxTextured0.bin"},
+        {GLTF2 "SchemaFailures/sceneWrongType.gltf", SOL_ERR_FORMAT, "scene"},
+        {"/nonexistent/model.gltf", SOL_ERR_IO, "cannot open"},
+    };
+    for (size_t i = 0; i < sizeof broken / sizeof broken[0]; ++i) {
+        sol_scene s;
+        memset(&s, 0x5a, sizeof s);
+        sol_scene_error e;
+        cr_expect_eq(sol_scene_load(broken[i].path, &s, &e), broken[i].status, "%s: %s", broken[i].path, e.message);
+        cr_expect(strstr(e.message, broken[i].says) != NULL, "%s: message '%s'", broken[i].path, e.message);
+        cr_expect_str_eq(e.file, broken[i].path);
+        cr_expect_eq(((unsigned char *)&s)[0], 0x5a);
+    }
+    /* a scene file naming a broken mesh names the field */
+    FILE *f = fopen("/tmp/sol_test_mesh_scene.json", "w");
+    cr_assert(f);
+    fputs("{\"materials\":[{}],\"objects\":[{\"type\":\"mesh\",\"file\":\"" GLTF2 "MissingBin/BoxTextured.gltf\"}]}", f);
+    fclose(f);
+    sol_scene s;
+    sol_scene_error e;
+    cr_expect_eq(sol_scene_load("/tmp/sol_test_mesh_scene.json", &s, &e), SOL_ERR_FORMAT);
+    cr_expect_str_eq(e.pointer, "/objects/0/file");
+    remove("/tmp/sol_test_mesh_scene.json");
+}
+
 /* ---------------- the sol program ---------------- */
 
 Test(scene, cli_exit_status_and_no_output_on_bad_input)
@@ -274,7 +403,8 @@ Test(scene, cli_exit_status_and_no_output_on_bad_input)
     cr_expect_neq(stat("/tmp/sol_cli_out", &st), 0, "output written for a bad scene");
     rc = system("build/sol plan /tmp/sol_cli_bad.json 2>&1 | grep -q '/materials/0/gloss'");
     cr_expect_eq(rc, 0, "the message names the field");
-    rc = system("build/sol plan experiments/scenes/wall_bleed.json --json | grep -q '\"clip-volumes\", \"claims\": \"D13\", \"run\": true'");
+    rc = system("build/sol plan experiments/scenes/wall_bleed.json --json | grep -q "
+                "'\"clip-volumes\", \"claims\": \"D13\", \"run\": true'");
     cr_expect_eq(rc, 0, "plan --json");
     rc = system("build/sol plan 2>/dev/null");
     cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2);

@@ -75,9 +75,6 @@ static void print_plan(FILE *to, const sol_scene *scene, const sol_scene_plan *p
             const sol_effect_info *info = sol_effect_get((sol_effect)e);
             fprintf(to, "  %-16s %-14s %s\n", info->name, info->claims, plan->reason[e]);
         }
-    for (int i = 0; i < scene->object_count; ++i)
-        if (scene->objects[i].kind == SOL_GEOM_MESH)
-            fprintf(to, "note: /objects/%d (mesh %s) is not drawn by this build\n", i, scene->objects[i].file);
 }
 
 int cli_plan_main(int argc, char **argv)
@@ -88,13 +85,13 @@ int cli_plan_main(int argc, char **argv)
         if (!strcmp(argv[i], "--json"))
             json = 1;
         else if (argv[i][0] == '-' || path) {
-            fprintf(stderr, "usage: sol plan SCENE.json [--json]\n");
+            fprintf(stderr, "usage: sol plan SCENE.json|MODEL.gltf [--json]\n");
             return CLI_EXIT_USAGE;
         } else
             path = argv[i];
     }
     if (!path) {
-        fprintf(stderr, "usage: sol plan SCENE.json [--json]\n");
+        fprintf(stderr, "usage: sol plan SCENE.json|MODEL.gltf [--json]\n");
         return CLI_EXIT_USAGE;
     }
     sol_scene scene;
@@ -168,7 +165,7 @@ static sol_status write_difference(outputs *o, const char *dir, const sol_render
 
 static void usage_render(void)
 {
-    fprintf(stderr, "usage: sol render SCENE.json --out DIR [--size WxH] [--no-attribution] [--json]\n"
+    fprintf(stderr, "usage: sol render SCENE.json|MODEL.gltf --out DIR [--size WxH] [--no-attribution] [--json]\n"
                     "writes DIR/{reference,engine}.{exr,png}, difference.png, attribution.tsv, plan.txt\n");
 }
 

@@ -14,6 +14,7 @@
 #include "sol_hdr.h"
 #include "sol_normalmaps.h"
 #include "sol_normals.h"
+#include "scene_internal.h"
 #include "sol_scene.h"
 
 typedef struct ctx {
@@ -423,9 +424,21 @@ static sol_status parse_object(ctx *c, const cJSON *v, const char *ptr, const so
         TRY(get_num(c, v, "frequency", ptr, 1, 0, 1e6, 1, &o->radius));
         break;
     }
-    case SOL_GEOM_MESH:
+    case SOL_GEOM_MESH: {
         TRY(get_file(c, v, "file", ptr, o->file));
+        PTR(p, ptr, "file");
+        char msg[256];
+        sol_mesh *m = calloc(1, sizeof *m);
+        if (!m)
+            return fail(c, SOL_ERR_NO_MEMORY, p, "out of memory");
+        sol_status st = sol_mesh_load(o->file, m, msg, sizeof msg);
+        if (st != SOL_OK) {
+            free(m);
+            return fail(c, st, p, "%s: %s", o->file, msg);
+        }
+        o->mesh = m;
         break;
+    }
     }
     return SOL_OK;
 }
@@ -752,6 +765,11 @@ void sol_scene_free(sol_scene *scene)
         sol_image_free(&scene->lights[i].env_image);
         free(scene->lights[i].lobes);
     }
+    for (int i = 0; i < scene->object_count; ++i)
+        if (scene->objects[i].mesh) {
+            sol_mesh_free(scene->objects[i].mesh);
+            free(scene->objects[i].mesh);
+        }
     free(scene->camera.frames);
     free(scene->materials);
     free(scene->objects);
@@ -812,11 +830,123 @@ sol_status sol_scene_parse(const char *text, size_t len, const char *path, sol_s
     return SOL_OK;
 }
 
+sol_status sol_scene_from_model(const char *path, sol_scene *out, sol_scene_error *err)
+{
+    ctx c = {.file = path ? path : "<null>", .err = err};
+    if (!path || !out)
+        return fail(&c, SOL_ERR_NULL_ARG, "", "no model path");
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return fail(&c, SOL_ERR_IO, "", "cannot open: %s", strerror(errno));
+    fclose(f);
+    static const char empty_scene[] = "{}";
+    sol_scene s;
+    sol_status st = sol_scene_parse(empty_scene, sizeof empty_scene - 1, path, &s, NULL);
+    if (st != SOL_OK)
+        return fail(&c, st, "", "out of memory");
+    s.objects = calloc(1, sizeof *s.objects);
+    s.materials = calloc(1, sizeof *s.materials);
+    s.lights = calloc(64 + 2, sizeof *s.lights);
+    sol_mesh *m = calloc(1, sizeof *m);
+    if (!s.objects || !s.materials || !s.lights || !m) {
+        free(m);
+        sol_scene_free(&s);
+        return fail(&c, SOL_ERR_NO_MEMORY, "", "out of memory");
+    }
+    char msg[256];
+    st = sol_mesh_load(path, m, msg, sizeof msg);
+    if (st != SOL_OK) {
+        free(m);
+        sol_scene_free(&s);
+        return fail(&c, st, "", "%s", msg);
+    }
+    s.object_count = 1;
+    s.objects[0].kind = SOL_GEOM_MESH;
+    s.objects[0].mesh = m;
+    snprintf(s.objects[0].file, sizeof s.objects[0].file, "%s", path);
+    s.material_count = 1;
+    sol_scene_material *mat = &s.materials[0];
+    snprintf(mat->name, sizeof mat->name, "model");
+    mat->albedo[0] = mat->albedo[1] = mat->albedo[2] = 0.8;
+    mat->specular = 0.04;
+    mat->gloss = 0.5;
+    mat->tangent[0] = 1;
+    /* camera: the model's first camera, else one framing its bounds */
+    sol_scene_camera *cam = &s.camera;
+    double centre[3], radius = 0;
+    for (int i = 0; i < 3; ++i) {
+        centre[i] = 0.5 * (m->bmin[i] + m->bmax[i]);
+        radius += 0.25 * (m->bmax[i] - m->bmin[i]) * (m->bmax[i] - m->bmin[i]);
+    }
+    radius = sqrt(radius) > 1e-6 ? sqrt(radius) : 1;
+    if (m->has_camera) {
+        memcpy(cam->position, m->cam_pos, sizeof cam->position);
+        memcpy(cam->look_at, m->cam_look, sizeof cam->look_at);
+        memcpy(cam->up, m->cam_up, sizeof cam->up);
+        cam->fov_deg = m->cam_fov_deg;
+    } else {
+        static const double dir[3] = {0.45, 0.5, 1.0};
+        double len = sqrt(sol_dot3(dir, dir));
+        for (int i = 0; i < 3; ++i) {
+            cam->position[i] = centre[i] + dir[i] / len * radius / sin(0.5 * cam->fov_deg * M_PI / 180) * 1.1;
+            cam->look_at[i] = centre[i];
+        }
+    }
+    cam->znear = radius * 1e-3;
+    cam->zfar = radius * 1e3 + sqrt(sol_dot3(cam->position, cam->position)) * 10;
+    /* lights: the model's punctual lights, else a sun; always a sky lobe */
+    for (int i = 0; i < m->light_count; ++i) {
+        sol_scene_light *l = &s.lights[s.light_count++];
+        l->kind = m->lights[i].kind == 0 ? SOL_LIGHT_SUN : m->lights[i].kind == 2 ? SOL_LIGHT_SPOT : SOL_LIGHT_POINT;
+        memcpy(l->position, m->lights[i].position, sizeof l->position);
+        memcpy(l->direction, m->lights[i].direction, sizeof l->direction);
+        memcpy(l->color, m->lights[i].color, sizeof l->color);
+        double len = sqrt(sol_dot3(l->direction, l->direction));
+        if (!(len > 0))
+            l->direction[1] = -1, len = 1;
+        for (int k = 0; k < 3; ++k)
+            l->direction[k] /= len;
+        l->intensity = 1;
+        l->radius = 10 * radius;
+        l->cone_deg = fmin(89, fmax(1, m->lights[i].cone_deg));
+        l->shadows = 1;
+        l->clip = -1;
+    }
+    if (m->light_count == 0) {
+        sol_scene_light *l = &s.lights[s.light_count++];
+        l->kind = SOL_LIGHT_SUN;
+        l->color[0] = l->color[1] = l->color[2] = 1;
+        l->intensity = 3;
+        double d[3] = {-0.4, -1, -0.6}, len = sqrt(sol_dot3(d, d));
+        for (int k = 0; k < 3; ++k)
+            l->direction[k] = d[k] / len;
+        l->shadows = 1;
+        l->clip = -1;
+    }
+    sol_scene_light *sky = &s.lights[s.light_count++];
+    sky->kind = SOL_LIGHT_ENV;
+    sky->intensity = 1;
+    sky->clip = -1;
+    sky->lobes = calloc(1, sizeof *sky->lobes);
+    if (!sky->lobes) {
+        sol_scene_free(&s);
+        return fail(&c, SOL_ERR_NO_MEMORY, "", "out of memory");
+    }
+    sky->lobe_count = 1;
+    sky->lobes[0].axis[1] = 1;
+    sky->lobes[0].sharpness = 1;
+    sky->lobes[0].amplitude[0] = 0.25, sky->lobes[0].amplitude[1] = 0.3, sky->lobes[0].amplitude[2] = 0.4;
+    *out = s;
+    return SOL_OK;
+}
+
 sol_status sol_scene_load(const char *path, sol_scene *out, sol_scene_error *err)
 {
     ctx c = {.file = path ? path : "<null>", .err = err};
     if (!path || !out)
         return fail(&c, SOL_ERR_NULL_ARG, "", "no scene path");
+    if (has_suffix(path, ".gltf") || has_suffix(path, ".glb") || has_suffix(path, ".obj"))
+        return sol_scene_from_model(path, out, err);
     FILE *f = fopen(path, "rb");
     if (!f)
         return fail(&c, SOL_ERR_IO, "", "cannot open: %s", strerror(errno));

@@ -67,7 +67,7 @@ static int used_material(const sol_scene *s, int (*pred)(const sol_scene_materia
         if (!pred(&s->materials[m]))
             continue;
         for (int o = 0; o < s->object_count; ++o)
-            if (s->objects[o].material == m && s->objects[o].kind != SOL_GEOM_MESH)
+            if (s->objects[o].material == m)
                 return m;
     }
     return -1;
@@ -91,7 +91,7 @@ sol_status sol_scene_plan_build(const sol_scene *s, sol_scene_plan *out)
     char ptr[128];
     int drawable = 0, boxes = 0;
     for (int o = 0; o < s->object_count; ++o) {
-        drawable += s->objects[o].kind != SOL_GEOM_MESH;
+        drawable += 1;
         boxes += s->objects[o].kind == SOL_GEOM_BOX;
     }
 

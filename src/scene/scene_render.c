@@ -18,12 +18,14 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "sol_brdf.h"
 #include "sol_hdr.h"
 #include "sol_lighting.h"
 #include "sol_normalmaps.h"
 #include "sol_normals.h"
+#include "scene_internal.h"
 #include "sol_scene.h"
 #include "sol_screen.h"
 #include "sol_textures.h"
@@ -101,6 +103,7 @@ typedef struct hit {
     double t;
     int object;
     double p[3], n[3]; /* position, geometric normal (facing the ray) */
+    double color[3];   /* meshes: the triangle's base colour; else -1 */
 } hit;
 
 /* Height field y = base + A (1 + sin(2 pi f x) sin(2 pi f z)) / 2 in local x, z. */
@@ -111,7 +114,7 @@ static double hf_height(const sol_scene_object *o, double x, double z)
 }
 
 static int intersect(const sol_scene_object *o, const double org[3], const double dir[3], double tmax, double *t_out,
-                     double n[3])
+                     double n[3], double color[3])
 {
     switch (o->kind) {
     case SOL_GEOM_PLANE: {
@@ -223,8 +226,8 @@ static int intersect(const sol_scene_object *o, const double org[3], const doubl
         }
         return 0;
     }
-    case SOL_GEOM_MESH:
-        return 0; /* meshes are not drawn by this renderer */
+    case SOL_GEOM_MESH: /* triangles through the mesh's BVH; the triangle's base colour */
+        return o->mesh && sol_mesh_intersect(o->mesh, org, dir, tmax, t_out, n, color);
     }
     return 0;
 }
@@ -236,14 +239,15 @@ static int trace(const frame *f, const double org[3], const double dir[3], doubl
     int found = 0;
     double best = tmax, n[3];
     for (int i = 0; i < s->object_count; ++i) {
-        double t;
+        double t, color[3] = {-1, -1, -1};
         if (skip_culled && f->culled && f->culled[i])
             continue;
-        if (intersect(&s->objects[i], org, dir, best, &t, n)) {
+        if (intersect(&s->objects[i], org, dir, best, &t, n, color)) {
             best = t;
             found = 1;
             h->object = i;
             memcpy(h->n, n, sizeof n);
+            memcpy(h->color, color, sizeof color);
         }
     }
     if (!found)
@@ -473,6 +477,7 @@ typedef struct surface {
     double lobe_scale;        /* specular scale from the lobe extraction (1 otherwise) */
     int exact_ward;           /* shade with the exact Ward BRDF (reference of sg-lobes) */
     double ax, ay;            /* Ward roughness pair */
+    int quad_base;            /* first R2 point of this sample's quadrature (reference supersampling) */
     double t_axis[3], b_axis[3];
     double depth;             /* view z */
 } surface;
@@ -592,6 +597,8 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
             memcpy(sf->n, h.n, sizeof h.n);
     }
     memcpy(sf->albedo, m->albedo, sizeof sf->albedo);
+    if (h.color[0] >= 0) /* a mesh triangle's base colour */
+        memcpy(sf->albedo, h.color, sizeof sf->albedo);
     if (pm->albedo.data) {
         double a[3];
         tex_sample(&pm->albedo, uv[0] * pm->albedo_scale, uv[1] * pm->albedo_scale, a);
@@ -662,15 +669,19 @@ static void light_loop(const frame *f, const surface *sf, const double v[3], dou
                 sol_sg g = {{l->lobes[j].axis[0], l->lobes[j].axis[1], l->lobes[j].axis[2]}, l->lobes[j].sharpness, 1};
                 double e = l->intensity * lobe_irradiance(f, li, j, g.axis, sf->n);
                 double sp;
-                if (sf->exact_ward) { /* quadrature: 128 R2 directions over the sphere */
+                if (sf->exact_ward) {
+                    /* quadrature over R2 directions on the sphere: 128 per pixel in the engine
+                     * path; in the supersampled reference 32 per sample, each sample taking the
+                     * next 32 points of the sequence (288 per pixel at 3x3) */
+                    const int count = f->reference ? 32 : 128;
                     sp = 0;
-                    for (int k = 0; k < 128; ++k) {
+                    for (int k = 0; k < count; ++k) {
                         double u, w, d[3];
-                        sol_r2_point((uint64_t)k, &u, &w);
+                        sol_r2_point((uint64_t)(sf->quad_base + k), &u, &w);
                         sol_sphere_uniform(u, w, d);
                         sp += sol_sg_eval(&g, d) * specular(sf, v, d);
                     }
-                    sp *= l->intensity * 4 * M_PI / 128;
+                    sp *= l->intensity * 4 * M_PI / count;
                 } else { /* the Phong lobe as an SG about the reflection vector, times n.r */
                     double r[3], vn = sol_dot3(v, sf->n);
                     for (int i = 0; i < 3; ++i)
@@ -688,13 +699,14 @@ static void light_loop(const frame *f, const surface *sf, const double v[3], dou
         double dir[3], e[3], dist;
         if (!light_at(l, sf->p, dir, e, &dist) || sol_dot3(sf->ng, dir) <= 0)
             continue;
-        /* visibility: shadowed lights trace; a clipped light uses its clip volume in the engine
-         * path (D13) and a shadow ray in the reference; other lights are unshadowed */
+        /* visibility: the reference traces a shadow ray for every light (exact lighting). The
+         * engine traces only lights with shadows; a clipped light uses its clip volume (D13, in
+         * its reference version a shadow ray); other lights are unshadowed deferred lights */
         int clipped = l->clip >= 0 && !l->shadows;
         if (clipped && !f->reference && fx(f, SOL_FX_CLIP_VOLUMES)) {
             if (!inside_clip(&s->clips[l->clip], sf->p))
                 continue;
-        } else if (l->shadows || clipped) {
+        } else if (l->shadows || clipped || f->reference) {
             if (occluded(f, sf->p, sf->ng, dir, dist))
                 continue;
         }
@@ -855,16 +867,33 @@ static sol_status render_frame(frame *f, double jx, double jy, unsigned ao_frame
     } else if (f->culled) {
         memset(f->culled, 0, (size_t)s->object_count);
     }
-    /* depth and normals at the pixel centres (jittered in the engine path) */
+    /* the per-pixel effects run inside the passes below; they are counted once per pass */
+    static const sol_effect per_pixel[] = {SOL_FX_GBUFFER_NORMALS, SOL_FX_LIGHT_BUFFER, SOL_FX_RANGE_SCALING,
+                                           SOL_FX_CLIP_VOLUMES};
+    for (size_t k = 0; k < sizeof per_pixel / sizeof per_pixel[0]; ++k)
+        if (!f->reference && fx(f, per_pixel[k]))
+            f->stats->effect_runs[per_pixel[k]]++;
+    /* depth and normals at the pixel centres (jittered in the engine path). With one sample per
+     * pixel and no obscurance (which needs the whole depth buffer first) the same pass shades. */
+    const int ss = f->reference ? s->pipeline.reference_supersample : 1;
+    const int one_pass = ss == 1 && !s->pipeline.ssao;
 #pragma omp parallel for schedule(dynamic, 4)
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             surface sf;
             size_t i = (size_t)y * W + x;
+            if (one_pass)
+                fb->hdr[3 * i] = fb->hdr[3 * i + 1] = fb->hdr[3 * i + 2] = 0;
             if (gbuffer_sample(f, x + 0.5 + jx, y + 0.5 + jy, &sf)) {
                 fb->depth[i] = (float)sf.depth;
                 for (int c = 0; c < 3; ++c)
                     fb->normals[3 * i + c] = (float)sf.n[c];
+                if (one_pass) {
+                    double rgb[3];
+                    shade(f, &sf, 1.0, rgb);
+                    for (int c = 0; c < 3; ++c)
+                        fb->hdr[3 * i + c] = (float)rgb[c];
+                }
             } else {
                 fb->depth[i] = (float)s->camera.zfar;
                 fb->normals[3 * i] = fb->normals[3 * i + 1] = fb->normals[3 * i + 2] = 0;
@@ -903,14 +932,9 @@ static sol_status render_frame(frame *f, double jx, double jy, unsigned ao_frame
         for (size_t i = 0; i < n; ++i) /* obscurance 0.5 on a flat floor: visibility 2 (1 - vo) */
             fb->ao[i] = fb->depth[i] >= (float)s->camera.zfar ? 1.0f : fminf(1.0f, 2.0f * (1.0f - fb->ao[i]));
     }
-    /* the per-pixel effects run inside the passes below; they are counted once per pass */
-    static const sol_effect per_pixel[] = {SOL_FX_GBUFFER_NORMALS, SOL_FX_LIGHT_BUFFER, SOL_FX_RANGE_SCALING,
-                                           SOL_FX_CLIP_VOLUMES};
-    for (size_t k = 0; k < sizeof per_pixel / sizeof per_pixel[0]; ++k)
-        if (!f->reference && fx(f, per_pixel[k]))
-            f->stats->effect_runs[per_pixel[k]]++;
+    if (one_pass)
+        return SOL_OK;
     /* lighting and composition */
-    const int ss = f->reference ? s->pipeline.reference_supersample : 1;
 #pragma omp parallel for schedule(dynamic, 2)
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
@@ -921,8 +945,10 @@ static sol_status render_frame(frame *f, double jx, double jy, unsigned ao_frame
                     surface sf;
                     double px = ss == 1 ? x + 0.5 + jx : x + (sx + 0.5) / ss, py = ss == 1 ? y + 0.5 + jy : y + (sy + 0.5) / ss;
                     double rgb[3] = {0, 0, 0};
-                    if (gbuffer_sample(f, px, py, &sf))
+                    if (gbuffer_sample(f, px, py, &sf)) {
+                        sf.quad_base = 32 * (sy * ss + sx);
                         shade(f, &sf, fb->ao[i], rgb);
+                    }
                     for (int c = 0; c < 3; ++c)
                         sum[c] += rgb[c];
                 }
@@ -1090,6 +1116,7 @@ sol_status sol_scene_render(const sol_scene *scene, const sol_scene_plan *plan, 
     memset(&st_local, 0, sizeof st_local);
     f.stats = &st_local;
     double t0 = omp_get_wtime();
+    clock_t c0 = clock();
     const size_t n = (size_t)f.width * f.height;
     sol_render_result r;
     memset(&r, 0, sizeof r);
@@ -1158,6 +1185,7 @@ sol_status sol_scene_render(const sol_scene *scene, const sol_scene_plan *plan, 
         return st;
     }
     st_local.seconds = omp_get_wtime() - t1;
+    st_local.cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
     *out = r;
     if (stats)
         *stats = st_local;

@@ -82,6 +82,8 @@ typedef struct sol_scene_material {
 typedef enum sol_geom_kind { SOL_GEOM_PLANE = 0, SOL_GEOM_BOX, SOL_GEOM_SPHERE, SOL_GEOM_HEIGHTFIELD,
                              SOL_GEOM_MESH } sol_geom_kind;
 
+struct sol_mesh;
+
 typedef struct sol_scene_object {
     sol_geom_kind kind;
     int material;      /* index into materials */
@@ -89,6 +91,7 @@ typedef struct sol_scene_object {
                           origin (min x, base y, min z), size (x extent, amplitude, z extent) */
     double radius;     /* sphere radius (> 0); plane half extent (0 = infinite); heightfield frequency */
     char file[SOL_SCENE_PATH_MAX]; /* mesh file (glTF 2.0 / OBJ) */
+    struct sol_mesh *mesh;         /* the imported triangles (owned by the scene) */
 } sol_scene_object;
 
 /* ---- lights ---- */
@@ -169,8 +172,15 @@ typedef struct sol_scene {
  * (a texture/mesh file missing), SOL_ERR_LIMIT (too many items, too large), SOL_ERR_NO_MEMORY.
  * `err` (may be NULL) names the file and field. Free with sol_scene_free. */
 sol_status sol_scene_parse(const char *text, size_t len, const char *path, sol_scene *out, sol_scene_error *err);
-/* Reads the file (at most SOL_SCENE_MAX_FILE_BYTES) and parses it. */
+/* Reads the file (at most SOL_SCENE_MAX_FILE_BYTES) and parses it. A path ending in .gltf, .glb or
+ * .obj is a model, not a scene file: it is imported through assimp (sol_scene_from_model). */
 sol_status sol_scene_load(const char *path, sol_scene *out, sol_scene_error *err);
+/* A scene around one model file imported through assimp's C API (glTF 2.0, OBJ): its meshes with
+ * node transforms, base colours, its first camera (else a camera framing the model's bounds), its
+ * punctual lights (KHR_lights_punctual; else a sun and a sky lobe), every pipeline setting at its
+ * default. A file assimp rejects, with non-finite vertices, or without triangles gives
+ * SOL_ERR_FORMAT / SOL_ERR_NONFINITE with assimp's or sol's reason in err. */
+sol_status sol_scene_from_model(const char *path, sol_scene *out, sol_scene_error *err);
 /* Frees everything the scene owns and zeroes it; safe on NULL or a zeroed scene. */
 void sol_scene_free(sol_scene *scene);
 
@@ -241,6 +251,7 @@ typedef struct sol_render_stats {
     uint64_t objects_culled;            /* culling: objects removed before the G-buffer pass */
     int frames;                         /* frames rendered (camera path) */
     double seconds;                     /* wall time of the frame(s): every pass after the textures */
+    double cpu_seconds;                 /* processor time of the whole render, all threads (clock()) */
     double prepare_seconds;             /* wall time of texture compression and fits (offline in an engine) */
 } sol_render_stats;
 
@@ -251,7 +262,7 @@ typedef struct sol_render_result {
 } sol_render_result;
 
 /* Renders a loaded scene along its plan (sol_scene_plan_build). out's images are allocated here
- * (free with sol_render_result_free); stats may be NULL. Meshes are not drawn (see the plan).
+ * (free with sol_render_result_free); stats may be NULL.
  * Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (size < 1 or above SOL_SCENE_MAX_PIXELS),
  * SOL_ERR_NO_MEMORY, and the technique modules' errors (e.g. SOL_ERR_SOLVER from the Ward fit). */
 sol_status sol_scene_render(const sol_scene *scene, const sol_scene_plan *plan, const sol_render_options *options,
