@@ -126,7 +126,7 @@ install: $(LIB) $(SHLIB)
 	  > $(DESTDIR)$(INCLUDEDIR)/sol/sol.h
 	printf '%s\n' 'prefix=$(PREFIX)' 'libdir=$(LIBDIR)' 'includedir=$(INCLUDEDIR)' '' 'Name: sol' \
 	  'Description: reference implementations of CryENGINE 3 rendering techniques, and checks of an engine against them' \
-	  'Version: $(SOL_VERSION)' 'Requires.private: libpng libglog' \
+	  'Version: $(SOL_VERSION)' 'Requires.private: libpng libglog libcjson assimp' \
 	  'Libs: -L$${libdir} -lsol -lm' 'Libs.private: $(strip $(EXR_LIBS)) -lceres -lgomp -lstdc++ -lm' \
 	  'Cflags: -I$${includedir}' > $(DESTDIR)$(LIBDIR)/pkgconfig/sol.pc
 
