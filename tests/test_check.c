@@ -549,6 +549,10 @@ Test(check_cli, version_help_and_usage_errors)
     cr_assert_eq(run("$SOL check srgb --csv missing.csv"), 2);
     cr_assert(err_has("missing.csv"));
     cr_assert_eq(run("$SOL check pack --format fp16 --csv x.csv --bogus 1"), 2);
+    /* emitted files appear whole or not at all */
+    cr_assert_eq(run("$SOL check srgb --emit nodir/x.csv"), 2);
+    cr_assert(err_has("cannot write"));
+    cr_assert_eq(run("$SOL check srgb --emit s.csv --count 100 && test -s s.csv && ! ls *.tmp 2>/dev/null"), 0);
 }
 
 Test(check_cli, normals_octahedral_sign0_bug)

@@ -297,9 +297,14 @@ static int read_codes(const char *path, int w, int h, int min_channels, uint16_t
 
 /* ---- emitting inputs ---- */
 
+/* Emitted files are written to PATH.tmp and renamed on success (no partial files). */
+static char emit_tmp[4096];
+
 static FILE *emit_open(const char *path)
 {
-    FILE *f = fopen(path, "w");
+    FILE *f = NULL;
+    if ((size_t)snprintf(emit_tmp, sizeof emit_tmp, "%s.tmp", path) < sizeof emit_tmp)
+        f = fopen(emit_tmp, "w");
     if (!f)
         fprintf(stderr, "%s: %s: cannot write\n", prog, path);
     return f;
@@ -307,7 +312,11 @@ static FILE *emit_open(const char *path)
 
 static int emit_close(FILE *f, const char *path)
 {
-    if (fclose(f) != 0) {
+    int ok = !ferror(f);
+    ok = fclose(f) == 0 && ok;
+    ok = ok && rename(emit_tmp, path) == 0;
+    if (!ok) {
+        remove(emit_tmp);
         fprintf(stderr, "%s: %s: write failed\n", prog, path);
         return CLI_EXIT_USAGE;
     }
