@@ -266,6 +266,16 @@ Test(check_tonemap, exact_samples_pass_and_a_constant_off_fails)
     double ec, sc;
     cr_assert_eq(sol_check_tonemap_bound(SOL_TONEMAP_FILMIC_HBD, x, y, 64, 0, &ec, &sc), SOL_OK);
     cr_assert(ec >= sc && ec <= sc * 1.2);
+    double mev, xev;
+    size_t used;
+    cr_assert_eq(sol_check_tonemap_inverse(SOL_TONEMAP_FILMIC_HBD, x, y, 64, &mev, &xev, &used), SOL_OK);
+    cr_assert(used > 30 && xev < 1e-6, "%zu %g", used, xev);
+    double twice[64];
+    for (int i = 0; i < 64; ++i) /* the engine exposes one stop brighter */
+        twice[i] = sol_tonemap_apply(SOL_TONEMAP_FILMIC_HBD, 2 * x[i]);
+    cr_assert_eq(sol_check_tonemap_inverse(SOL_TONEMAP_FILMIC_HBD, x, twice, 64, &mev, &xev, &used), SOL_OK);
+    cr_assert(fabs(mev - 1) < 1e-3, "%g", mev);
+    cr_assert_eq(sol_check_tonemap_inverse(SOL_TONEMAP_FILMIC_HBD, x, y, 0, &mev, &xev, &used), SOL_ERR_INVALID_ARG);
     y[10] = NAN;
     cr_assert_eq(sol_check_tonemap(SOL_TONEMAP_FILMIC_HBD, x, y, 64, &r), SOL_OK);
     cr_assert(!r.passed && r.failures == 1);
@@ -539,6 +549,10 @@ Test(check_cli, version_help_and_usage_errors)
     cr_assert_eq(run("$SOL check srgb --csv missing.csv"), 2);
     cr_assert(err_has("missing.csv"));
     cr_assert_eq(run("$SOL check pack --format fp16 --csv x.csv --bogus 1"), 2);
+    /* emitted files appear whole or not at all */
+    cr_assert_eq(run("$SOL check srgb --emit nodir/x.csv"), 2);
+    cr_assert(err_has("cannot write"));
+    cr_assert_eq(run("$SOL check srgb --emit s.csv --count 100 && test -s s.csv && ! ls *.tmp 2>/dev/null"), 0);
 }
 
 Test(check_cli, normals_octahedral_sign0_bug)

@@ -168,6 +168,13 @@ sol_status sol_check_tonemap(sol_tonemap op, const double *x, const double *y, s
 sol_status sol_check_tonemap_bound(sol_tonemap op, const double *x, const double *y, size_t n, double threshold,
                                    double *engine_c_min, double *sol_c_min);
 
+/* The sampled curve through sol's inverse: for each sample with 0 < y < the curve's supremum,
+ * x' = sol_tonemap_inverse(op, y) is the exposure at which sol's curve gives the engine's y; the
+ * error is |log2(x' / x)| in EV (stops). mean_ev and max_ev over those samples; *used (may be
+ * NULL) = how many. SOL_ERR_OUT_OF_RANGE when no sample qualifies. */
+sol_status sol_check_tonemap_inverse(sol_tonemap op, const double *x, const double *y, size_t n, double *mean_ev,
+                                     double *max_ev, size_t *used);
+
 /* ---- 3D LUT: an engine's table against sol's bake of the same look ----
  * Compares at the engine table's lattice points: the point domain_min + i/(size-1) (domain_max -
  * domain_min) per channel (NULL domains: [0,1]) through sol_grade_apply, and the engine's entry,

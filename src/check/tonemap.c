@@ -52,3 +52,31 @@ sol_status sol_check_tonemap_bound(sol_tonemap op, const double *x, const double
     *sol_c_min = ref;
     return SOL_OK;
 }
+
+sol_status sol_check_tonemap_inverse(sol_tonemap op, const double *x, const double *y, size_t n, double *mean_ev,
+                                     double *max_ev, size_t *used)
+{
+    if (!x || !y || !mean_ev || !max_ev)
+        return SOL_ERR_NULL_ARG;
+    if (n == 0 || op < 0 || op >= SOL_TONEMAP_COUNT)
+        return SOL_ERR_INVALID_ARG;
+    double sum = 0.0, worst = 0.0;
+    size_t k = 0;
+    for (size_t i = 0; i < n; ++i) {
+        double xi;
+        if (!(x[i] > 0.0) || !isfinite(x[i]) || !(y[i] > 0.0) ||
+            sol_tonemap_inverse(op, y[i], &xi) != SOL_OK || !(xi > 0.0))
+            continue;
+        double ev = fabs(log2(xi / x[i]));
+        sum += ev;
+        worst = ev > worst ? ev : worst;
+        ++k;
+    }
+    if (k == 0)
+        return SOL_ERR_OUT_OF_RANGE;
+    *mean_ev = sum / (double)k;
+    *max_ev = worst;
+    if (used)
+        *used = k;
+    return SOL_OK;
+}

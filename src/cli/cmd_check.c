@@ -297,9 +297,14 @@ static int read_codes(const char *path, int w, int h, int min_channels, uint16_t
 
 /* ---- emitting inputs ---- */
 
+/* Emitted files are written to PATH.tmp and renamed on success (no partial files). */
+static char emit_tmp[4096];
+
 static FILE *emit_open(const char *path)
 {
-    FILE *f = fopen(path, "w");
+    FILE *f = NULL;
+    if ((size_t)snprintf(emit_tmp, sizeof emit_tmp, "%s.tmp", path) < sizeof emit_tmp)
+        f = fopen(emit_tmp, "w");
     if (!f)
         fprintf(stderr, "%s: %s: cannot write\n", prog, path);
     return f;
@@ -307,7 +312,11 @@ static FILE *emit_open(const char *path)
 
 static int emit_close(FILE *f, const char *path)
 {
-    if (fclose(f) != 0) {
+    int ok = !ferror(f);
+    ok = fclose(f) == 0 && ok;
+    ok = ok && rename(emit_tmp, path) == 0;
+    if (!ok) {
+        remove(emit_tmp);
         fprintf(stderr, "%s: %s: write failed\n", prog, path);
         return CLI_EXIT_USAGE;
     }
@@ -661,12 +670,21 @@ static int check_tonemap(const args *a)
     if (rc < 0) {
         sol_check_report r;
         sol_status st = sol_check_tonemap((sol_tonemap)op, x, y, t.rows, &r);
-        double ec = 0, sc = 0;
-        char text[200] = "", json[120] = "";
+        double ec = 0, sc = 0, mev = 0, xev = 0;
+        size_t used = 0;
+        char text[400] = "", json[240] = "";
+        int tl = 0, jl = 0;
         if (sol_check_tonemap_bound((sol_tonemap)op, x, y, t.rows, 0.0, &ec, &sc) == SOL_OK) {
-            snprintf(text, sizeof text, "  lower bound c_min/l (y >= 0.5/255): engine's samples %.6g, sol %.6g\n", ec,
-                     sc);
-            snprintf(json, sizeof json, "\"engine_c_min\": %.10g, \"sol_c_min\": %.10g", ec, sc);
+            tl = snprintf(text, sizeof text, "  lower bound c_min/l (y >= 0.5/255): engine's samples %.6g, sol %.6g\n",
+                          ec, sc);
+            jl = snprintf(json, sizeof json, "\"engine_c_min\": %.10g, \"sol_c_min\": %.10g", ec, sc);
+        }
+        if (sol_check_tonemap_inverse((sol_tonemap)op, x, y, t.rows, &mev, &xev, &used) == SOL_OK) {
+            snprintf(text + tl, sizeof text - (size_t)tl,
+                     "  through sol's inverse: exposure error mean %.3g EV, max %.3g EV (%zu samples)\n", mev, xev,
+                     used);
+            snprintf(json + jl, sizeof json - (size_t)jl, "%s\"inverse_mean_ev\": %.10g, \"inverse_max_ev\": %.10g",
+                     jl ? ", " : "", mev, xev);
         }
         rc = st != SOL_OK ? bad_file(a->csv, sol_status_string(st))
                           : report(a, "tonemap", a->op, &r, 1, 1, text[0] ? text : NULL, json[0] ? json : NULL);
