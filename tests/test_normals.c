@@ -407,3 +407,139 @@ Test(normals, oct_bad_options_and_codes)
     cr_assert_eq(sol_oct_decode(NULL, top, n), SOL_OK);
     cr_assert(n[0] == 1.0 && n[1] == 0.0 && n[2] == 0.0);
 }
+
+/* D3's sample-free count: cells whose centre length is within half_width/255 of 1. sqrt(2) gives
+ * the talk's 289880 exactly, and so does every width in the measured step [1.411778, 1.427378);
+ * small grids against a brute force written from the definition. */
+Test(normals, d3_cells_near_the_sphere)
+{
+    uint64_t count = 0;
+    cr_assert_eq(sol_normal_cells_near_sphere(256, sqrt(2.0), &count), SOL_OK);
+    cr_assert_eq(count, 289880u);
+    cr_assert_eq(sol_normal_cells_near_sphere(256, 1.4118, &count), SOL_OK);
+    cr_assert_eq(count, 289880u);
+    cr_assert_eq(sol_normal_cells_near_sphere(256, 1.4273, &count), SOL_OK);
+    cr_assert_eq(count, 289880u);
+    cr_assert_eq(sol_normal_cells_near_sphere(256, 1.4117, &count), SOL_OK);
+    cr_assert_lt(count, 289880u);
+    cr_assert_eq(sol_normal_cells_near_sphere(256, 1.4274, &count), SOL_OK);
+    cr_assert_gt(count, 289880u);
+    /* huge width: every cell; zero width: only centres exactly on the sphere (none for L = 2: sqrt 3) */
+    cr_assert_eq(sol_normal_cells_near_sphere(16, 1e300, &count), SOL_OK);
+    cr_assert_eq(count, 4096u);
+    cr_assert_eq(sol_normal_cells_near_sphere(2, 0.0, &count), SOL_OK);
+    cr_assert_eq(count, 0u);
+    for (int levels = 4; levels <= 40; levels += 12)
+        for (double w = 0.0; w <= 3.0; w += 0.37) {
+            uint64_t brute = 0;
+            for (int i = 0; i < levels; ++i)
+                for (int j = 0; j < levels; ++j)
+                    for (int k = 0; k < levels; ++k) {
+                        double c[3] = {-1.0 + 2.0 * i / (levels - 1), -1.0 + 2.0 * j / (levels - 1),
+                                       -1.0 + 2.0 * k / (levels - 1)};
+                        brute += fabs(sqrt(sol_dot3(c, c)) - 1.0) <= w / (levels - 1) + 1e-12;
+                    }
+            cr_assert_eq(sol_normal_cells_near_sphere(levels, w, &count), SOL_OK);
+            cr_assert_eq(count, brute, "levels %d width %g: %llu vs %llu", levels, w, (unsigned long long)count,
+                         (unsigned long long)brute);
+        }
+    count = 7;
+    cr_assert_eq(sol_normal_cells_near_sphere(256, NAN, &count), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_cells_near_sphere(256, INFINITY, &count), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_cells_near_sphere(256, -0.5, &count), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_cells_near_sphere(255, 1.0, &count), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_cells_near_sphere(4098, 1.0, &count), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(count, 7u);
+    cr_assert_eq(sol_normal_cells_near_sphere(256, 1.0, NULL), SOL_ERR_NULL_ARG);
+}
+
+/* D5: the image and fixed cells of the best-fit search under each precision and input path, on a
+ * slice. The normalised-input counts agree with sol_normal_cells_fixed and with a brute force over
+ * sol_normal_encode; every fixed cell is in the image. */
+Test(normals, d5_bestfit_cells_variants_on_a_slice)
+{
+    uint8_t *seen = calloc(1u << 24, 1);
+    cr_assert_not_null(seen);
+    uint64_t brute_image = 0;
+    for (uint32_t g = 0; g < 256; ++g)
+        for (uint32_t b = 0; b < 256; ++b) {
+            double c[3] = {sol_dequantize255(200), sol_dequantize255(g), sol_dequantize255(b)};
+            uint32_t code;
+            cr_assert_eq(sol_normal_encode(SOL_NORMAL_XYZ_BEST_FIT, c, &code), SOL_OK);
+            brute_image += !seen[code];
+            seen[code] = 1;
+        }
+    free(seen);
+    uint64_t fixed_d = 0, fixed_f = 0;
+    cr_assert_eq(sol_normal_cells_fixed(SOL_NORMAL_XYZ_BEST_FIT, 200, 201, &fixed_d), SOL_OK);
+    cr_assert_eq(sol_normal_cells_fixed(SOL_NORMAL_XYZ_BEST_FIT_FLOAT, 200, 201, &fixed_f), SOL_OK);
+    sol_bestfit_cells cells = {0, 0};
+    cr_assert_eq(sol_normal_cells_bestfit(NULL, 200, 201, &cells), SOL_OK);
+    cr_assert_eq(cells.fixed, fixed_d);
+    cr_assert_eq(cells.image, brute_image);
+    sol_bestfit_cells_options single = {1, SOL_BESTFIT_INPUT_UNIT};
+    cr_assert_eq(sol_normal_cells_bestfit(&single, 200, 201, &cells), SOL_OK);
+    cr_assert_eq(cells.fixed, fixed_f);
+    for (int s = 0; s < 2; ++s)
+        for (int in = 0; in < 3; ++in) {
+            sol_bestfit_cells_options o = {s, (sol_bestfit_input)in};
+            cr_assert_eq(sol_normal_cells_bestfit(&o, 200, 201, &cells), SOL_OK);
+            cr_assert_geq(cells.image, cells.fixed);
+            /* rounding the centre to half moves it by up to 2^-11 relative, off its own ray for many
+             * cells (slice 200 keeps 49490 in double); the other paths keep > 90% */
+            double share = in == SOL_BESTFIT_INPUT_HALF ? 0.6 : 0.9;
+            cr_assert_gt(cells.fixed, share * 65536, "single %d input %d: %llu", s, in, (unsigned long long)cells.fixed);
+        }
+    /* an empty range counts nothing; bad options and ranges leave the output untouched */
+    cr_assert_eq(sol_normal_cells_bestfit(NULL, 17, 17, &cells), SOL_OK);
+    cr_assert(cells.image == 0 && cells.fixed == 0);
+    cells.image = 5;
+    sol_bestfit_cells_options bad_single = {2, SOL_BESTFIT_INPUT_UNIT}, bad_input = {0, (sol_bestfit_input)3};
+    cr_assert_eq(sol_normal_cells_bestfit(&bad_single, 0, 1, &cells), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_cells_bestfit(&bad_input, 0, 1, &cells), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_cells_bestfit(NULL, -1, 1, &cells), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_cells_bestfit(NULL, 0, 257, &cells), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_cells_bestfit(NULL, 2, 1, &cells), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_normal_cells_bestfit(NULL, 0, 1, NULL), SOL_ERR_NULL_ARG);
+    cr_assert_eq(cells.image, 5u);
+}
+
+/* S5 regression on the octahedral bit sweep (d6_d7's octahedral_bits table, 10^6 directions): the
+ * mean error halves per added bit (SNORM 12:12 mean 0.0209 deg on uniform directions), the worst
+ * case stays below 0.0600 deg x 2^(12-bits) (measured up to 0.0592; 0.0410 for precise rounding,
+ * measured up to 0.0398 at 8:8, which also lowers the mean),
+ * and UNORM rounding on random cube points normalised reproduces L. Tyler's means (12:12 0.021842,
+ * 8:8 0.350526 deg) within 2% on 20000 directions. */
+Test(normals, oct_bit_sweep_regression)
+{
+    static const double tyler_mean[] = {0.350526, 0.174814, 0.087357, 0.043663, 0.021842, 0.010909}; /* 8..13 */
+    enum { N = 20000 };
+    for (int bits = 8; bits <= 16; ++bits) {
+        double scale = ldexp(1.0, 12 - bits), sum[3] = {0, 0, 0}, worst[3] = {0, 0, 0};
+        uint64_t state = 101, cube_state = 202;
+        for (int k = 0; k < N; ++k) {
+            double n[3], c[3], back[3];
+            uint32_t code[2];
+            sol_sphere_uniform(sol_rng_uniform(&state, 0, 1), sol_rng_uniform(&state, 0, 1), n);
+            for (int i = 0; i < 3; ++i)
+                c[i] = sol_rng_uniform(&cube_state, -1, 1);
+            const double *dir[3] = {n, n, c};
+            sol_oct_options o[3] = {{bits, 0, SOL_OCT_SNORM}, {bits, 1, SOL_OCT_SNORM}, {bits, 0, SOL_OCT_UNORM}};
+            for (int v = 0; v < 3; ++v) {
+                cr_assert_eq(sol_oct_encode(&o[v], dir[v], code), SOL_OK);
+                cr_assert_eq(sol_oct_decode(&o[v], code, back), SOL_OK);
+                double e = sol_angle3(dir[v], back) * DEG;
+                sum[v] += e;
+                worst[v] = e > worst[v] ? e : worst[v];
+            }
+        }
+        double mean = sum[0] / N, mean_p = sum[1] / N, mean_u = sum[2] / N;
+        cr_assert_float_eq(mean, 0.0209 * scale, 0.04 * 0.0209 * scale, "bits %d mean %g", bits, mean);
+        cr_assert_leq(worst[0], 0.0600 * scale, "bits %d max %g", bits, worst[0]);
+        cr_assert_leq(worst[1], 0.0410 * scale, "bits %d precise max %g", bits, worst[1]);
+        cr_assert_lt(mean_p, mean);
+        if (bits <= 13)
+            cr_assert_float_eq(mean_u, tyler_mean[bits - 8], 0.02 * tyler_mean[bits - 8], "bits %d UNORM cube mean %g",
+                               bits, mean_u);
+    }
+}

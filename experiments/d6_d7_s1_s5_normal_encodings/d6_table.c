@@ -94,14 +94,15 @@ static void d6_data_init(const exp_run *exp, d6_data *d)
     d->exact = malloc(sizeof *d->exact * d->n);
     if (!d->err || !d->exact)
         exp_die("out of memory");
+    /* one search per direction gives both its code and its error (as encoder_errors computes it) */
 #pragma omp parallel for schedule(static)
     for (int64_t i = 0; i < (int64_t)d->n; ++i) {
-        double dir[3];
+        double dir[3], back[3];
         r2_direction((uint64_t)i, dir);
         sol_normal_encode(SOL_NORMAL_XYZ_BEST_FIT, dir, &d->exact[i]);
+        sol_normal_decode(SOL_NORMAL_XYZ_BEST_FIT, d->exact[i], back);
+        d->err[i] = (float)(sol_angle3(dir, back) * DEG);
     }
-    encoder search = {"search", SOL_NORMAL_XYZ_BEST_FIT, NULL, 0};
-    encoder_errors(&search, d->n, d->err);
     d->exact_stats = stats_of(d->err, d->n);
     d->tn = 4096;
     d->dirs = malloc(sizeof *d->dirs * 3 * d->tn);

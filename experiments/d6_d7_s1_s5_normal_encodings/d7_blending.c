@@ -56,11 +56,23 @@ void run_d7_blending(const exp_run *exp)
     double mid_fit = 0, mid_norm = 0, end_fit = 0, mid_weighted = 0;
     for (size_t a = 0; a < sizeof angles_deg / sizeof angles_deg[0]; ++a) {
         double sum[2][ALPHAS] = {{0}}, worst[2][ALPHAS] = {{0}}, weighted[ALPHAS] = {0};
+        /* The second normals come from one random stream, drawn in pair order; the errors are then
+         * computed in parallel into per-pair slots and summed in pair order (same sums for any thread
+         * count). */
+        double *second = malloc(sizeof *second * 3 * (size_t)pairs);
+        double *errs = malloc(sizeof *errs * 3 * ALPHAS * (size_t)pairs); /* [pair][method 0, 1, weighted][alpha] */
+        if (!second || !errs)
+            exp_die("out of memory");
         uint64_t rng = 1234 + a;
-        for (int p = 0; p < pairs; ++p) { /* sequential: fixed summation order */
-            double n1[3], n2[3];
+        for (int p = 0; p < pairs; ++p) {
+            double n1[3];
             r2_direction((uint64_t)p, n1);
-            turned(n1, angles_deg[a] / DEG, &rng, n2);
+            turned(n1, angles_deg[a] / DEG, &rng, second + 3 * (size_t)p);
+        }
+#pragma omp parallel for schedule(static)
+        for (int p = 0; p < pairs; ++p) {
+            double n1[3], *n2 = second + 3 * (size_t)p, *e = errs + 3 * ALPHAS * (size_t)p;
+            r2_direction((uint64_t)p, n1);
             for (int m = 0; m < 2; ++m) {
                 uint32_t c1, c2;
                 sol_normal_encode(methods[m], n1, &c1);
@@ -73,14 +85,23 @@ void run_d7_blending(const exp_run *exp)
                         refw[i] = (1 - alpha) * l1 * n1[i] + alpha * l2 * n2[i];
                     }
                     sol_normal_decode(SOL_NORMAL_XYZ_NORMALIZED, blend_codes(c1, c2, alpha), back);
-                    double e = sol_angle3(ref, back) * DEG;
+                    e[m * ALPHAS + k] = sol_angle3(ref, back) * DEG;
                     if (m == 0)
-                        weighted[k] += sol_angle3(refw, back) * DEG;
-                    sum[m][k] += e;
-                    worst[m][k] = e > worst[m][k] ? e : worst[m][k];
+                        e[2 * ALPHAS + k] = sol_angle3(refw, back) * DEG;
                 }
             }
         }
+        for (int p = 0; p < pairs; ++p) /* sequential: the original summation order */
+            for (int m = 0; m < 2; ++m)
+                for (int k = 0; k < ALPHAS; ++k) {
+                    const double *e = errs + 3 * ALPHAS * (size_t)p;
+                    if (m == 0)
+                        weighted[k] += e[2 * ALPHAS + k];
+                    sum[m][k] += e[m * ALPHAS + k];
+                    worst[m][k] = e[m * ALPHAS + k] > worst[m][k] ? e[m * ALPHAS + k] : worst[m][k];
+                }
+        free(errs);
+        free(second);
         for (int k = 0; k < ALPHAS; ++k) {
             curve[0][a][k] = sum[0][k] / pairs;
             curve[1][a][k] = sum[1][k] / pairs;

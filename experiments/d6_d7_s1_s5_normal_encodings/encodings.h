@@ -32,4 +32,6 @@ void encoder_errors(const encoder *e, size_t n, float *err);
 
 void run_d6_table(const exp_run *exp);
 void run_d7_blending(const exp_run *exp);
+/* S5: octahedral bit sweep and L. Tyler's tables side by side (oct_sweep.c). */
+void run_oct_sweep(const exp_run *exp);
 #endif

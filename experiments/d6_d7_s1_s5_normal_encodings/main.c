@@ -183,6 +183,7 @@ int main(int argc, char **argv)
                   "talk's quantizer has no zero code",
                   oct->stats.max, sph->stats.max, xyz->stats.rms / fit->stats.rms, fit->stats.max);
         mittring_by_z(&exp, exp.quick ? 200000 : 2000000);
+        run_oct_sweep(&exp);
     }
     free(dirs);
     free(err);

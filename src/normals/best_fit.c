@@ -6,69 +6,107 @@
 
 #include "normals_internal.h"
 
+enum { PROBES = 127 }; /* s = 3, 5, ..., 255 (the appendix's nStep = 1.5, 2.5, ..., 127.5) */
+
 /* Appendix A's FindMinimumQuantizationError in double precision. Probes sit at t = s / 255 for
  * odd s = 3..255 (the appendix's nStep = 1.5 .. 127.5 over 127.5): exactly the levels where the
  * ray's largest component crosses a cell centre. The error is the max-norm deviation of the
- * quantized probe divided by t (an angle-like relative error); the first minimum wins. */
-uint32_t sol_normals_encode_best_fit(const double unit[3], double *t_out)
+ * quantized probe divided by t (an angle-like relative error); the first minimum wins.
+ * The probes' errors are computed in one loop the compiler vectorizes (every operation is the
+ * scalar IEEE one, so the errors are bit for bit the scalar loop's), then scanned in order.
+ * `v` need not be unit length: it is divided by its largest |component| first. */
+uint32_t sol_normals_encode_best_fit(const double v[3], double *t_out)
 {
-    double m = sol_normals_max_abs(unit);
-    double d[3] = {unit[0] / m, unit[1] / m, unit[2] / m};
-    double best_err = HUGE_VAL, best_t = 1.0;
-    uint32_t best = 0;
-    for (int s = 3; s <= 255; s += 2) {
-        double t = s / 255.0, dev = 0.0;
-        uint32_t c[3];
-        for (int i = 0; i < 3; ++i) {
-            double p = d[i] * t;
-            c[i] = sol_normals_quantize255_fast(p);
-            double e = fabs(sol_dequantize255(c[i]) - p);
-            dev = e > dev ? e : dev;
-        }
+    double m = sol_normals_max_abs(v);
+    double d0 = v[0] / m, d1 = v[1] / m, d2 = v[2] / m;
+    double err[PROBES];
+#pragma omp simd
+    for (int k = 0; k < PROBES; ++k) {
+        double t = (double)(2 * k + 3) / 255.0;
+        double p0 = d0 * t, p1 = d1 * t, p2 = d2 * t;
+        /* quantize255 of a probe in [-1, 1] (argument >= 0.5: truncation is floor), then back */
+        double q0 = (double)(int32_t)((p0 * 0.5 + 0.5) * 255.0 + 0.5) / 255.0 * 2.0 - 1.0;
+        double q1 = (double)(int32_t)((p1 * 0.5 + 0.5) * 255.0 + 0.5) / 255.0 * 2.0 - 1.0;
+        double q2 = (double)(int32_t)((p2 * 0.5 + 0.5) * 255.0 + 0.5) / 255.0 * 2.0 - 1.0;
+        double e0 = fabs(q0 - p0), e1 = fabs(q1 - p1), e2 = fabs(q2 - p2);
+        double dev = e0 > e1 ? e0 : e1;
+        dev = e2 > dev ? e2 : dev;
         /* max(|q-p|) / t equals the appendix's max(|q-p| / t): division is monotonic */
-        double err = dev / t;
-        if (err < best_err) {
-            best_err = err;
-            best_t = t;
-            best = sol_normals_pack3(c);
-        }
+        err[k] = dev / t;
     }
-    *t_out = best_t;
-    return best;
+    int best = 0;
+    for (int k = 1; k < PROBES; ++k)
+        if (err[k] < err[best])
+            best = k;
+    double t = (double)(2 * best + 3) / 255.0;
+    double p[3] = {d0 * t, d1 * t, d2 * t};
+    *t_out = t;
+    return sol_normals_pack3((uint32_t[3]){sol_normals_quantize255_fast(p[0]), sol_normals_quantize255_fast(p[1]),
+                                           sol_normals_quantize255_fast(p[2])});
 }
 
-static float quantize255_float(float c)
+/* The search in single precision, statement by statement as the appendix's HLSL (HLSL's round()
+ * taken as round-half-up, like sol_quantize255), errors vectorized as above. */
+static uint32_t best_fit_float(float n0, float n1, float n2)
 {
-    float w = c * .5f + .5f;
-    w = w < 0.f ? 0.f : (w > 1.f ? 1.f : w);
-    return (float)(uint32_t)(w * 255.f + .5f); /* floor: the argument is positive */
-}
-
-/* The same search in single precision, statement by statement as the appendix's HLSL (input
- * rounded to float; HLSL's round() taken as round-half-up, like sol_quantize255). */
-uint32_t sol_normals_encode_best_fit_float(const double unit[3])
-{
-    float n[3] = {(float)unit[0], (float)unit[1], (float)unit[2]};
-    float m = fmaxf(fabsf(n[0]), fmaxf(fabsf(n[1]), fabsf(n[2])));
+    float m = fmaxf(fabsf(n0), fmaxf(fabsf(n1), fabsf(n2)));
+    n0 /= m;
+    n1 /= m;
+    n2 /= m;
+    float err[PROBES];
+#pragma omp simd
+    for (int k = 0; k < PROBES; ++k) {
+        float t = (1.5f + (float)k) / 127.5f;
+        float p0 = n0 * t, p1 = n1 * t, p2 = n2 * t;
+        /* saturate: the probes lie in [-1, 1], so c * .5 + .5 is already in [0, 1] */
+        float r0 = (float)(int32_t)((p0 * .5f + .5f) * 255.f + .5f);
+        float r1 = (float)(int32_t)((p1 * .5f + .5f) * 255.f + .5f);
+        float r2 = (float)(int32_t)((p2 * .5f + .5f) * 255.f + .5f);
+        float e0 = fabsf(r0 / 255.f * 2.f - 1.f - p0), e1 = fabsf(r1 / 255.f * 2.f - 1.f - p1),
+              e2 = fabsf(r2 / 255.f * 2.f - 1.f - p2);
+        float dev = e0 > e1 ? e0 : e1; /* the HLSL's max (no NaN here), as a compare the loop vectorizes */
+        dev = e2 > dev ? e2 : dev;
+        err[k] = dev / t; /* = the appendix's max of |q-p|/t: division is monotonic */
+    }
+    int best = 0; /* the appendix starts from fMinError = 100000: every error is below it */
+    for (int k = 1; k < PROBES; ++k)
+        if (err[k] < err[best])
+            best = k;
+    float t = (1.5f + (float)best) / 127.5f, p[3] = {n0 * t, n1 * t, n2 * t};
+    uint32_t c[3];
     for (int i = 0; i < 3; ++i)
-        n[i] /= m;
-    float best_err = 100000.f;
-    uint32_t best = 0;
-    for (float step = 1.5f; step <= 127.5f; ++step) {
-        float t = step / 127.5f, dev = 0.f;
-        uint32_t c[3];
-        for (int i = 0; i < 3; ++i) {
-            float p = n[i] * t, r = quantize255_float(p);
-            c[i] = (uint32_t)r;
-            dev = fmaxf(dev, fabsf(r / 255.f * 2.f - 1.f - p));
-        }
-        float err = dev / t; /* = the appendix's max of |q-p|/t: division is monotonic */
-        if (err < best_err) {
-            best_err = err;
-            best = sol_normals_pack3(c);
-        }
-    }
-    return best;
+        c[i] = (uint32_t)((p[i] * .5f + .5f) * 255.f + .5f);
+    return sol_normals_pack3(c);
+}
+
+/* Input rounded to float (the HLSL's arithmetic), then the float search. */
+uint32_t sol_normals_encode_best_fit_float(const double v[3])
+{
+    return best_fit_float((float)v[0], (float)v[1], (float)v[2]);
+}
+
+/* A float rounded to half precision (11 significant bits, ties to even); the inputs here are
+ * normal halves (|x| in [2^-14, 65504]) or zero. */
+static float round_to_half(float x)
+{
+    if (x == 0.0f)
+        return x;
+    int e;
+    double m = frexp((double)x, &e);
+    return (float)ldexp(nearbyint(ldexp(m, 11)), e - 11);
+}
+
+/* The appendix's signature, FindMinimumQuantizationError(half3 normal): input rounded to half,
+ * then the float search (_half) or the double search (_half_double). */
+uint32_t sol_normals_encode_best_fit_half(const double v[3])
+{
+    return best_fit_float(round_to_half((float)v[0]), round_to_half((float)v[1]), round_to_half((float)v[2]));
+}
+
+uint32_t sol_normals_encode_best_fit_half_double(const double v[3])
+{
+    double h[3] = {round_to_half((float)v[0]), round_to_half((float)v[1]), round_to_half((float)v[2])}, t;
+    return sol_normals_encode_best_fit(h, &t);
 }
 
 sol_status sol_bestfit_scale(const double n[3], double *t)

@@ -2,6 +2,7 @@
  * uses, under explicit definitions (see sol_normals.h). Integer counts, so the OpenMP reductions
  * give the same result for any thread count. */
 #include <stdlib.h>
+#include <string.h>
 
 #include "normals_internal.h"
 
@@ -63,6 +64,31 @@ sol_status sol_normal_cells_on_sphere(int levels, uint64_t *count)
     return SOL_OK;
 }
 
+sol_status sol_normal_cells_near_sphere(int levels, double half_width, uint64_t *count)
+{
+    if (!count)
+        return SOL_ERR_NULL_ARG;
+    if (!levels_valid(levels) || !(half_width >= 0.0) || !isfinite(half_width))
+        return SOL_ERR_INVALID_ARG;
+    /* Half-cell units: odd centres c, radius R = levels - 1; |c| is exact in double, sqrt correctly
+     * rounded, so the test is exact whenever the bound is (integer widths, perfect squares). */
+    double radius = levels - 1;
+    uint64_t total = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : total)
+    for (int i = 0; i < levels; ++i) {
+        int64_t a = 2 * (int64_t)i - (levels - 1);
+        for (int j = 0; j < levels; ++j) {
+            int64_t b = 2 * (int64_t)j - (levels - 1), ab = a * a + b * b;
+            for (int k = 0; k < levels; ++k) {
+                int64_t c = 2 * (int64_t)k - (levels - 1);
+                total += fabs(sqrt((double)(ab + c * c)) - radius) <= half_width;
+            }
+        }
+    }
+    *count = total;
+    return SOL_OK;
+}
+
 static int64_t gcd64(int64_t a, int64_t b)
 {
     while (b) {
@@ -90,5 +116,51 @@ sol_status sol_normal_cells_distinct_directions(int levels, uint64_t *count)
         }
     }
     *count = total;
+    return SOL_OK;
+}
+
+/* One best-fit search of a cell centre under the chosen precision and input path. */
+static uint32_t bestfit_variant(const sol_bestfit_cells_options *o, const double centre[3])
+{
+    double in[3], t;
+    if (o->input == SOL_BESTFIT_INPUT_UNIT)
+        sol_normals_unit_input(centre, in); /* centres are finite and non-zero */
+    else
+        memcpy(in, centre, sizeof in);
+    if (o->input == SOL_BESTFIT_INPUT_HALF)
+        return o->single ? sol_normals_encode_best_fit_half(in) : sol_normals_encode_best_fit_half_double(in);
+    return o->single ? sol_normals_encode_best_fit_float(in) : sol_normals_encode_best_fit(in, &t);
+}
+
+sol_status sol_normal_cells_bestfit(const sol_bestfit_cells_options *opt, int r_begin, int r_end,
+                                    sol_bestfit_cells *out)
+{
+    if (!out)
+        return SOL_ERR_NULL_ARG;
+    sol_bestfit_cells_options o = opt ? *opt : (sol_bestfit_cells_options){0};
+    if ((o.single != 0 && o.single != 1) || (int)o.input < 0 || o.input > SOL_BESTFIT_INPUT_HALF || r_begin < 0 ||
+        r_end > 256 || r_begin > r_end)
+        return SOL_ERR_INVALID_ARG;
+    uint64_t *seen = calloc((size_t)1 << 18, sizeof *seen); /* one bit per 24-bit code */
+    if (!seen)
+        return SOL_ERR_NO_MEMORY;
+    uint64_t fixed = 0, image = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : fixed)
+    for (int r = r_begin; r < r_end; ++r)
+        for (uint32_t g = 0; g < 256; ++g)
+            for (uint32_t b = 0; b < 256; ++b) {
+                uint32_t cell = (uint32_t)r | (g << 8) | (b << 16);
+                double centre[3] = {sol_dequantize255((uint32_t)r), sol_dequantize255(g), sol_dequantize255(b)};
+                uint32_t code = bestfit_variant(&o, centre);
+                fixed += code == cell;
+#pragma omp atomic
+                seen[code >> 6] |= (uint64_t)1 << (code & 63u);
+            }
+    for (size_t w = 0; w < (size_t)1 << 18; ++w)
+        for (uint64_t bits = seen[w]; bits; bits &= bits - 1)
+            ++image;
+    free(seen);
+    out->image = image;
+    out->fixed = fixed;
     return SOL_OK;
 }

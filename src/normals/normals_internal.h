@@ -45,8 +45,12 @@ static inline uint32_t sol_normals_quantize3(const double v[3])
 uint32_t sol_normals_encode_xyz(const double unit[3]);
 uint32_t sol_normals_encode_max_component(const double unit[3]);
 void sol_normals_decode_xyz(uint32_t code, double n[3]);
-uint32_t sol_normals_encode_best_fit(const double unit[3], double *t);
-uint32_t sol_normals_encode_best_fit_float(const double unit[3]);
+/* The best-fit searches divide their input by its largest |component| themselves, so they also
+ * take unnormalised vectors (the appendix's path); _float rounds the input to float, _half to half. */
+uint32_t sol_normals_encode_best_fit(const double v[3], double *t);
+uint32_t sol_normals_encode_best_fit_float(const double v[3]);
+uint32_t sol_normals_encode_best_fit_half(const double v[3]);
+uint32_t sol_normals_encode_best_fit_half_double(const double v[3]);
 uint32_t sol_normals_encode_octahedral(const double unit[3], int precise);
 void sol_normals_decode_octahedral(uint32_t code, double n[3]);
 uint32_t sol_normals_encode_spherical(const double unit[3]);

@@ -156,10 +156,49 @@ sol_status sol_bestfit_scale(const double n[3], double *t);
  *  - cells on the sphere: cells of an L^3 grid (L even, 2..4096) whose closed box meets the unit
  *    sphere, i.e. the image of "normalize then round" over all directions; exact in integers.
  *  - distinct directions: cells of an L^3 grid (L even) whose odd integer centre coordinates
- *    (2 code - (L - 1)) have gcd 1; a cell with gcd k > 1 points where its 1/k multiple does. */
+ *    (2 code - (L - 1)) have gcd 1; a cell with gcd k > 1 points where its 1/k multiple does.
+ *  - cells near the sphere (D3's sample-free count): cells of an L^3 grid (L even, 2..4096) whose
+ *    centre's length lies within half_width / (L - 1) of 1, i.e. with odd integer centre c,
+ *    |sqrt(c.c) - (L - 1)| <= half_width (half_width in half-cell units, finite, >= 0, else
+ *    SOL_ERR_INVALID_ARG). For L = 256 and half_width = sqrt(2) (half a face diagonal of a cell)
+ *    this is the talk's 289880; every half_width in [1.41178, 1.42738) gives the same count. */
 sol_status sol_normal_cells_fixed(sol_normal_method method, int r_begin, int r_end, uint64_t *count);
 sol_status sol_normal_cells_on_sphere(int levels, uint64_t *count);
 sol_status sol_normal_cells_distinct_directions(int levels, uint64_t *count);
+sol_status sol_normal_cells_near_sphere(int levels, double half_width, uint64_t *count);
+
+/* ---- D5: the cells the best-fit search produces, under the rounding choices that decide ties ----
+ * In exact arithmetic the search returns, for any direction, the first cell of least error along
+ * the ray; a cell k*c (k odd) ties exactly with c, so only cells with gcd 1 could win, and the
+ * image would be the distinct directions (minus the 8 cells (+-1,+-1,+-1)/255, below the first
+ * probe). In floating point those ties break by last-bit noise, which depends on how the input is
+ * prepared and on the precision, so the count has a spread; sol_normal_cells_bestfit measures it.
+ * For every cell with r in [r_begin, r_end) (0 <= r_begin <= r_end <= 256), its centre
+ * ((2r-255)/255, (2g-255)/255, (2b-255)/255) is searched (SOL_NORMAL_XYZ_BEST_FIT's search,
+ * appendix A) with:
+ *  - single: 0 double arithmetic, 1 float arithmetic as the appendix's HLSL;
+ *  - input: SOL_BESTFIT_INPUT_UNIT, the centre normalised first (what sol_normal_encode does);
+ *    SOL_BESTFIT_INPUT_RAW, the centre divided by its largest |component| only, as the appendix
+ *    (`normal /= max(...)`) does; SOL_BESTFIT_INPUT_HALF, the centre rounded to half precision
+ *    first (the appendix's argument is a half3), then as RAW.
+ * out->image: distinct codes the searches return (the encoder's image over these centres);
+ * out->fixed: cells whose centre returns the cell itself. Options zero = double, UNIT (NULL the
+ * same); bad options or range: SOL_ERR_INVALID_ARG; SOL_ERR_NO_MEMORY (a 2 MB bitmap). Exact
+ * integer counts: identical for any thread count. */
+typedef enum sol_bestfit_input {
+    SOL_BESTFIT_INPUT_UNIT = 0,
+    SOL_BESTFIT_INPUT_RAW,
+    SOL_BESTFIT_INPUT_HALF
+} sol_bestfit_input;
+typedef struct sol_bestfit_cells_options {
+    int single;              /* 0 double, 1 float */
+    sol_bestfit_input input; /* how the centre reaches the search */
+} sol_bestfit_cells_options;
+typedef struct sol_bestfit_cells {
+    uint64_t image, fixed;
+} sol_bestfit_cells;
+sol_status sol_normal_cells_bestfit(const sol_bestfit_cells_options *opt, int r_begin, int r_end,
+                                    sol_bestfit_cells *out);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,101 @@
+/* oct_sweep.c - S5's outside reference: the octahedral map's error against bit count, side by side
+ * with L. Tyler's measurements ("Analyzing Octahedral Encoded Normals", 2024: 10^6 random points
+ * of the cube [-1,1]^3 normalised onto the sphere, UNORM rounding to nearest) and, as a table in
+ * the style of Cigolle et al. 2014 (JCGT 3(2), table of oct16..oct32), sol's SNORM octahedral map
+ * at 8:8 .. 16:16 bits with plain and "precise" rounding over uniform directions. */
+#include "encodings.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* Tyler's table (mean and max angular error in degrees, 10^6 cube-point directions), bits 8..13. */
+static const struct {
+    int bits;
+    double mean, max;
+} tyler[] = {{8, 0.350526, 0.946480},  {9, 0.174814, 0.473682},  {10, 0.087357, 0.235790},
+             {11, 0.043663, 0.117949}, {12, 0.021842, 0.058642}, {13, 0.010909, 0.029560}};
+enum { N_TYLER = sizeof tyler / sizeof tyler[0] };
+
+typedef struct oct_stats {
+    double mean, max;
+} oct_stats;
+
+/* Direction i of a set: random cube points normalised (Tyler's set) or uniform on the sphere,
+ * each from its own SplitMix64 stream (seeded per index, so any thread count gives the same set). */
+static void set_direction(int cube, uint64_t i, double d[3])
+{
+    uint64_t state = (cube ? 0x7c0bu : 0x5e7u) * 0x9E3779B97F4A7C15ull + i * 0xD1B54A32D192ED03ull;
+    if (cube) {
+        for (int k = 0; k < 3; ++k)
+            d[k] = sol_rng_uniform(&state, -1.0, 1.0); /* normalised by the encoder; never all zero here */
+    } else {
+        double u = sol_rng_uniform(&state, 0, 1), v = sol_rng_uniform(&state, 0, 1);
+        sol_sphere_uniform(u, v, d);
+    }
+}
+
+/* Mean and max error (degrees) of one octahedral variant over n directions of a set; the sum is
+ * taken in index order, so the mean is the same for any thread count. */
+static oct_stats oct_errors(const sol_oct_options *o, int cube, size_t n, double *err)
+{
+#pragma omp parallel for schedule(static)
+    for (int64_t i = 0; i < (int64_t)n; ++i) {
+        double d[3], back[3];
+        uint32_t code[2];
+        set_direction(cube, (uint64_t)i, d);
+        exp_check(sol_oct_encode(o, d, code), "octahedral encode");
+        exp_check(sol_oct_decode(o, code, back), "octahedral decode");
+        err[i] = sol_angle3(d, back) * DEG;
+    }
+    oct_stats s = {0, 0};
+    for (size_t i = 0; i < n; ++i) {
+        s.mean += err[i];
+        s.max = err[i] > s.max ? err[i] : s.max;
+    }
+    s.mean /= (double)n;
+    return s;
+}
+
+void run_oct_sweep(const exp_run *exp)
+{
+    size_t n = exp->quick ? 100000 : 1000000; /* Tyler's 10^6 */
+    double *err = malloc(sizeof *err * n);
+    if (!err)
+        exp_die("out of memory");
+    exp_table *t = exp_table_new("Octahedral normals vs bits per coordinate (S5; Cigolle et al. 2014 style, "
+                                 "Tyler 2024 side by side)",
+                                 "bits,total bits,SNORM mean deg,SNORM max deg,SNORM precise mean deg,"
+                                 "SNORM precise max deg,UNORM cube-points mean deg,UNORM cube-points max deg,"
+                                 "Tyler mean deg,Tyler max deg,UNORM uniform mean deg,uniform vs cube mean %");
+    oct_stats tyler12 = {0, 0}, uni12 = {0, 0};
+    double worst_mean_off = 0.0;
+    for (int bits = 8; bits <= 16; ++bits) {
+        sol_oct_options plain = {bits, 0, SOL_OCT_SNORM}, precise = {bits, 1, SOL_OCT_SNORM},
+                        unorm = {bits, 0, SOL_OCT_UNORM};
+        oct_stats sp = oct_errors(&plain, 0, n, err), spp = oct_errors(&precise, 0, n, err);
+        oct_stats uc = oct_errors(&unorm, 1, n, err), uu = oct_errors(&unorm, 0, n, err);
+        char tm[32] = "-", tx[32] = "-";
+        for (int k = 0; k < N_TYLER; ++k)
+            if (tyler[k].bits == bits) {
+                snprintf(tm, sizeof tm, "%.6f", tyler[k].mean);
+                snprintf(tx, sizeof tx, "%.6f", tyler[k].max);
+                double off = fabs(uc.mean / tyler[k].mean - 1.0);
+                worst_mean_off = off > worst_mean_off ? off : worst_mean_off;
+            }
+        if (bits == 12) {
+            tyler12 = uc;
+            uni12 = uu;
+        }
+        exp_table_row(t, "%d|%d|%.6f|%.6f|%.6f|%.6f|%.6f|%.6f|%s|%s|%.6f|%+.2f", bits, 2 * bits, sp.mean, sp.max,
+                      spp.mean, spp.max, uc.mean, uc.max, tm, tx, uu.mean, 100.0 * (uu.mean / uc.mean - 1.0));
+        exp_progress("octahedral sweep", (size_t)bits - 7, 9);
+    }
+    exp_progress_done("octahedral sweep");
+    exp_table_write(t, exp, "octahedral_bits");
+    exp_number(exp, "S5-tyler12-mean", "%.6f", tyler12.mean);
+    exp_number(exp, "S5-tyler12-max", "%.6f", tyler12.max);
+    exp_number(exp, "S5-tyler12-uniform-mean", "%.6f", uni12.mean);
+    exp_number(exp, "S5-tyler12-uniform-drop-percent", "%.1f", 100.0 * (1.0 - uni12.mean / tyler12.mean));
+    exp_number(exp, "S5-tyler-worst-mean-offset-percent", "%.2f", 100.0 * worst_mean_off);
+    free(err);
+}
