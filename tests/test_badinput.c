@@ -330,6 +330,9 @@ Test(badinput, hdr)
                 OK(st == SOL_ERR_OUT_OF_RANGE && inv == 42.0 && (x < 0.0 || x >= 1.0 || isinf(x)));
         }
         TOTAL(sol_krawczyk_key(x), isnan(x));
+        for (size_t j = 0; j < NSPEC; ++j)
+            if (isfinite(x) && isfinite(specials[j]))
+                TOTAL(sol_adapt_exponential(x, specials[j], 0.5, 2.0), 0);
         TOTAL(sol_dfg_alpha_from_gloss(x), isnan(x));
         uint8_t xy[2] = {0, 0};
         sol_depth_rg8_encode(x, xy);

@@ -426,3 +426,12 @@ Test(reliability, renormalisation_of_the_full_float_range)
     cr_assert_eq(sol_renorm_undo(&r, &img2), SOL_ERR_OUT_OF_RANGE);
     cr_assert_eq(bad[0], 0.5f);
 }
+
+Test(reliability, adaptation_between_the_largest_values_is_finite)
+{
+    double r = sol_adapt_exponential(-DBL_MAX, DBL_MAX, 1.0, 1.0);
+    cr_assert(isfinite(r) && r > 0.0, "%g", r);
+    assert_rel(r, (long double)DBL_MAX * (1.0L - 2.0L * expl(-1.0L)), 1e-15, "adapt");
+    cr_assert(isfinite(sol_adapt_exponential(DBL_MAX, -DBL_MAX, 1e300, 1.0)));
+    cr_assert_eq(sol_adapt_exponential(DBL_MAX, -DBL_MAX, 0.0, 1.0), DBL_MAX);
+}

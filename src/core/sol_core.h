@@ -183,12 +183,10 @@ static inline double sol_dot3(const double a[3], const double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* Angle between two non-zero vectors in radians, accurate near 0 and pi: atan2(|a x b|, a.b)
- * (acos of a clamped dot loses half the digits for nearly parallel vectors). Unnormalised input
- * of any finite magnitude is fine (1e-300 and 1e300 alike): each vector is first divided by its
- * largest absolute component, and |a x b| is taken the same way, so nothing overflows or
- * underflows. A zero vector gives 0; a NaN or infinite component gives NaN. */
-static inline double sol_angle3(const double a[3], const double b[3])
+/* sol_angle3 with both vectors first divided by their largest absolute component and |a x b|
+ * taken the same way, so nothing overflows or underflows (sol_angle3's path for extreme
+ * magnitudes; callable directly). */
+static inline double sol_angle3_scaled(const double a[3], const double b[3])
 {
     double ma = fmax(fmax(fabs(a[0]), fabs(a[1])), fabs(a[2]));
     double mb = fmax(fmax(fabs(b[0]), fabs(b[1])), fabs(b[2]));
@@ -204,6 +202,25 @@ static inline double sol_angle3(const double a[3], const double b[3])
         cross = mc * sqrt(c0 * c0 + c1 * c1 + c2 * c2);
     }
     return atan2(cross, a0 * b0 + a1 * b1 + a2 * b2);
+}
+
+/* Angle between two non-zero vectors in radians, accurate near 0 and pi: atan2(|a x b|, a.b)
+ * (acos of a clamped dot loses half the digits for nearly parallel vectors). Unnormalised input
+ * of any finite magnitude is fine (1e-300 and 1e300 alike): when a vector's largest component is
+ * outside [2^-200, 2^200], or |a x b|^2 would underflow (angles below ~1e-120 rad at unit
+ * length), it takes the scaled path sol_angle3_scaled; otherwise the direct formula (no
+ * divisions). A zero vector gives 0; a NaN or infinite component gives NaN. */
+static inline double sol_angle3(const double a[3], const double b[3])
+{
+    double ma = fmax(fmax(fabs(a[0]), fabs(a[1])), fabs(a[2]));
+    double mb = fmax(fmax(fabs(b[0]), fabs(b[1])), fabs(b[2]));
+    if (ma >= 0x1p-200 && ma <= 0x1p200 && mb >= 0x1p-200 && mb <= 0x1p200) {
+        double c0 = a[1] * b[2] - a[2] * b[1], c1 = a[2] * b[0] - a[0] * b[2], c2 = a[0] * b[1] - a[1] * b[0];
+        double s = c0 * c0 + c1 * c1 + c2 * c2;
+        if (s >= 0x1p-900 || (c0 == 0.0 && c1 == 0.0 && c2 == 0.0)) /* NaN fails both: scaled path */
+            return atan2(sqrt(s), sol_dot3(a, b));
+    }
+    return sol_angle3_scaled(a, b);
 }
 
 /* UNORM quantisation as D3D/GL define it: code = round(clamp(x,0,1) * (2^bits - 1)), and back.

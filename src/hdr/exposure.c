@@ -21,7 +21,10 @@ double sol_adapt_exponential(double previous, double target, double dt, double r
 {
     if (!(dt >= 0.0) || !(rate >= 0.0) || isinf(dt) || isinf(rate))
         return previous;
-    return previous + (target - previous) * -expm1(-dt * rate);
+    double k = -expm1(-dt * rate), d = target - previous;
+    if (isinf(d) && isfinite(previous) && isfinite(target)) /* +-DBL_MAX apart: convex form instead */
+        return previous * (1.0 - k) + target * k;
+    return previous + d * k;
 }
 
 sol_status sol_exposure_from_luminance(double luminance, double compensation_ev, double *exposure)

@@ -233,7 +233,9 @@ sol_status sol_cube_write(const char *path, const sol_lut3d *lut, const char *ti
  * Automatic exposure (claim S6)
  * ====================================================================================== */
 
-/* EV100 of a luminance (cd/m^2): L = 0.125 * 2^EV100 (Narkowicz's notes, after Reed 2014). */
+/* EV100 of a luminance (cd/m^2): L = 0.125 * 2^EV100 (Narkowicz's notes, after Reed 2014).
+ * Plain math at the edges: L = 0 gives -Inf, L < 0 NaN; an EV100 above ~1026 gives +Inf (the
+ * luminance exceeds DBL_MAX). sol_exposure_from_luminance is the checked form. */
 double sol_ev100_from_luminance(double luminance);
 double sol_luminance_from_ev100(double ev100);
 /* Krawczyk, Myszkowski, Seidel 2005 key value: 1.03 - 2 / (log10(L + 1) + 2), in [0.03, 1.03];
@@ -256,7 +258,8 @@ sol_status sol_histogram_meter(const float *luminance, size_t n, const sol_meter
                                double *metered_luminance, size_t *ignored);
 
 /* Exponential temporal adaptation: prev + (target - prev) * (1 - exp(-dt * rate)). dt and rate
- * in seconds and 1/seconds; non-finite or negative dt/rate return prev unchanged. */
+ * in seconds and 1/seconds; non-finite or negative dt/rate return prev unchanged. Finite prev
+ * and target give a finite value between them, even +-DBL_MAX apart. */
 double sol_adapt_exponential(double previous, double target, double dt, double rate);
 
 /* Exposure multiplier 0.18 * 2^ec / L for a metered luminance L and a compensation ec in EV
