@@ -79,6 +79,7 @@ typedef struct frame {
     sol_render_stats *stats;
     float **irradiance; /* per light, per SG lobe: IRR_TABLE values of the clamped-cosine convolution */
     sol_bestfit_table bestfit; /* D6: the baked best-fit table the shader uses (xyz-best-fit) */
+    double light_scale;        /* D10: range scaling of the light buffer (see prepare) */
 } frame;
 
 #define IRR_TABLE 2049 /* irradiance of a unit SG lobe against cos(normal, axis) in [-1, 1] */
@@ -766,7 +767,7 @@ static void shade(const frame *f, const surface *sf, double ao, double rgb[3])
     double diff[3], spec[3];
     light_loop(f, sf, v, diff, spec);
     if (!f->reference && fx(f, SOL_FX_LIGHT_BUFFER)) {
-        double scale = fx(f, SOL_FX_RANGE_SCALING) ? f->s->pipeline.exposure : 1.0;
+        double scale = fx(f, SOL_FX_RANGE_SCALING) ? f->light_scale : 1.0;
         store_light3(f, diff, scale);
         store_light3(f, spec, scale);
     }
@@ -1083,6 +1084,22 @@ static sol_status prepare(frame *f)
             if (st != SOL_OK)
                 return st;
         }
+    }
+    /* D10 range scaling: the light buffer's window ends where the display saturates. The tone map
+     * reaches the last display code (254.5/255, sRGB) at x_white = T^-1(y); a pixel's radiance is
+     * at most the stored irradiance / pi (albedo <= 1), so irradiance up to pi x_white / exposure
+     * matters and is mapped onto the format's largest value (RGBM range, 2 for RGB10, 65024 for
+     * R11G11B10F's 11-bit floats). Everything darker keeps the format's relative precision. */
+    f->light_scale = 1.0;
+    if (s->pipeline.light_buffer != SOL_LB_FLOAT) {
+        double y = sol_srgb_decode(254.5 / 255.0), x_white;
+        double top = s->pipeline.light_buffer == SOL_LB_RGBM    ? s->pipeline.light_range
+                     : s->pipeline.light_buffer == SOL_LB_RGB10 ? 2.0
+                                                                : 65024.0;
+        if (sol_tonemap_inverse((sol_tonemap)s->pipeline.tonemap, y, &x_white) == SOL_OK && x_white > 0)
+            f->light_scale = top * s->pipeline.exposure / (M_PI * x_white);
+        else
+            f->light_scale = s->pipeline.exposure;
     }
     if (!f->reference && fx(f, SOL_FX_GBUFFER_NORMALS) && s->pipeline.gbuffer_normals == SOL_NORMAL_XYZ_BEST_FIT &&
         (st = sol_bestfit_table_build(512, 8, &f->bestfit)) != SOL_OK)
