@@ -314,9 +314,9 @@ int cli_render_main(int argc, char **argv)
                    rows[i].err.de2000_mean, rows[i].own.rms_code, rows[i].own.de2000_mean, rows[i].seconds);
         printf("]}\n");
     } else {
-        printf("%s: engine %.2f s, reference %.2f s; engine vs reference: display RMS %.3f codes (max %.0f), "
+        printf("%s: engine %.2f s (%.2f s CPU), reference %.2f s (%.2f s CPU); engine vs reference: display RMS %.3f codes (max %.0f), "
                "CIEDE2000 mean %.3f, normals %.3f deg mean\n",
-               scene.name, es.seconds, rs.seconds, err.rms_code, err.max_code, err.de2000_mean, err.normal_mean_deg);
+               scene.name, es.seconds, es.cpu_seconds, rs.seconds, rs.cpu_seconds, err.rms_code, err.max_code, err.de2000_mean, err.normal_mean_deg);
         for (int i = 0; i < nrows; ++i)
             printf("  without %-16s vs reference: RMS %.3f dE %.3f normals %.3f deg; own error: RMS %.3f (max %.0f) "
                    "dE %.3f normals %.3f deg; %.2f s\n",

@@ -26,7 +26,7 @@ static const sol_effect_info effects[SOL_FX_COUNT] = {
                              "diffuse and specular light sums", "light buffer in r11g11b10f / rgbm / rgb10",
                              "float light buffer"},
     [SOL_FX_RANGE_SCALING] = {"range-scaling", "D9, D10", "a lossy light buffer with range_scaling",
-                              "light sums, exposure", "light buffer values pre-multiplied by the exposure",
+                              "light sums, exposure, tone map", "light buffer scaled so the display's white point lands on the format's top",
                               "unscaled light values"},
     [SOL_FX_SG_LOBES] = {"sg-lobes", "D15, D16", "an object with an anisotropic material, and a light",
                          "Ward roughness pair, lights as SG lobes",

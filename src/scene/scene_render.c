@@ -78,6 +78,8 @@ typedef struct frame {
     sol_grade grade;
     sol_render_stats *stats;
     float **irradiance; /* per light, per SG lobe: IRR_TABLE values of the clamped-cosine convolution */
+    sol_bestfit_table bestfit; /* D6: the baked best-fit table the shader uses (xyz-best-fit) */
+    double light_scale;        /* D10: range scaling of the light buffer (see prepare) */
 } frame;
 
 #define IRR_TABLE 2049 /* irradiance of a unit SG lobe against cos(normal, axis) in [-1, 1] */
@@ -651,7 +653,11 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
         uint32_t code;
         double dec[3];
         sol_normal_method mth = (sol_normal_method)f->s->pipeline.gbuffer_normals;
-        if (sol_normal_encode(mth, sf->n, &code) == SOL_OK && sol_normal_decode(mth, code, dec) == SOL_OK)
+        if (f->bestfit.scale) { /* the shader's path: the baked 512^2 8-bit table, bilinear (D6) */
+            if (sol_normal_encode_bestfit_table(&f->bestfit, SOL_TABLE_BILINEAR, sf->n, &code) == SOL_OK &&
+                sol_normal_decode(SOL_NORMAL_XYZ_NORMALIZED, code, dec) == SOL_OK)
+                memcpy(sf->n, dec, sizeof dec);
+        } else if (sol_normal_encode(mth, sf->n, &code) == SOL_OK && sol_normal_decode(mth, code, dec) == SOL_OK)
             memcpy(sf->n, dec, sizeof dec);
     }
     return 1;
@@ -761,7 +767,7 @@ static void shade(const frame *f, const surface *sf, double ao, double rgb[3])
     double diff[3], spec[3];
     light_loop(f, sf, v, diff, spec);
     if (!f->reference && fx(f, SOL_FX_LIGHT_BUFFER)) {
-        double scale = fx(f, SOL_FX_RANGE_SCALING) ? f->s->pipeline.exposure : 1.0;
+        double scale = fx(f, SOL_FX_RANGE_SCALING) ? f->light_scale : 1.0;
         store_light3(f, diff, scale);
         store_light3(f, spec, scale);
     }
@@ -1019,6 +1025,7 @@ static void free_frame(frame *f)
         for (int i = 0; i < f->s->light_count; ++i)
             free(f->irradiance[i]);
     free(f->irradiance);
+    sol_bestfit_table_free(&f->bestfit);
     sol_lut3d_free(&f->lut);
 }
 
@@ -1078,6 +1085,25 @@ static sol_status prepare(frame *f)
                 return st;
         }
     }
+    /* D10 range scaling: the light buffer's window ends where the display saturates. The tone map
+     * reaches the last display code (254.5/255, sRGB) at x_white = T^-1(y); a pixel's radiance is
+     * at most the stored irradiance / pi (albedo <= 1), so irradiance up to pi x_white / exposure
+     * matters and is mapped onto the format's largest value (RGBM range, 2 for RGB10, 65024 for
+     * R11G11B10F's 11-bit floats). Everything darker keeps the format's relative precision. */
+    f->light_scale = 1.0;
+    if (s->pipeline.light_buffer != SOL_LB_FLOAT) {
+        double y = sol_srgb_decode(254.5 / 255.0), x_white;
+        double top = s->pipeline.light_buffer == SOL_LB_RGBM    ? s->pipeline.light_range
+                     : s->pipeline.light_buffer == SOL_LB_RGB10 ? 2.0
+                                                                : 65024.0;
+        if (sol_tonemap_inverse((sol_tonemap)s->pipeline.tonemap, y, &x_white) == SOL_OK && x_white > 0)
+            f->light_scale = top * s->pipeline.exposure / (M_PI * x_white);
+        else
+            f->light_scale = s->pipeline.exposure;
+    }
+    if (!f->reference && fx(f, SOL_FX_GBUFFER_NORMALS) && s->pipeline.gbuffer_normals == SOL_NORMAL_XYZ_BEST_FIT &&
+        (st = sol_bestfit_table_build(512, 8, &f->bestfit)) != SOL_OK)
+        return st;
     if (s->pipeline.has_look) {
         sol_grade *g = &f->grade;
         g->saturation = s->pipeline.look_saturation;
@@ -1125,6 +1151,7 @@ sol_status sol_scene_render(const sol_scene *scene, const sol_scene_plan *plan, 
     memset(hist, 0, sizeof hist);
     sol_status st = prepare(&f);
     double t1 = omp_get_wtime();
+    clock_t c1 = clock();
     st_local.prepare_seconds = t1 - t0;
     if (st == SOL_OK && (st = sol_image_alloc(&r.hdr, f.width, f.height, 3)) == SOL_OK &&
         (st = sol_image_alloc(&r.display, f.width, f.height, 3)) == SOL_OK)
@@ -1185,7 +1212,8 @@ sol_status sol_scene_render(const sol_scene *scene, const sol_scene_plan *plan, 
         return st;
     }
     st_local.seconds = omp_get_wtime() - t1;
-    st_local.cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
+    st_local.cpu_seconds = (double)(clock() - c1) / CLOCKS_PER_SEC;
+    (void)c0;
     *out = r;
     if (stats)
         *stats = st_local;

@@ -251,7 +251,7 @@ typedef struct sol_render_stats {
     uint64_t objects_culled;            /* culling: objects removed before the G-buffer pass */
     int frames;                         /* frames rendered (camera path) */
     double seconds;                     /* wall time of the frame(s): every pass after the textures */
-    double cpu_seconds;                 /* processor time of the whole render, all threads (clock()) */
+    double cpu_seconds;                 /* processor time of the frame(s), all threads summed (clock()) */
     double prepare_seconds;             /* wall time of texture compression and fits (offline in an engine) */
 } sol_render_stats;
 
