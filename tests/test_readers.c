@@ -516,3 +516,21 @@ Test(readers, file_out_opens_commits_and_discards)
     cr_assert_eq(sol_file_out_close(NULL, 1), SOL_ERR_NULL_ARG);
     remove_folder((const char *const[]){"a.txt"}, 1);
 }
+
+Test(readers, read_ex_refuses_null_arguments_and_accepts_the_largest_limits)
+{
+    sol_image image = sentinel;
+    int bits = -3;
+    const sol_read_limits huge = {.max_pixels = UINT64_MAX, .max_bytes = UINT64_MAX};
+    cr_assert_eq(sol_png_read_ex(NULL, &huge, &image, &bits), SOL_ERR_NULL_ARG);
+    cr_assert_eq(sol_png_read_ex(RELIABILITY "same_image_not_interlaced.png", &huge, NULL, &bits), SOL_ERR_NULL_ARG);
+    cr_assert_eq(sol_exr_read_ex(NULL, &huge, &image), SOL_ERR_NULL_ARG);
+    cr_assert_eq(sol_exr_read_ex(RELIABILITY "alloc_3GB_from_header.exr", &huge, NULL), SOL_ERR_NULL_ARG);
+    cr_assert_eq(sol_png_read_ex("/nonexistent/x.png", &huge, &image, &bits), SOL_ERR_IO);
+    cr_assert_eq(sol_exr_read_ex("/nonexistent/x.exr", &huge, &image), SOL_ERR_IO);
+    assert_untouched(&image);
+    cr_assert_eq(bits, -3);
+    cr_assert_eq(sol_png_read_ex(RELIABILITY "same_image_not_interlaced.png", &huge, &image, &bits), SOL_OK);
+    cr_assert(image.width == 16 && bits == 8);
+    sol_image_free(&image);
+}

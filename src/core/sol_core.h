@@ -102,7 +102,8 @@ sol_status sol_read_limits_check(const sol_read_limits *limits, int64_t width, i
  * stdio buffered, e.g. a full disk, is still reported), else SOL_ERR_IO. sol_file_out_close(out,
  * 0) discards: closes and removes the temporary and returns SOL_OK. Either way the temporary is
  * gone afterwards and `*out` is zeroed. A `path` naming an existing device or FIFO (which a
- * rename cannot replace) is opened and written in place instead; a directory is SOL_ERR_IO.
+ * rename cannot replace) is opened and written in place instead; a directory is SOL_ERR_IO; a
+ * symbolic link at `path` is replaced by the new file (its target is left alone).
  * Errors of open: SOL_ERR_NULL_ARG, SOL_ERR_IO (empty path, folder missing or not writable),
  * SOL_ERR_NO_MEMORY; `*out` is untouched on error. `path` must stay valid until the close. */
 typedef struct sol_file_out {
@@ -124,8 +125,8 @@ sol_status sol_file_out_close(sol_file_out *out, int commit);
  * unreadable file is SOL_ERR_IO, a malformed, truncated or corrupt one SOL_ERR_FORMAT; whatever
  * the error, everything the read allocated is freed and `*out` / `*bits_out` are untouched.
  * Writing goes to a temporary file in the same folder, renamed over `path` on success; on any
- * error (SOL_ERR_IO for a failed open, write, flush or rename) neither a file at `path` nor the
- * temporary is left behind. */
+ * error (SOL_ERR_IO for a failed open, write, flush or rename) no temporary is left and `path` is
+ * as it was (absent, or the old file unchanged). */
 sol_status sol_png_read(const char *path, sol_image *out, int *bits_out);
 sol_status sol_png_read_ex(const char *path, const sol_read_limits *limits, sol_image *out, int *bits_out);
 sol_status sol_png_write(const char *path, const sol_image *image, int bits);
@@ -143,7 +144,7 @@ sol_status sol_exr_read(const char *path, sol_image *out);
  * channels is refused too. Any of these gives SOL_ERR_LIMIT; a missing or unreadable file SOL_ERR_IO, a
  * malformed one SOL_ERR_FORMAT. On every error all memory is freed and `*out` is untouched.
  * Writing goes to a temporary file in the same folder, renamed over `path` on success (on error
- * neither `path` nor the temporary is left). */
+ * no temporary is left and `path` is as it was). */
 #define SOL_EXR_MAX_CHANNELS 1024
 sol_status sol_exr_read_ex(const char *path, const sol_read_limits *limits, sol_image *out);
 sol_status sol_exr_write(const char *path, const sol_image *image, int half_precision);

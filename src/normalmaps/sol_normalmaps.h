@@ -198,7 +198,7 @@ sol_status sol_bc5_decode_image(const uint8_t *blocks, int width, int height, so
 /* Writes a .dds file: fourcc "ATI2" (BC5, 16 bytes per block) or "ATI1" (BC4, 8 bytes per block),
  * one mip level. channels: 1 (BC4) or 2 (BC5). SOL_ERR_IO if the file cannot be written. The file
  * is written to a temporary beside `path` and renamed over it on success (sol_file_out_open): on
- * any error neither `path` nor a temporary is left. */
+ * any error no temporary is left and `path` is as it was (absent, or the old file unchanged). */
 sol_status sol_dds_write_bc(const char *path, const uint8_t *blocks, int width, int height, int channels);
 
 #ifdef __cplusplus
