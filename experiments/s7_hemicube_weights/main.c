@@ -181,7 +181,8 @@ static void claim_element_area(exp_run *exp)
     char fig[256];
     snprintf(fig, sizeof fig, "5-face sums: solid angle 2pi%+.1e, exact cosine pi%+.1e; centre-cosine pi x (1%+.1e) at 64^2",
              a - 2 * M_PI, e - M_PI, b / M_PI - 1.0);
-    exp_number(exp, "S7-centre-cos-err-64", "%.0e", fabs(b / M_PI - 1.0));
+    int e10 = (int)floor(log10(fabs(b / M_PI - 1.0)));
+    exp_number(exp, "S7-centre-cos-err-64", "$%.0f\\times10^{%d}$", fabs(b / M_PI - 1.0) / pow(10.0, e10), e10);
     int weights_ok = fabs(a - 2 * M_PI) < 1e-9 && fabs(e - M_PI) < 1e-9;
     exp_claim(exp, "S7", "texel solid angle by the ElementArea formula", fig, "sums within 1e-9 of 2pi and pi",
               weights_ok ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,

@@ -242,7 +242,9 @@ int main(int argc, char **argv)
     char fig[256];
     snprintf(fig, sizeof fig, "edges: max diff %.3f, penumbra width x%.3f; any pattern: max diff %.3f", edge_max, ratio_min,
              worst_fast);
-    exp_number(&exp, "S8-exact-taps-max", "%.0e", worst_exact_taps > 0 ? worst_exact_taps : 1e-16);
+    double exact_max = worst_exact_taps > 0 ? worst_exact_taps : 1e-16;
+    int e10 = (int)floor(log10(exact_max));
+    exp_number(&exp, "S8-exact-taps-max", "$%.0f\\times10^{%d}$", exact_max / pow(10.0, e10), e10);
     exp_number(&exp, "S8-fast-worst", "%.3f", worst_fast);
     exp_number(&exp, "S8-edge-max", "%.3f", edge_max);
     exp_number(&exp, "S8-width-ratio-min", "%.2f", ratio_min);
