@@ -119,6 +119,9 @@ int main(int argc, char **argv)
     char fig[256];
     snprintf(fig, sizeof fig, "leak into the next room: %.1f%% of the room's own light unshadowed, %.1f%% clipped",
              100.0 * solid_t.b[0] / solid_t.a[2], 100.0 * solid_t.b[1] / solid_t.a[2]);
+    exp_number(&exp, "D13-leak-unshadowed", "%.0f\\%%", 100.0 * solid_t.b[0] / solid_t.a[2]);
+    exp_number(&exp, "D13-door-share", "%.0f\\%%", 100.0 * door_t.b[2] / door_t.a[2]);
+    exp_number(&exp, "D13-stencil-rejected", "%.0f\\%%", 100.0 * solid_t.rejected_by_clip / solid_t.lit_pixels_unshadowed);
     int ok = solid_t.b[0] > 0.0 && solid_t.b[1] == 0.0 && fabs(solid_t.a[1] - solid_t.a[0]) < 1e-12;
     exp_claim(&exp, "D13", "clip volumes stop unshadowed deferred lights bleeding through walls", fig,
               "leak > 0 without, exactly 0 with the clip volume, room A unchanged",

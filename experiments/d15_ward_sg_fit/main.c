@@ -464,6 +464,12 @@ static void claim_d15(const exp_run *exp, const cell *cells, int n_cells, int n_
         exp_number(exp, "D15-core-level", "%.0f\\%%", 100 * LEVELS[core_level]);
     exp_number(exp, "D15-multistart-gain", "%.1f\\%%", 100 * total_gain);
     exp_number(exp, "D15-multistart-last-gain", "%.2f\\%%", 100 * last_gain);
+    exp_number(exp, "D15-multistart-max-starts", "%d", max_starts);
+    exp_number(exp, "D15-share-5pct", "%.0f\\%%", 100 * share[2]);
+    exp_number(exp, "D15-share-10pct", "%.0f\\%%", 100 * share[3]);
+    exp_number(exp, "D15-ratio-within-7", "%.1f", largest_ratio_within_7(cells, n_cells));
+    exp_number(exp, "D15-iso-k-min", "%d", iso_k_min);
+    exp_number(exp, "D15-iso-k-max", "%d", iso_k_max);
 }
 
 int main(int argc, char **argv)

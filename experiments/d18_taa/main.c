@@ -489,6 +489,14 @@ int main(int argc, char **argv)
     exp_number(&exp, "D18-pan-cr16-far", "%.4f", sweep_far[N_CAPS + 3]);
     exp_number(&exp, "D18-pan-bil16-far", "%.4f", sweep_far[3]);
     exp_number(&exp, "D18-pan-settings-below-aliased", "%d", n_gain);
+    exp_number(&exp, "D18-pan-settings", "%d", N_SWEEP);
+    exp_number(&exp, "D18-pan-taa-far", "%.4f", panning[M_TAA][R_FAR]);
+    exp_number(&exp, "D18-still-aliased-far", "%.4f", still[M_ALIASED][R_FAR]);
+    exp_number(&exp, "D18-still-taa-far", "%.4f", still[M_TAA][R_FAR]);
+    exp_number(&exp, "D18-still-nojitter-far", "%.4f", still[M_TAA_NO_JITTER][R_FAR]);
+    exp_number(&exp, "D18-ghost-3x3", "%.4f", panning[M_TAA][R_GHOST]);
+    exp_number(&exp, "D18-ghost-1px", "%.4f", panning[M_TAA_PIXEL_TEST][R_GHOST]);
+    exp_number(&exp, "D18-ghost-none", "%.4f", panning[M_TAA_NO_DEPTH_TEST][R_GHOST]);
     snprintf(fig, sizeof fig,
              "ghost-region RMS (panning): 3x3 depth test %.4f, 1-pixel test %.4f, no test %.4f; aliased %.4f",
              panning[M_TAA][R_GHOST], panning[M_TAA_PIXEL_TEST][R_GHOST], panning[M_TAA_NO_DEPTH_TEST][R_GHOST],

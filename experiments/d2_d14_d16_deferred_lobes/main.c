@@ -566,6 +566,10 @@ static void d16_claim(const exp_run *exp, const d16_results *d, double l2_k[3][N
     exp_claim(exp, "D16", "O(n*m) per pixel; lighting cut to ~7 lobes by hemisphere", fig,
               "R^2 >= 0.95; cut-to-7 image error within 1.25x (+0.01) of all lobes", v,
               "timing table and fit (d16_timing), hemisphere cut table (d16_cut)");
+    exp_number(exp, "D16-time-r2", "%.3f", r2);
+    exp_number(exp, "D16-pair-ns", "%.1f", per_pair);
+    exp_number(exp, "D16-cut7-err", "%.3f", rms_cut[4]);
+    exp_number(exp, "D16-cutall-err", "%.3f", rms_cut[N_CUT - 1]);
 
     /* Row 2, per environment at n = 7: mean shift, image error light-weighted vs light-independent,
      * each with both glossiness fits. */

@@ -337,6 +337,14 @@ static void write_claims(const exp_run *exp, const ssao_scene *sc, int frames, c
               err_acc[best][frames] < err_acc[1][frames] ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the bilinear history fetch blurs the history a little every frame and disocclusions restart it, so "
               "with motion the gain is smaller than with a still camera and a shorter history can be better");
+    exp_number(exp, "M3-acc-frames", "%d", f16);
+    exp_number(exp, "M3-still-acc", "%.4f", err_acc[0][f16]);
+    exp_number(exp, "M3-half-64spp", "%.4f", err_half[4]);
+    exp_number(exp, "M3-half-4spp", "%.4f", err_half[0]);
+    exp_number(exp, "M3-move-frames", "%d", frames);
+    exp_number(exp, "M3-move-best-cap", "%.0f", config_cap[best]);
+    exp_number(exp, "M3-move-best", "%.4f", err_acc[best][frames]);
+    exp_number(exp, "M3-move-single", "%.4f", err_acc[1][frames]);
     exp_claim(exp, "M3", "1 ms on X360, 1.2 ms on PS3", "not measurable here (CPU only)", "-", EXP_NOT_REPRODUCED,
               "console GPU timings need the consoles and their shaders; this CPU code's ns/pixel (samples table) only "
               "ranks sample counts against each other");

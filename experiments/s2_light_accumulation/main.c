@@ -169,6 +169,10 @@ int main(int argc, char **argv)
             red_blue = e;
         if (k == 0)
             same = e;
+        if (k == 2) {
+            exp_number(&exp, "S2-warmcool-mean-deg", "%.1f", e.mean_angle_deg);
+            exp_number(&exp, "S2-warmcool-max-deg", "%.1f", e.max_angle_deg);
+        }
     }
     exp_table_write(t, &exp, "colour_pairs");
 
@@ -202,6 +206,10 @@ int main(int argc, char **argv)
     char fig[256];
     snprintf(fig, sizeof fig, "same colour: %.1e deg; red+blue: mean %.1f deg, max %.1f deg specular hue error",
              same.max_angle_deg, red_blue.mean_angle_deg, red_blue.max_angle_deg);
+    exp_number(&exp, "S2-redblue-mean-deg", "%.1f", red_blue.mean_angle_deg);
+    exp_number(&exp, "S2-redblue-max-deg", "%.0f", red_blue.max_angle_deg);
+    exp_number(&exp, "S2-redblue-spec-err", "%.0f\\%%", 100.0 * red_blue.spec_rel_error);
+    exp_number(&exp, "S2-redblue-final-err", "%.1f\\%%", 100.0 * red_blue.final_rel_error);
     int ok = same.max_angle_deg < 1e-6 && red_blue.max_angle_deg > 1.0;
     exp_claim(&exp, "S2", "4 channels (spec ~ diffuse*strength) differ from 6 for two differently coloured lights", fig,
               "exact (< 1e-6 deg) for one colour, visibly wrong (> 1 deg) for two",

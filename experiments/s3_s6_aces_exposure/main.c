@@ -166,11 +166,11 @@ static double s3_aces_fit(const exp_run *exp)
     const struct { const char *label; double s; } rows[] = {
         {"none", 1.0}, {"note's 'multiply input by 0.6' (1/0.6)", 1.0 / 0.6}, {"one stop pre-exposure", 2.0},
         {"smallest max error in the sweep", s_best}};
-    double one_stop = 0.0;
+    double one_stop = 0.0, one_stop_at = 0.0;
     for (size_t r = 0; r < sizeof rows / sizeof rows[0]; ++r) {
         fit_error e = measure_fit(rows[r].s, fit_x_max, samples);
         if (rows[r].s == 2.0)
-            one_stop = e.max_abs;
+            one_stop = e.max_abs, one_stop_at = e.at_x;
         exp_table_row(t, "%s|%.4f|%.4f|%.3f|%.4f|%.4f", rows[r].label, rows[r].s, e.max_abs, e.at_x, e.max_abs_srgb,
                       e.mean_abs);
     }
@@ -216,6 +216,12 @@ static double s3_aces_fit(const exp_run *exp)
              "plot 'scale_sweep_curve.csv' using 1:2 with lines lw 2 notitle");
     hill_result hill = s3_hill(exp);
     fit_error stated = measure_fit(1.0 / 0.6, fit_x_max, samples);
+    exp_number(exp, "S3-fit-err-2x", "%.4f", one_stop);
+    exp_number(exp, "S3-fit-err-2x-at", "%.1f", one_stop_at);
+    exp_number(exp, "S3-fit-err-stated", "%.4f", stated.max_abs);
+    exp_number(exp, "S3-stated-over-2x", "%.1f", stated.max_abs / one_stop);
+    exp_number(exp, "S3-sweep-best-scale", "%.3f", s_best);
+    exp_number(exp, "S3-sweep-min", "%.4f", sweep_min);
     char fig[256];
     snprintf(fig, sizeof fig, "%.4f with ref(2x) (one stop pre-exposure); %.4f with ref(x/0.6)", one_stop,
              stated.max_abs);
@@ -336,6 +342,10 @@ static void s6_exposure(const exp_run *exp)
     char fig[256];
     snprintf(fig, sizeof fig, "sun entering the frame: mean %+.2f EV, log-average %+.2f EV, histogram (skip 60%%/10%%) %+.2f EV",
              jump[0], jump[1], jump[2]);
+    exp_number(exp, "S6-frames", "%d", frames);
+    exp_number(exp, "S6-jump-mean-ev", "%.2f", jump[0]);
+    exp_number(exp, "S6-jump-logavg-ev", "%.2f", jump[1]);
+    exp_number(exp, "S6-jump-meter-ev", "%.2f", jump[2]);
     /* The verdict checks what the note states: the sun moves the mean most, the trimmed histogram least. */
     const int trimmed_ignores_sun = fabs(jump[2]) <= fabs(jump[1]) && fabs(jump[1]) < fabs(jump[0]);
     exp_claim(exp, "S6", "EV units, histogram metering skipping darkest/brightest, Krawczyk key, exponential adaptation",

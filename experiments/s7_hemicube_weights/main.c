@@ -135,6 +135,9 @@ static double renormalised_irradiance_table(exp_run *exp, sol_texel_weight *w, i
         exp_table_row(r, "%s|%.5f|%.5f|%+.4f", skies[k].name, skies[k].exact, e, e / skies[k].exact - 1.0);
         if (k == 2)
             horizon_error = e / skies[k].exact - 1.0;
+        static const char *keys[4] = {NULL, "S7-renorm-zenith-err", "S7-renorm-horizon-err", "S7-renorm-lowband-err"};
+        if (keys[k])
+            exp_number(exp, keys[k], "%.0f\\%%", 100.0 * fabs(e / skies[k].exact - 1.0));
     }
     exp_table_write(r, exp, "renormalised_irradiance");
     return horizon_error;
@@ -178,6 +181,8 @@ static void claim_element_area(exp_run *exp)
     char fig[256];
     snprintf(fig, sizeof fig, "5-face sums: solid angle 2pi%+.1e, exact cosine pi%+.1e; centre-cosine pi x (1%+.1e) at 64^2",
              a - 2 * M_PI, e - M_PI, b / M_PI - 1.0);
+    int e10 = (int)floor(log10(fabs(b / M_PI - 1.0)));
+    exp_number(exp, "S7-centre-cos-err-64", "$%.0f\\times10^{%d}$", fabs(b / M_PI - 1.0) / pow(10.0, e10), e10);
     int weights_ok = fabs(a - 2 * M_PI) < 1e-9 && fabs(e - M_PI) < 1e-9;
     exp_claim(exp, "S7", "texel solid angle by the ElementArea formula", fig, "sums within 1e-9 of 2pi and pi",
               weights_ok ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
@@ -192,6 +197,12 @@ static void claim_single_plane(exp_run *exp, double fov_deg, double omega_plane,
     char fig[256];
     snprintf(fig, sizeof fig, "2 atan(2) = %.4f deg; captures %.1f%% of the solid angle, %.1f%% of the cosine-weighted hemisphere",
              fov_deg, 100.0 * omega_plane / (2 * M_PI), 100.0 * cos_plane / M_PI);
+    exp_number(exp, "S7-fov-deg", "%.4f", fov_deg);
+    exp_number(exp, "S7-plane-sr", "%.4f", omega_plane);
+    exp_number(exp, "S7-plane-solid-share", "%.1f\\%%", 100.0 * omega_plane / (2 * M_PI));
+    exp_number(exp, "S7-plane-cos", "%.4f", cos_plane);
+    exp_number(exp, "S7-plane-cos-share", "%.1f\\%%", 100.0 * cos_plane / M_PI);
+    exp_number(exp, "S7-plane-missed-share", "%.1f\\%%", 100.0 * (1.0 - cos_plane / M_PI));
     exp_claim(exp, "S7", "single plane, ~126.87 deg FOV (double side length)", fig, "FOV within 0.01 deg",
               fabs(fov_deg - 126.87) < 0.01 ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "the plane misses %.1f%% of the irradiance of a uniform sky (renormalising the weights restores it); "

@@ -280,7 +280,7 @@ void run_renormalization(const exp_run *exp)
                                   "largest gap 8-bit src (1/255),RMS 16-bit renorm,RMS 8-bit renorm,RMS 8-bit plain,"
                                   "RMS 8-bit src no BC1 (control),8-bit renorm / independent sum");
     int t2_wins = 0, t2_cases = 0, t1_worse = 0, t1_excess = 0, game_figure = 0;
-    double ratio_sum = 0.0, t1_ratio_sum = 0.0, t1_excess_sum = 0.0, control_max = 0.0;
+    double ratio_sum = 0.0, t1_ratio_sum = 0.0, t1_excess_sum = 0.0, control_max = 0.0, gap_min = INFINITY, gap_max = 0.0;
     for (int k = 0; k < count; ++k) {
         sol_image ref = stored_of(&set[k].linear, 0), src8 = stored_of(&set[k].linear, 1);
         sol_image plain = through_bc1(&ref, 0), renorm = through_bc1(&ref, 1);
@@ -316,6 +316,8 @@ void run_renormalization(const exp_run *exp)
         t1_excess += excess > 1.0;
         t1_excess_sum += log(excess);
         control_max = fmax(control_max, c8.rms);
+        gap_min = fmin(gap_min, gap8);
+        gap_max = fmax(gap_max, gap8);
         if (k == 1) /* the slide's figure: a synthetic 16-bit texture and the first game texture */
             write_figure(exp, "renormalization_x16.png", &ref, &plain, &renorm, lights[LIGHT_16]);
         if (set[k].source_bits == 8 && !game_figure++)
@@ -337,6 +339,10 @@ void run_renormalization(const exp_run *exp)
               "sRGB storage, sol's cluster-fit BC1, lights x8-x64, display sRGB(min(1, light albedo)); figure "
               "renormalization_x16.png: reference, plain BC1, renormalised BC1",
               count);
+    exp_number(exp, "T2-textures", "%d", count);
+    exp_number(exp, "T2-wins", "%d", t2_wins);
+    exp_number(exp, "T2-cases", "%d", t2_cases);
+    exp_number(exp, "T2-ratio", "%.2f", geometric_mean(ratio_sum, t2_cases));
     snprintf(fig, sizeof fig, "8-bit source renormalised: larger error than 16-bit source in %d of %d textures "
                               "(geometric-mean ratio %.2f at x16)",
              t1_worse, count, geometric_mean(t1_ratio_sum, count));
@@ -350,6 +356,8 @@ void run_renormalization(const exp_run *exp)
     exp_number(exp, "T1-worse", "%d", t1_worse);
     exp_number(exp, "T1-ratio", "%.2f", geometric_mean(t1_ratio_sum, count));
     exp_number(exp, "T1-control-max", "%.2f", control_max);
+    exp_number(exp, "T1-gap-min", "%.0f", gap_min);
+    exp_number(exp, "T1-gap-max", "%.0f", gap_max);
     exp_number(exp, "T1-excess", "%d", t1_excess);
     exp_number(exp, "T1-excess-ratio", "%.2f", geometric_mean(t1_excess_sum, count));
     exp_claim(exp, "T1", "control: the extra distortion comes from renormalising the quantised histogram through 5:6:5",

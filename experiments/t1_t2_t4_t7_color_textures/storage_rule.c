@@ -165,6 +165,19 @@ void run_storage_rule(const exp_run *exp)
               "the best threshold is lower. On Xbox 360 (PWL gamma through the 8-bit cache) linear storage wins %d of %d "
               "textures (display metric)",
               count, game, x360_linear_wins, count);
+    exp_number(exp, "T4-textures", "%d", count);
+    exp_number(exp, "T4-game-textures", "%d", game);
+    exp_number(exp, "T4-disp-right-75", "%d", hits_at[1][0]);
+    exp_number(exp, "T4-disp-best", "%d", best[1][0]);
+    exp_number(exp, "T4-disp-best-lo", "%.3f", lo[1][0]);
+    exp_number(exp, "T4-disp-best-hi", "%.3f", hi[1][0]);
+    exp_number(exp, "T4-talk-right-75", "%d", hits_at[1][1]);
+    exp_number(exp, "T4-talk-best", "%d", best[1][1]);
+    exp_number(exp, "T4-talk-best-lo", "%.3f", lo[1][1]);
+    exp_number(exp, "T4-lin-right-75", "%d", hits_at[0][0]);
+    exp_number(exp, "T4-lin-best", "%d", best[0][0]);
+    exp_number(exp, "T4-lin-best-lo", "%.2f", lo[0][0]);
+    exp_number(exp, "T4-x360-linear-wins", "%d", x360_linear_wins);
     free(r);
     inputs_free(set, count);
 }
@@ -251,6 +264,13 @@ void run_bright_gradient(const exp_run *exp)
     char sol_fig[256];
     snprintf(sol_fig, sizeof sol_fig, "contrasted: gamma %d levels, max step %.1f, RMS %.2f; linear %d levels, max step %.1f, RMS %.2f",
              st[1].levels, st[1].max_step, st[1].rms, st[2].levels, st[2].max_step, st[2].rms);
+    exp_number(exp, "T7-gamma-levels", "%d", st[1].levels);
+    exp_number(exp, "T7-linear-levels", "%d", st[2].levels);
+    exp_number(exp, "T7-gamma-step", "%.1f", st[1].max_step);
+    exp_number(exp, "T7-linear-step", "%.1f", st[2].max_step);
+    exp_number(exp, "T7-gamma-rms", "%.2f", st[1].rms);
+    exp_number(exp, "T7-linear-rms", "%.2f", st[2].rms);
+    exp_number(exp, "T7-x360-levels", "%d", st[3].levels);
     int reproduced = st[1].levels < st[2].levels && st[1].max_step > st[2].max_step;
     exp_claim(exp, "T7", "bright gradient bands more stored gamma than linear (contrast exaggerated)", sol_fig,
               "qualitative", reproduced ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
