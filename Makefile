@@ -280,7 +280,8 @@ sanitize: deps-test
 	@$(MAKE) --no-print-directory BUILD=$(BUILD)/sanitize \
 	  CFLAGS="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
 	  CXXFLAGS="-O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer" \
-	  LDFLAGS="-fsanitize=address,undefined" $(BUILD)/sanitize/tests/sol_tests $(BUILD)/sanitize/sol
+	  LDFLAGS="-fsanitize=address,undefined" $(BUILD)/sanitize/tests/sol_tests $(BUILD)/sanitize/sol \
+	  $(BUILD)/sanitize/tests/engine_fixture
 	@log=$(BUILD)/sanitize/tests.log; \
 	{ ASAN_OPTIONS=allocator_may_return_null=1:detect_leaks=1 $(BUILD)/sanitize/tests/sol_tests $(TEST_ARGS) 2>&1; \
 	  echo $$? > $$log.rc; } | tee $$log; \

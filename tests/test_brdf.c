@@ -533,17 +533,42 @@ Test(brdf, d16_symmetric_lobes_and_lights_give_the_symmetric_normal)
     cr_assert(lobe.normal[0] > 0.1);
 }
 
+/* The documented work counters: n warps and n * m inner products, whatever the lighting (D16's
+ * O(n*m) verdict follows these counts, not timings). */
+Test(brdf, d16_extraction_counts_n_warps_and_n_times_m_products)
+{
+    sol_sg ndf[12], light[32];
+    for (int i = 0; i < 12; ++i)
+        ndf[i] = sg(0.05 * i, 0.5 * i, 50.0 + 10.0 * i, 1.0);
+    for (int j = 0; j < 32; ++j)
+        light[j] = sg(0.1 * j, 0.7 * j, 5.0 + j, j % 3 ? 1.0 : 0.0); /* some lobes dark, some below */
+    static const int ns[] = {1, 3, 7, 12}, ms[] = {1, 2, 7, 32};
+    for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) {
+            sol_phong_lobe lobe;
+            cr_assert_eq(sol_extract_phong_lobe(ndf, ns[a], light, ms[b], Z, &lobe), SOL_OK);
+            cr_assert_eq(lobe.warps, ns[a]);
+            cr_assert_eq(lobe.products, ns[a] * ms[b]);
+        }
+    /* Light entirely below the lobes: the fallback still evaluated every product. */
+    sol_sg below = sg(M_PI, 0, 1e6, 1);
+    sol_phong_lobe lobe;
+    cr_assert_eq(sol_extract_phong_lobe(ndf, 3, &below, 1, Z, &lobe), SOL_OK);
+    cr_assert_eq(lobe.warps, 3);
+    cr_assert_eq(lobe.products, 3);
+}
+
 Test(brdf, d16_extraction_hard_cases)
 {
     sol_sg ndf = sg(0, 0, 100, 1), light = sg(0, 0, 10, 1), nan_light = sg(0, 0, NAN, 1);
     double away[3] = {0, 0, -1}, nan_v[3] = {NAN, 0, 1};
-    sol_phong_lobe lobe = {{7, 7, 7}, 7, 7, 7};
+    sol_phong_lobe lobe = {{7, 7, 7}, 7, 7, 7, 7, 7};
     cr_assert_eq(sol_extract_phong_lobe(&ndf, 1, &light, 1, away, &lobe), SOL_ERR_ZERO_LENGTH);
     cr_assert_eq(sol_extract_phong_lobe(&ndf, 1, &nan_light, 1, Z, &lobe), SOL_ERR_NONFINITE);
     cr_assert_eq(sol_extract_phong_lobe(&ndf, 1, &light, 1, nan_v, &lobe), SOL_ERR_NONFINITE);
     cr_assert_eq(sol_extract_phong_lobe(&ndf, 0, &light, 1, Z, &lobe), SOL_ERR_INVALID_ARG);
     cr_assert_eq(sol_extract_phong_lobe(NULL, 1, &light, 1, Z, &lobe), SOL_ERR_NULL_ARG);
-    cr_assert(lobe.glossiness == 7 && lobe.glossiness_energy == 7);
+    cr_assert(lobe.glossiness == 7 && lobe.glossiness_energy == 7 && lobe.warps == 7 && lobe.products == 7);
     /* A light entirely below the horizon of the lobe: falls back to the NDF's own weights. */
     sol_sg below = sg(M_PI, 0, 1e6, 1);
     cr_assert_eq(sol_extract_phong_lobe(&ndf, 1, &below, 1, Z, &lobe), SOL_OK);

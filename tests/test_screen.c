@@ -421,20 +421,28 @@ Test(screen, d18_depth_change_is_a_cache_miss_and_no_test_ghosts)
     sol_history_free(&next);
 }
 
+/* An 8x6 history of a wall at depth 4 seen for one frame, with value x (or x^2 when quadratic) in
+ * column x, an empty next history, and the current frame: the same wall, value 0. */
+static void wall_histories(sol_history *prev, sol_history *next, float depth[48], float cur[48], int quadratic)
+{
+    cr_assert_eq(sol_history_alloc(prev, 8, 6, 1), SOL_OK);
+    cr_assert_eq(sol_history_alloc(next, 8, 6, 1), SOL_OK);
+    for (int i = 0; i < 48; ++i) {
+        double x = i % 8;
+        prev->values[i] = (float)(quadratic ? x * x : x);
+        prev->depth[i] = 4.0f;
+        prev->frames[i] = 1.0f;
+    }
+    fill(depth, 48, 4.0f);
+    fill(cur, 48, 0.0f);
+}
+
 Test(screen, temporal_reprojection_follows_a_sideways_camera_move)
 {
     /* A wall at depth 4 and a camera moved by 4/8 units right: one pixel of parallax. */
     sol_history prev, next;
-    cr_assert_eq(sol_history_alloc(&prev, 8, 6, 1), SOL_OK);
-    cr_assert_eq(sol_history_alloc(&next, 8, 6, 1), SOL_OK);
-    for (int i = 0; i < 48; ++i) {
-        prev.values[i] = (float)(i % 8);
-        prev.depth[i] = 4.0f;
-        prev.frames[i] = 1.0f;
-    }
     float depth[48], cur[48];
-    fill(depth, 48, 4.0f);
-    fill(cur, 48, 0.0f);
+    wall_histories(&prev, &next, depth, cur, 0);
     const double motion[3] = {0.5, 0, 0};
     sol_temporal_options opt = {.max_frames = 1e9};
     cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, motion, &opt, &prev, &next), SOL_OK);
@@ -451,17 +459,8 @@ Test(screen, temporal_reprojection_follows_a_sideways_camera_move)
 Test(screen, d18_catmull_rom_history_is_exact_on_a_quadratic)
 {
     sol_history prev, next;
-    cr_assert_eq(sol_history_alloc(&prev, 8, 6, 1), SOL_OK);
-    cr_assert_eq(sol_history_alloc(&next, 8, 6, 1), SOL_OK);
-    for (int i = 0; i < 48; ++i) {
-        double x = i % 8;
-        prev.values[i] = (float)(x * x);
-        prev.depth[i] = 4.0f;
-        prev.frames[i] = 1.0f;
-    }
     float depth[48], cur[48];
-    fill(depth, 48, 4.0f);
-    fill(cur, 48, 0.0f);
+    wall_histories(&prev, &next, depth, cur, 1);
     const double half_pixel[3] = {0.25, 0, 0};
     sol_temporal_options cr = {.max_frames = 1e9, .filter = SOL_HISTORY_CATMULL_ROM}, bl = {.max_frames = 1e9};
     cr_assert_eq(sol_temporal_accumulate(&small_camera, depth, cur, half_pixel, &cr, &prev, &next), SOL_OK);

@@ -441,7 +441,8 @@ static void claim_s4(const exp_run *exp, const fit_results *f, int ref_n, int re
               "max abs error of F0*scale+bias <= 0.02 for F0 = 0.04 and 1", ok ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
               "%dx%d gloss x n.v grid, reference by %dx%d-sample quadrature; polynomial max error F0=1 %.4f "
               "(worst F0=0.04 point at gloss %.3f, n.v %.3f; for n.v >= 0.1 max %.4f); Lazarov refit max F0=1 %.4f; "
-              "mean errors ~%.0f/255; cost %.1f vs %.1f ns; the same form refitted here: max %.4f (F0=0.04)",
+              "mean errors ~%.0f/255; timing, information only, varies per run: %.1f vs %.1f ns per value; the same "
+              "form refitted here: max %.4f (F0=0.04)",
               ref_n, ref_n, ref_samples, ref_samples, f->poly.max_f1, f->poly.worst_gloss, f->poly.worst_nv,
               fmax(f->poly_away.max_f004, f->poly_away.max_f1), f->laz.max_f1, 255.0 * f->poly.mean_f004, f->ns_poly,
               f->ns_laz, f->own.max_f004);

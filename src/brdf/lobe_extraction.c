@@ -42,6 +42,7 @@ sol_status sol_extract_phong_lobe(const sol_sg *brdf, int n_brdf, const sol_sg *
     /* Weights: the light each warped lobe receives (the O(n*m) loop of the talk), or, when no light
      * reaches any lobe, the lobes' own energies. */
     double weight[64], energy[64], lit = 0.0, own = 0.0;
+    int warps = 0, products = 0; /* work counters (D16's cost, counted rather than timed) */
     sol_sg warped[64];
     if (n_brdf > 64)
         return SOL_ERR_INVALID_ARG;
@@ -49,8 +50,9 @@ sol_status sol_extract_phong_lobe(const sol_sg *brdf, int n_brdf, const sol_sg *
         if (!finite_sg(&brdf[i]))
             return SOL_ERR_NONFINITE;
         warped[i] = sol_sg_warp_ndf_lobe(&brdf[i], v);
+        ++warps;
         weight[i] = 0.0;
-        for (int j = 0; j < n_light; ++j)
+        for (int j = 0; j < n_light; ++j, ++products)
             weight[i] += sol_sg_inner_product(&warped[i], &light[j]);
         energy[i] = sol_sg_integral(&warped[i]);
         lit += weight[i];
@@ -103,6 +105,8 @@ sol_status sol_extract_phong_lobe(const sol_sg *brdf, int n_brdf, const sol_sg *
     out->glossiness = 2.0 / var;
     out->energy = total;
     out->glossiness_energy = g_energy > 0.0 ? g_energy : 0.0;
+    out->warps = warps;
+    out->products = products;
     return SOL_OK;
 }
 

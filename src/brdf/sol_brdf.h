@@ -258,6 +258,11 @@ typedef struct sol_phong_lobe {
      * For one lobe of warped sharpness lambda it is lambda / (1 - exp(-2 lambda)) - 1 (the variance
      * match gives lambda); for lobes spread apart the mean axis falls between them and it is lower. */
     double glossiness_energy;
+    /* Work counters, counted as the extraction runs (claim D16's cost is checked on these, not on
+     * timings): SG warps evaluated (one per BRDF lobe) and BRDF-lobe x light-lobe inner products
+     * evaluated (n_brdf * n_light: the O(n*m) loop). */
+    int warps;
+    int products;
 } sol_phong_lobe;
 
 /* Extracts the principal Phong lobe of an SG NDF (n_brdf lobes over half vectors, world frame)
@@ -266,7 +271,8 @@ typedef struct sol_phong_lobe {
  * the NDF lobe axes (-> normal); the glossiness matches the angular variance of the weighted
  * mixture of warped lobes (each lobe's 2 / lambda plus the spread of their axes), g = 2 / variance;
  * glossiness_energy matches the mixture's peak at the same energy instead (see sol_phong_lobe).
- * With no light reaching any lobe, the lobes' own energies are the weights.
+ * With no light reaching any lobe, the lobes' own energies are the weights. `warps` and `products`
+ * count the warps and inner products evaluated (n_brdf and n_brdf * n_light on success).
  * Errors: SOL_ERR_NULL_ARG, SOL_ERR_INVALID_ARG (counts < 1, n_brdf > 64), SOL_ERR_ZERO_LENGTH
  * (weighted normal vanishes or all lobes face away from v), SOL_ERR_NONFINITE. */
 sol_status sol_extract_phong_lobe(const sol_sg *brdf, int n_brdf, const sol_sg *light, int n_light,

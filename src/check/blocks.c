@@ -18,6 +18,29 @@ static uint32_t max_code(int bits)
     return (1u << bits) - 1u;
 }
 
+/* One texel of a decoder check: the item at (x, y) records sol's codes ref[0..n) and the engine's
+ * e[0..n); its error is the largest |got[c] - ref[c]| (got: e, clamped where the caller needs it). */
+static void add_texel(check_acc *acc, int x, int y, int width, int n, const uint32_t *ref, const uint16_t *e,
+                      const uint32_t *got, double tolerance_codes)
+{
+    sol_check_item it;
+    memset(&it, 0, sizeof it);
+    it.index = (size_t)y * (size_t)width + (size_t)x;
+    it.input[0] = x;
+    it.input[1] = y;
+    double worst = 0.0;
+    int mismatch = 0;
+    for (int c = 0; c < n; ++c) {
+        it.expected[c] = ref[c];
+        it.got[c] = e[c];
+        double d = fabs((double)got[c] - (double)ref[c]);
+        mismatch |= d != 0.0;
+        worst = d > worst ? d : worst;
+    }
+    it.error = worst;
+    check_add(acc, &it, mismatch, worst > tolerance_codes);
+}
+
 sol_status sol_check_bc5_decode(const uint8_t *blocks, int width, int height, sol_bc4_precision precision,
                                 const uint16_t *texels, int channels, int bits, double tolerance_codes,
                                 sol_check_report *report)
@@ -42,24 +65,12 @@ sol_status sol_check_bc5_decode(const uint8_t *blocks, int width, int height, so
             for (int t = 0; t < 16; ++t) {
                 int x = 4 * bx + t % 4, y = 4 * by + t / 4;
                 const uint16_t *e = texels + ((size_t)y * (size_t)width + (size_t)x) * (size_t)channels;
-                sol_check_item it;
-                memset(&it, 0, sizeof it);
-                it.index = (size_t)y * (size_t)width + (size_t)x;
-                it.input[0] = x;
-                it.input[1] = y;
-                double worst = 0.0;
-                int mismatch = 0;
+                uint32_t ref[2], got[2];
                 for (int c = 0; c < 2; ++c) {
-                    uint32_t ref = sol_unorm_encode((c ? py[blk.y.index[t]] : px[blk.x.index[t]]), bits);
-                    uint32_t got = e[c] > max_code(bits) ? max_code(bits) + 1 : e[c];
-                    it.expected[c] = ref;
-                    it.got[c] = e[c];
-                    double d = fabs((double)got - (double)ref);
-                    mismatch |= d != 0.0;
-                    worst = d > worst ? d : worst;
+                    ref[c] = sol_unorm_encode((c ? py[blk.y.index[t]] : px[blk.x.index[t]]), bits);
+                    got[c] = e[c] > max_code(bits) ? max_code(bits) + 1 : e[c];
                 }
-                it.error = worst;
-                check_add(&acc, &it, mismatch, worst > tolerance_codes);
+                add_texel(&acc, x, y, width, 2, ref, e, got, tolerance_codes);
             }
         }
     check_end(&acc, report);
@@ -84,24 +95,13 @@ sol_status sol_check_bc1_decode(const uint8_t *blocks, int width, int height, co
             for (int t = 0; t < 16; ++t) {
                 int x = 4 * bx + t % 4, y = 4 * by + t / 4;
                 const uint16_t *e = texels + ((size_t)y * (size_t)width + (size_t)x) * (size_t)channels;
-                sol_check_item it;
-                memset(&it, 0, sizeof it);
-                it.index = (size_t)y * (size_t)width + (size_t)x;
-                it.input[0] = x;
-                it.input[1] = y;
-                double worst = 0.0;
-                int mismatch = 0;
+                uint32_t ref[3], got[3];
                 for (int c = 0; c < 3; ++c) {
                     /* 8-bit texel at 16 bits: code * 257 (exact: 65535 / 255 = 257) */
-                    uint32_t ref = bits == 8 ? rgba[t][c] : rgba[t][c] * 257u;
-                    it.expected[c] = ref;
-                    it.got[c] = e[c];
-                    double d = fabs((double)e[c] - (double)ref);
-                    mismatch |= d != 0.0;
-                    worst = d > worst ? d : worst;
+                    ref[c] = bits == 8 ? rgba[t][c] : rgba[t][c] * 257u;
+                    got[c] = e[c];
                 }
-                it.error = worst;
-                check_add(&acc, &it, mismatch, worst > tolerance_codes);
+                add_texel(&acc, x, y, width, 3, ref, e, got, tolerance_codes);
             }
         }
     check_end(&acc, report);
