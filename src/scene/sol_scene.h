@@ -234,7 +234,7 @@ sol_status sol_scene_plan_build(const sol_scene *scene, sol_scene_plan *out);
  * of each pixel (the G-buffer pass: position, view depth, normal, albedo, gloss), a light loop
  * accumulates diffuse and specular light (the light buffer), composition multiplies by albedo and
  * adds ambient light times obscurance, then exposure, tone map (sol_hdr), grading, and AA.
- *  - reference path: float everywhere, no compression, exact Ward BRDF, ray-traced visibility for
+ *  - reference path: float everywhere, no compression, exact Ward or anisotropic GGX BRDF, ray-traced visibility for
  *    clipped lights, converged obscurance, reference_supersample^2 samples per pixel.
  *  - engine path: one sample per pixel and every planned effect in the talk's format.
  * Attribution: the engine path with one effect swapped for its reference version
