@@ -461,6 +461,31 @@ Test(scene, ggx_anisotropic_material_is_shaded_as_ggx, .timeout = 300)
     free(img[1]);
 }
 
+/* glTF base-colour textures are sampled: BoxTextured (a white box factor with the Cesium logo
+ * texture: blue sky, green hills) shows both blue- and green-dominated pixels, which a box shaded
+ * by its base-colour factor alone cannot. */
+Test(scene, gltf_base_colour_texture_is_sampled, .timeout = 300)
+{
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(sol_scene_load(GLTF2 "BoxTextured-glTF/BoxTextured.gltf", &s, &e), SOL_OK, "%s", e.message);
+    sol_scene_plan p;
+    cr_assert_eq(sol_scene_plan_build(&s, &p), SOL_OK);
+    sol_render_options o = {96, 54, 0, 0};
+    sol_render_result r;
+    cr_assert_eq(sol_scene_render(&s, &p, &o, &r, NULL), SOL_OK);
+    size_t blue = 0, green = 0;
+    for (size_t k = 0; k < (size_t)96 * 54; ++k) {
+        const float *c = &r.hdr.data[3 * k];
+        blue += c[2] > 1.3f * c[0] && c[2] > c[1];
+        green += c[1] > 1.3f * c[0] && c[1] > 1.3f * c[2];
+    }
+    cr_expect_gt(blue, 20, "%zu blue pixels", blue);
+    cr_expect_gt(green, 20, "%zu green pixels", green);
+    sol_render_result_free(&r);
+    sol_scene_free(&s);
+}
+
 Test(scene, broken_gltf_models_are_rejected_with_a_clear_error)
 {
     static const struct {

@@ -176,7 +176,8 @@ sol_status sol_scene_parse(const char *text, size_t len, const char *path, sol_s
  * .obj is a model, not a scene file: it is imported through assimp (sol_scene_from_model). */
 sol_status sol_scene_load(const char *path, sol_scene *out, sol_scene_error *err);
 /* A scene around one model file imported through assimp's C API (glTF 2.0, OBJ): its meshes with
- * node transforms, base colours, its first camera (else a camera framing the model's bounds), its
+ * node transforms, base colours (times PNG base-colour textures, see docs/scene-format.md), its
+ * first camera (else a camera framing the model's bounds), its
  * punctual lights (KHR_lights_punctual; else a sun and a sky lobe), every pipeline setting at its
  * default. A file assimp rejects, with non-finite vertices, or without triangles gives
  * SOL_ERR_FORMAT / SOL_ERR_NONFINITE with assimp's or sol's reason in err. */
