@@ -24,6 +24,11 @@ struct sol_mesh {
     float *v;     /* tri_count * 9 positions */
     float *n;     /* tri_count * 9 vertex normals (zero: use the face normal) */
     float *color; /* tri_count * 3 base colours (linear) */
+    float *uv;    /* tri_count * 6 texture coordinates (first UV channel, assimp's convention:
+                     v up, KHR_texture_transform / UV transforms already applied) */
+    int *tri_tex; /* tri_count base-colour texture indices into tex, -1 = none */
+    int tex_count;
+    sol_image *tex; /* base-colour textures (PNG files next to the model), sRGB codes in [0,1] */
     int node_count;
     sol_mesh_node *nodes;
     int *tri_index;
@@ -37,7 +42,8 @@ struct sol_mesh {
 /* Imports a model file through assimp; `message` receives the reason on failure. */
 sol_status sol_mesh_load(const char *path, sol_mesh *out, char *message, size_t message_size);
 void sol_mesh_free(sol_mesh *mesh);
-/* Closest hit along o + t d, t in (0, tmax): t, shading normal (unit), base colour. */
+/* Closest hit along o + t d, t in (0, tmax): t, shading normal (unit), base colour (the colour
+ * factor times the sRGB-decoded base-colour texture, bilinear with repeat, where it has one). */
 int sol_mesh_intersect(const sol_mesh *mesh, const double o[3], const double d[3], double tmax, double *t,
                        double n[3], double color[3]);
 

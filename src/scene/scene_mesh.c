@@ -6,7 +6,10 @@
  * colour factor (glTF pbrMetallicRoughness.baseColorFactor, else the diffuse colour), the first
  * camera and the punctual lights (KHR_lights_punctual). A file assimp cannot read, or whose
  * vertices are not finite, or that holds no triangle, is rejected with assimp's message.
- * Textures of the file are not sampled (the base colour factor is used). */
+ * Base-colour textures (glTF baseColorTexture, else the diffuse texture, e.g. OBJ map_Kd) that are
+ * PNG files beside the model are loaded and sampled with the first UV channel; assimp's
+ * aiProcess_TransformUVCoords bakes KHR_texture_transform (offset, scale, rotation) into the UVs.
+ * Embedded or non-PNG images, and normal textures, are not sampled (the colour factor is used). */
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -19,6 +22,7 @@
 
 typedef struct builder {
     sol_mesh *m;
+    const int *mat_tex; /* material -> index into m->tex, -1 = none */
     size_t cap;
     sol_status st;
     char msg[256];
@@ -73,6 +77,9 @@ static void add_node(builder *b, const struct aiScene *sc, const struct aiNode *
             continue;
         const struct aiMesh *mesh = sc->mMeshes[node->mMeshes[k]];
         float color[3] = {0.8f, 0.8f, 0.8f};
+        int tex = -1;
+        if (mesh->mMaterialIndex < sc->mNumMaterials && b->mat_tex && mesh->mTextureCoords[0])
+            tex = b->mat_tex[mesh->mMaterialIndex];
         if (mesh->mMaterialIndex < sc->mNumMaterials) {
             struct aiColor4D c;
             const struct aiMaterial *mat = sc->mMaterials[mesh->mMaterialIndex];
@@ -99,12 +106,18 @@ static void add_node(builder *b, const struct aiScene *sc, const struct aiNode *
                 if (n)
                     b->m->n = n;
                 float *c = n ? realloc(b->m->color, cap * 3 * sizeof *c) : NULL;
-                if (!c) {
+                if (c)
+                    b->m->color = c;
+                float *uv = c ? realloc(b->m->uv, cap * 6 * sizeof *uv) : NULL;
+                if (uv)
+                    b->m->uv = uv;
+                int *tt = uv ? realloc(b->m->tri_tex, cap * sizeof *tt) : NULL;
+                if (!tt) {
                     b->st = SOL_ERR_NO_MEMORY;
                     snprintf(b->msg, sizeof b->msg, "out of memory");
                     return;
                 }
-                b->m->color = c;
+                b->m->tri_tex = tt;
                 b->cap = cap;
             }
             size_t tri = (size_t)b->m->tri_count;
@@ -123,6 +136,12 @@ static void add_node(builder *b, const struct aiScene *sc, const struct aiNode *
                     return;
                 }
                 xform_point(&t, p, &b->m->v[tri * 9 + 3 * corner]);
+                float *uv = &b->m->uv[tri * 6 + 2 * corner];
+                uv[0] = uv[1] = 0;
+                if (tex >= 0 && isfinite(mesh->mTextureCoords[0][idx].x) && isfinite(mesh->mTextureCoords[0][idx].y)) {
+                    uv[0] = mesh->mTextureCoords[0][idx].x;
+                    uv[1] = mesh->mTextureCoords[0][idx].y;
+                }
                 if (mesh->mNormals && isfinite(mesh->mNormals[idx].x))
                     xform_normal(&t, &mesh->mNormals[idx], &b->m->n[tri * 9 + 3 * corner]);
                 else
@@ -135,6 +154,7 @@ static void add_node(builder *b, const struct aiScene *sc, const struct aiNode *
                     }
             }
             memcpy(&b->m->color[tri * 3], color, sizeof color);
+            b->m->tri_tex[tri] = tex;
             b->m->tri_count++;
         }
     }
@@ -220,6 +240,11 @@ void sol_mesh_free(sol_mesh *m)
     free(m->v);
     free(m->n);
     free(m->color);
+    free(m->uv);
+    free(m->tri_tex);
+    for (int i = 0; i < m->tex_count; ++i)
+        sol_image_free(&m->tex[i]);
+    free(m->tex);
     free(m->nodes);
     free(m->tri_index);
     free(m->lights);
@@ -237,6 +262,78 @@ static void import_log(const char *message, char *user)
         snprintf(import_warning, sizeof import_warning, "%s", message);
 }
 
+static int ends_with_png(const char *s)
+{
+    size_t n = strlen(s);
+    return n >= 4 && (!strcmp(s + n - 4, ".png") || !strcmp(s + n - 4, ".PNG"));
+}
+
+/* Each material's base-colour texture (glTF baseColorTexture, else the diffuse one), when it is a
+ * PNG file beside the model that sol_png_read reads (an unreadable one is skipped: the colour
+ * factor stays, as for embedded or JPEG images). *mat_tex[i] = index into m->tex or -1. Only
+ * SOL_ERR_NO_MEMORY fails. */
+static sol_status load_textures(const struct aiScene *sc, const char *model, sol_mesh *m, int **mat_tex)
+{
+    *mat_tex = NULL;
+    if (sc->mNumMaterials == 0)
+        return SOL_OK;
+    int *mt = malloc(sizeof *mt * sc->mNumMaterials);
+    m->tex = calloc(sc->mNumMaterials, sizeof *m->tex);
+    if (!mt || !m->tex) {
+        free(mt);
+        return SOL_ERR_NO_MEMORY;
+    }
+    const char *slash = strrchr(model, '/');
+    int dir_len = slash ? (int)(slash - model) : 1;
+    const char *dir = slash ? model : ".";
+    for (unsigned i = 0; i < sc->mNumMaterials; ++i) {
+        mt[i] = -1;
+        struct aiString name;
+        if (aiGetMaterialTexture(sc->mMaterials[i], aiTextureType_BASE_COLOR, 0, &name, NULL, NULL, NULL, NULL, NULL,
+                                 NULL) != aiReturn_SUCCESS &&
+            aiGetMaterialTexture(sc->mMaterials[i], aiTextureType_DIFFUSE, 0, &name, NULL, NULL, NULL, NULL, NULL,
+                                 NULL) != aiReturn_SUCCESS)
+            continue;
+        if (name.data[0] == '*' || name.data[0] == '/' || strstr(name.data, "..") || !ends_with_png(name.data))
+            continue; /* embedded, outside the model's folder, or not PNG */
+        char file[SOL_SCENE_PATH_MAX];
+        int len = snprintf(file, sizeof file, "%.*s/%s", dir_len, dir, name.data);
+        if (len < 0 || (size_t)len >= sizeof file)
+            continue;
+        sol_image img;
+        int bits;
+        if (sol_png_read(file, &img, &bits) != SOL_OK)
+            continue;
+        if (img.channels < 3) {
+            sol_image_free(&img);
+            continue;
+        }
+        m->tex[m->tex_count] = img;
+        mt[i] = m->tex_count++;
+    }
+    *mat_tex = mt;
+    return SOL_OK;
+}
+
+/* Bilinear sample with repeat of a base-colour texture at (u, v) (v up, row 0 at the top), sRGB
+ * decoded to linear. */
+static void tex_lookup(const sol_image *im, double u, double v, double out[3])
+{
+    double x = (u - floor(u)) * im->width - 0.5, y = (1 - (v - floor(v))) * im->height - 0.5;
+    double fx = floor(x), fy = floor(y), ax = x - fx, ay = y - fy;
+    int x0 = (int)fx, y0 = (int)fy;
+    out[0] = out[1] = out[2] = 0;
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            int xi = ((x0 + i) % im->width + im->width) % im->width;
+            int yi = ((y0 + j) % im->height + im->height) % im->height;
+            double w = (i ? ax : 1 - ax) * (j ? ay : 1 - ay);
+            const float *px = &im->data[((size_t)yi * (size_t)im->width + (size_t)xi) * (size_t)im->channels];
+            for (int c = 0; c < 3; ++c)
+                out[c] += w * sol_srgb_decode(px[c]);
+        }
+}
+
 sol_status sol_mesh_load(const char *path, sol_mesh *out, char *message, size_t message_size)
 {
     if (!path || !out)
@@ -249,7 +346,7 @@ sol_status sol_mesh_load(const char *path, sol_mesh *out, char *message, size_t 
         import_warning[0] = 0;
         aiAttachLogStream(&stream);
         sc = aiImportFile(path, aiProcess_Triangulate | aiProcess_GenSmoothNormals | aiProcess_ValidateDataStructure |
-                                    aiProcess_SortByPType);
+                                    aiProcess_SortByPType | aiProcess_TransformUVCoords);
         aiDetachLogStream(&stream);
         memcpy(warning, import_warning, sizeof warning);
     }
@@ -272,9 +369,14 @@ sol_status sol_mesh_load(const char *path, sol_mesh *out, char *message, size_t 
     }
     sol_mesh m;
     memset(&m, 0, sizeof m);
-    builder b = {&m, 0, SOL_OK, ""};
+    int *mat_tex = NULL;
+    sol_status tst = load_textures(sc, path, &m, &mat_tex);
+    builder b = {&m, mat_tex, 0, tst, ""};
+    if (tst != SOL_OK)
+        snprintf(b.msg, sizeof b.msg, "out of memory");
     struct aiMatrix4x4 id = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     add_node(&b, sc, sc->mRootNode, &id, 0);
+    free(mat_tex);
     if (b.st == SOL_OK && m.tri_count == 0) {
         b.st = SOL_ERR_FORMAT;
         snprintf(b.msg, sizeof b.msg, "no triangles");
@@ -437,6 +539,14 @@ int sol_mesh_intersect(const sol_mesh *m, const double o[3], const double d[3], 
         n[i] /= s;
     for (int i = 0; i < 3; ++i)
         color[i] = m->color[(size_t)best * 3 + i];
+    int tx = m->tri_tex ? m->tri_tex[best] : -1;
+    if (tx >= 0 && tx < m->tex_count) {
+        const float *uv = &m->uv[(size_t)best * 6];
+        double c[3], w0 = 1 - bu - bv;
+        tex_lookup(&m->tex[tx], w0 * uv[0] + bu * uv[2] + bv * uv[4], w0 * uv[1] + bu * uv[3] + bv * uv[5], c);
+        for (int i = 0; i < 3; ++i)
+            color[i] *= c[i];
+    }
     *t_out = tmax;
     return 1;
 }

@@ -477,7 +477,8 @@ typedef struct surface {
     double albedo[3];
     double exponent;          /* Phong exponent */
     double lobe_scale;        /* specular scale from the lobe extraction (1 otherwise) */
-    int exact_ward;           /* shade with the exact Ward BRDF (reference of sg-lobes) */
+    int exact_ward;           /* shade with the exact anisotropic BRDF (reference of sg-lobes) */
+    int ggx;                  /* that BRDF is anisotropic GGX (else Ward) */
     double ax, ay;            /* Ward roughness pair */
     int quad_base;            /* first R2 point of this sample's quadrature (reference supersampling) */
     double t_axis[3], b_axis[3];
@@ -552,15 +553,48 @@ static int lights_as_sgs(const frame *f, const double p[3], sol_sg *out)
     return n;
 }
 
+/* Smith's Lambda of anisotropic GGX for direction w in the shading frame (Heitz 2014,
+ * "Understanding the masking-shadowing function in microfacet-based BRDFs", JCGT 3(2), eq. 86). */
+static double ggx_aniso_lambda(const double w[3], double ax, double ay)
+{
+    double z2 = w[2] * w[2];
+    if (z2 <= 0)
+        return 1e300;
+    double a2 = (ax * ax * w[0] * w[0] + ay * ay * w[1] * w[1]) / z2;
+    return 0.5 * (-1 + sqrt(1 + a2));
+}
+
+/* Anisotropic GGX microfacet BRDF with rho_s = 1 (no Fresnel, like Ward's): D G2 / (4 n.v n.l),
+ * D(h) = 1 / (pi ax ay (hx^2/ax^2 + hy^2/ay^2 + hz^2)^2) (Heitz 2014 eq. 85; with ax = ay it is
+ * sol_ggx_ndf), height-correlated G2 = 1 / (1 + Lambda(v) + Lambda(l)) (Heitz 2014 eq. 99).
+ * v, l in the shading frame (x = tangent, z = normal); zero below either horizon. */
+static double ggx_aniso_brdf(const double v[3], const double l[3], double ax, double ay)
+{
+    if (v[2] <= 0 || l[2] <= 0)
+        return 0;
+    double h[3] = {v[0] + l[0], v[1] + l[1], v[2] + l[2]};
+    double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    if (!(hl > 0))
+        return 0;
+    for (int i = 0; i < 3; ++i)
+        h[i] /= hl;
+    double q = h[0] * h[0] / (ax * ax) + h[1] * h[1] / (ay * ay) + h[2] * h[2];
+    double d = 1 / (M_PI * ax * ay * q * q);
+    double g = 1 / (1 + ggx_aniso_lambda(v, ax, ay) + ggx_aniso_lambda(l, ax, ay));
+    return d * g / (4 * v[2] * l[2]);
+}
+
 /* Specular BRDF value times cos for light direction l (per unit F0). */
 static double specular(const surface *sf, const double v[3], const double l[3])
 {
     double nl = sol_dot3(sf->n, l);
     if (nl <= 0)
         return 0;
-    if (sf->exact_ward) { /* the Ward BRDF in the shading frame (rho_s = 1) */
+    if (sf->exact_ward) { /* the Ward or GGX BRDF in the shading frame (rho_s = 1) */
         double vl[3] = {sol_dot3(v, sf->t_axis), sol_dot3(v, sf->b_axis), sol_dot3(v, sf->n)};
         double ll[3] = {sol_dot3(l, sf->t_axis), sol_dot3(l, sf->b_axis), nl};
+        if (sf->ggx)
+            return ggx_aniso_brdf(vl, ll, sf->ax, sf->ay) * nl;
         return sol_ward_brdf(vl, ll, sf->ax, sf->ay) * nl;
     }
     double r[3];
@@ -623,6 +657,7 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
         sf->ax = m->roughness[0];
         sf->ay = m->roughness[1];
         sf->exact_ward = 1;
+        sf->ggx = m->aniso == SOL_ANISO_GGX;
     }
     memcpy(sf->n_exact, sf->n, sizeof sf->n);
     if (sf->exact_ward && !f->reference && fx(f, SOL_FX_SG_LOBES) && pm->k > 0) {
@@ -1068,7 +1103,10 @@ static sol_status prepare(frame *f)
                 return st;
         }
         if (m->aniso != SOL_ANISO_NONE && !f->reference && fx(f, SOL_FX_SG_LOBES)) {
-            /* D15: K isotropic SG lobes fitted to the Ward NDF (Ceres); fit K at offset K(K-1)/2 */
+            /* D15: K isotropic SG lobes fitted to the Ward NDF (Ceres); fit K at offset K(K-1)/2.
+             * A GGX material gets the lobes of the Ward NDF with the same roughness pair (the
+             * talk fits Ward, D15); GGX's longer tail that they miss is part of this effect's
+             * error against the reference, which shades the exact GGX BRDF. */
             int k = s->pipeline.sg_lobes;
             sol_sg *all = malloc(sizeof(sol_sg) * (size_t)(k * (k + 1) / 2));
             sol_sg_fit_error *errs = malloc(sizeof *errs * (size_t)k);

@@ -176,7 +176,8 @@ sol_status sol_scene_parse(const char *text, size_t len, const char *path, sol_s
  * .obj is a model, not a scene file: it is imported through assimp (sol_scene_from_model). */
 sol_status sol_scene_load(const char *path, sol_scene *out, sol_scene_error *err);
 /* A scene around one model file imported through assimp's C API (glTF 2.0, OBJ): its meshes with
- * node transforms, base colours, its first camera (else a camera framing the model's bounds), its
+ * node transforms, base colours (times PNG base-colour textures, see docs/scene-format.md), its
+ * first camera (else a camera framing the model's bounds), its
  * punctual lights (KHR_lights_punctual; else a sun and a sky lobe), every pipeline setting at its
  * default. A file assimp rejects, with non-finite vertices, or without triangles gives
  * SOL_ERR_FORMAT / SOL_ERR_NONFINITE with assimp's or sol's reason in err. */
@@ -234,7 +235,7 @@ sol_status sol_scene_plan_build(const sol_scene *scene, sol_scene_plan *out);
  * of each pixel (the G-buffer pass: position, view depth, normal, albedo, gloss), a light loop
  * accumulates diffuse and specular light (the light buffer), composition multiplies by albedo and
  * adds ambient light times obscurance, then exposure, tone map (sol_hdr), grading, and AA.
- *  - reference path: float everywhere, no compression, exact Ward BRDF, ray-traced visibility for
+ *  - reference path: float everywhere, no compression, exact Ward or anisotropic GGX BRDF, ray-traced visibility for
  *    clipped lights, converged obscurance, reference_supersample^2 samples per pixel.
  *  - engine path: one sample per pixel and every planned effect in the talk's format.
  * Attribution: the engine path with one effect swapped for its reference version
