@@ -410,3 +410,28 @@ Test(scene, cli_exit_status_and_no_output_on_bad_input)
     cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2);
     remove("/tmp/sol_cli_bad.json");
 }
+
+/* An unusable --out (a regular file, a missing parent) fails before rendering, which can take
+ * minutes, with exit 2 and a message naming --out and the reason; nothing is created. */
+Test(scene, cli_render_unusable_out_fails_at_once)
+{
+    FILE *f = fopen("/tmp/sol_cli_outfile", "w");
+    cr_assert(f);
+    fputs("keep", f);
+    fclose(f);
+    int rc = system("build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_outfile --size 8x8 "
+                    "2>/tmp/sol_cli_outfile.err >/dev/null");
+    cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2, "render into a file: status %d", rc);
+    rc = system("grep -q -- '--out /tmp/sol_cli_outfile: .*Not a directory' /tmp/sol_cli_outfile.err");
+    cr_expect_eq(rc, 0, "the message names --out and the reason");
+    rc = system("grep -q 'keep' /tmp/sol_cli_outfile");
+    cr_expect_eq(rc, 0, "the file given as --out is untouched");
+    (void)!system("rm -rf /tmp/sol_cli_noparent");
+    rc = system("build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_noparent/x --size 8x8 "
+                "2>/dev/null >/dev/null");
+    cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2, "render under a missing folder: status %d", rc);
+    struct stat st;
+    cr_expect_neq(stat("/tmp/sol_cli_noparent", &st), 0, "nothing created");
+    remove("/tmp/sol_cli_outfile");
+    remove("/tmp/sol_cli_outfile.err");
+}

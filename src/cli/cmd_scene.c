@@ -198,6 +198,18 @@ int cli_render_main(int argc, char **argv)
     sol_scene scene;
     if (load("render", path, &scene))
         return CLI_EXIT_USAGE;
+    /* The output folder is made (or checked) before rendering, which can take minutes, so an
+     * unusable --out fails at once; a folder made here is removed again if the render fails. */
+    int made_dir = 0;
+    struct stat sb;
+    if (mkdir(dir, 0777) == 0)
+        made_dir = 1;
+    else if (errno != EEXIST || stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode) || access(dir, W_OK | X_OK) != 0) {
+        int e = errno == EEXIST ? ENOTDIR : errno;
+        fprintf(stderr, "sol render: --out %s: cannot create or write the folder: %s\n", dir, strerror(e));
+        sol_scene_free(&scene);
+        return CLI_EXIT_USAGE;
+    }
     sol_scene_plan plan;
     sol_scene_plan_build(&scene, &plan);
     sol_render_options opt = {w, h, 0, 0};
@@ -219,6 +231,8 @@ int cli_render_main(int argc, char **argv)
         st = sol_render_compare(&eng, &ref, &err);
     if (st != SOL_OK) {
         fprintf(stderr, "sol render: %s: rendering failed: %s\n", path, sol_status_string(st));
+        if (made_dir)
+            rmdir(dir);
         sol_render_result_free(&eng);
         sol_render_result_free(&ref);
         sol_scene_free(&scene);
@@ -252,10 +266,6 @@ int cli_render_main(int argc, char **argv)
         sol_render_result_free(&r);
     }
     outputs o = {0};
-    if (st == SOL_OK && mkdir(dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "sol render: cannot create %s: %s\n", dir, strerror(errno));
-        st = SOL_ERR_IO;
-    }
     if (st == SOL_OK)
         st = write_pair(&o, dir, "engine", &eng);
     if (st == SOL_OK)
@@ -300,6 +310,8 @@ int cli_render_main(int argc, char **argv)
         st = SOL_ERR_IO;
     if (st != SOL_OK) {
         out_discard(&o);
+        if (made_dir)
+            rmdir(dir);
         fprintf(stderr, "sol render: writing %s failed: %s\n", dir, sol_status_string(st));
     } else if (json) {
         printf("{\"scene\": ");
