@@ -435,3 +435,16 @@ Test(scene, cli_render_unusable_out_fails_at_once)
     remove("/tmp/sol_cli_outfile");
     remove("/tmp/sol_cli_outfile.err");
 }
+
+/* A render killed mid-way (SIGTERM as soon as its --out folder exists) leaves nothing: neither
+ * the folder it made nor temporary files; the exit status is still the signal's. */
+Test(scene, cli_render_killed_leaves_nothing)
+{
+    int rc = system("rm -rf /tmp/sol_cli_kill; "
+                    "build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_kill --size 960x540 "
+                    ">/dev/null 2>&1 & p=$!; i=0; "
+                    "while [ ! -d /tmp/sol_cli_kill ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; "
+                    "kill -TERM $p; wait $p; s=$?; test $s -eq 143 && test ! -e /tmp/sol_cli_kill");
+    cr_expect_eq(rc, 0, "killed render left /tmp/sol_cli_kill or exited otherwise (status %d)", rc);
+    (void)!system("rm -rf /tmp/sol_cli_kill");
+}
