@@ -448,3 +448,15 @@ Test(scene, cli_render_killed_leaves_nothing)
     cr_expect_eq(rc, 0, "killed render left /tmp/sol_cli_kill or exited otherwise (status %d)", rc);
     (void)!system("rm -rf /tmp/sol_cli_kill");
 }
+
+/* ... but a signal its caller ignores (trap '' INT) stays ignored: the render finishes. */
+Test(scene, cli_render_keeps_ignored_signals)
+{
+    int rc = system("rm -rf /tmp/sol_cli_ign; trap '' INT; "
+                    "build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_ign --size 320x180 "
+                    ">/dev/null 2>&1 & p=$!; i=0; "
+                    "while [ ! -d /tmp/sol_cli_ign ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; "
+                    "kill -INT $p; wait $p && test -s /tmp/sol_cli_ign/attribution.tsv");
+    cr_expect_eq(rc, 0, "an ignored SIGINT stopped the render (status %d)", rc);
+    (void)!system("rm -rf /tmp/sol_cli_ign");
+}

@@ -139,6 +139,14 @@ static void on_interrupt(int sig)
     raise(sig);
 }
 
+/* A signal the caller ignores (e.g. SIGINT for a background job of a script, nohup's SIGHUP) stays
+ * ignored. */
+static void catch_signal(int sig)
+{
+    if (signal(sig, on_interrupt) == SIG_IGN)
+        signal(sig, SIG_IGN);
+}
+
 static void out_discard(outputs *o)
 {
     for (int i = 0; i < o->count; ++i)
@@ -220,9 +228,9 @@ int cli_render_main(int argc, char **argv)
      * unusable --out fails at once; a folder made here is removed again if the render fails. */
     int made_dir = 0;
     struct stat sb;
-    signal(SIGINT, on_interrupt);
-    signal(SIGTERM, on_interrupt);
-    signal(SIGHUP, on_interrupt);
+    catch_signal(SIGINT);
+    catch_signal(SIGTERM);
+    catch_signal(SIGHUP);
     if (mkdir(dir, 0777) == 0) {
         made_dir = 1;
         interrupt_dir = dir;
