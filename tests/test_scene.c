@@ -543,3 +543,53 @@ Test(scene, cli_exit_status_and_no_output_on_bad_input)
     cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2);
     remove("/tmp/sol_cli_bad.json");
 }
+
+/* An unusable --out (a regular file, a missing parent) fails before rendering, which can take
+ * minutes, with exit 2 and a message naming --out and the reason; nothing is created. */
+Test(scene, cli_render_unusable_out_fails_at_once)
+{
+    FILE *f = fopen("/tmp/sol_cli_outfile", "w");
+    cr_assert(f);
+    fputs("keep", f);
+    fclose(f);
+    int rc = system("build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_outfile --size 8x8 "
+                    "2>/tmp/sol_cli_outfile.err >/dev/null");
+    cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2, "render into a file: status %d", rc);
+    rc = system("grep -q -- '--out /tmp/sol_cli_outfile: .*Not a directory' /tmp/sol_cli_outfile.err");
+    cr_expect_eq(rc, 0, "the message names --out and the reason");
+    rc = system("grep -q 'keep' /tmp/sol_cli_outfile");
+    cr_expect_eq(rc, 0, "the file given as --out is untouched");
+    (void)!system("rm -rf /tmp/sol_cli_noparent");
+    rc = system("build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_noparent/x --size 8x8 "
+                "2>/dev/null >/dev/null");
+    cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2, "render under a missing folder: status %d", rc);
+    struct stat st;
+    cr_expect_neq(stat("/tmp/sol_cli_noparent", &st), 0, "nothing created");
+    remove("/tmp/sol_cli_outfile");
+    remove("/tmp/sol_cli_outfile.err");
+}
+
+/* A render killed mid-way (SIGTERM as soon as its --out folder exists) leaves nothing: neither
+ * the folder it made nor temporary files; the exit status is still the signal's. */
+Test(scene, cli_render_killed_leaves_nothing)
+{
+    int rc = system("rm -rf /tmp/sol_cli_kill; "
+                    "build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_kill --size 960x540 "
+                    ">/dev/null 2>&1 & p=$!; i=0; "
+                    "while [ ! -d /tmp/sol_cli_kill ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; "
+                    "kill -TERM $p; wait $p; s=$?; test $s -eq 143 && test ! -e /tmp/sol_cli_kill");
+    cr_expect_eq(rc, 0, "killed render left /tmp/sol_cli_kill or exited otherwise (status %d)", rc);
+    (void)!system("rm -rf /tmp/sol_cli_kill");
+}
+
+/* ... but a signal its caller ignores (trap '' INT) stays ignored: the render finishes. */
+Test(scene, cli_render_keeps_ignored_signals)
+{
+    int rc = system("rm -rf /tmp/sol_cli_ign; trap '' INT; "
+                    "build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_ign --size 320x180 "
+                    ">/dev/null 2>&1 & p=$!; i=0; "
+                    "while [ ! -d /tmp/sol_cli_ign ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; "
+                    "kill -INT $p; wait $p && test -s /tmp/sol_cli_ign/attribution.tsv");
+    cr_expect_eq(rc, 0, "an ignored SIGINT stopped the render (status %d)", rc);
+    (void)!system("rm -rf /tmp/sol_cli_ign");
+}

@@ -7,6 +7,7 @@
  * in its reference version). Files are written under temporary names and renamed at the end, so
  * a failed render leaves no partial output. */
 #include <errno.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -121,6 +122,31 @@ static const char *out_name(outputs *o, const char *dir, const char *name)
     return o->tmp[o->count++];
 }
 
+/* Interrupted (SIGINT, SIGTERM, SIGHUP): the temporary files and a folder this run made are removed
+ * before the signal's default action, so a killed render leaves nothing behind either. Only
+ * async-signal-safe calls (unlink, rmdir, signal, raise). */
+static outputs *volatile interrupt_out;
+static const char *volatile interrupt_dir;
+
+static void on_interrupt(int sig)
+{
+    outputs *o = interrupt_out;
+    for (int i = 0; o && i < o->count; ++i)
+        unlink(o->tmp[i]);
+    if (interrupt_dir)
+        rmdir(interrupt_dir);
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+/* A signal the caller ignores (e.g. SIGINT for a background job of a script, nohup's SIGHUP) stays
+ * ignored. */
+static void catch_signal(int sig)
+{
+    if (signal(sig, on_interrupt) == SIG_IGN)
+        signal(sig, SIG_IGN);
+}
+
 static void out_discard(outputs *o)
 {
     for (int i = 0; i < o->count; ++i)
@@ -198,6 +224,22 @@ int cli_render_main(int argc, char **argv)
     sol_scene scene;
     if (load("render", path, &scene))
         return CLI_EXIT_USAGE;
+    /* The output folder is made (or checked) before rendering, which can take minutes, so an
+     * unusable --out fails at once; a folder made here is removed again if the render fails. */
+    int made_dir = 0;
+    struct stat sb;
+    catch_signal(SIGINT);
+    catch_signal(SIGTERM);
+    catch_signal(SIGHUP);
+    if (mkdir(dir, 0777) == 0) {
+        made_dir = 1;
+        interrupt_dir = dir;
+    } else if (errno != EEXIST || stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode) || access(dir, W_OK | X_OK) != 0) {
+        int e = errno == EEXIST ? ENOTDIR : errno;
+        fprintf(stderr, "sol render: --out %s: cannot create or write the folder: %s\n", dir, strerror(e));
+        sol_scene_free(&scene);
+        return CLI_EXIT_USAGE;
+    }
     sol_scene_plan plan;
     sol_scene_plan_build(&scene, &plan);
     sol_render_options opt = {w, h, 0, 0};
@@ -219,6 +261,8 @@ int cli_render_main(int argc, char **argv)
         st = sol_render_compare(&eng, &ref, &err);
     if (st != SOL_OK) {
         fprintf(stderr, "sol render: %s: rendering failed: %s\n", path, sol_status_string(st));
+        if (made_dir)
+            rmdir(dir);
         sol_render_result_free(&eng);
         sol_render_result_free(&ref);
         sol_scene_free(&scene);
@@ -251,11 +295,8 @@ int cli_render_main(int argc, char **argv)
         nrows += st == SOL_OK;
         sol_render_result_free(&r);
     }
-    outputs o = {0};
-    if (st == SOL_OK && mkdir(dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "sol render: cannot create %s: %s\n", dir, strerror(errno));
-        st = SOL_ERR_IO;
-    }
+    static outputs o; /* static: 16 x 2 x 1200 bytes, and reachable from on_interrupt */
+    interrupt_out = &o;
     if (st == SOL_OK)
         st = write_pair(&o, dir, "engine", &eng);
     if (st == SOL_OK)
@@ -298,8 +339,12 @@ int cli_render_main(int argc, char **argv)
         fclose(pf);
     if (st == SOL_OK && out_commit(&o) != 0)
         st = SOL_ERR_IO;
+    interrupt_out = NULL; /* committed (or discarded just below): nothing left to clean */
+    interrupt_dir = NULL;
     if (st != SOL_OK) {
         out_discard(&o);
+        if (made_dir)
+            rmdir(dir);
         fprintf(stderr, "sol render: writing %s failed: %s\n", dir, sol_status_string(st));
     } else if (json) {
         printf("{\"scene\": ");
