@@ -215,6 +215,11 @@ int main(int argc, char **argv)
     exp_number(&exp, "D3-shell-lo", "%.5f", shell.lo);
     exp_number(&exp, "D3-shell-hi", "%.5f", shell.hi);
     exp_number(&exp, "D3-sphere-cells", "%llu", (unsigned long long)sphere->cells);
+    exp_number(&exp, "D3-shell-percent", "%.2f", 100.0 * shell.at_sqrt2 / CUBE_CELLS);
+    exp_number(&exp, "D3-sphere-percent", "%.2f", 100.0 * sphere->cells / CUBE_CELLS);
+    exp_number(&exp, "D3-fixed-cells", "%llu", (unsigned long long)fixed3->cells);
+    exp_number(&exp, "D3-fixed-percent", "%.2f", 100.0 * fixed3->cells / CUBE_CELLS);
+    exp_number(&exp, "D3-sampled-cells", "%llu", (unsigned long long)sampled3->cells);
 
     snprintf(s, sizeof s, "%llu (%.2f%%)", (unsigned long long)cube->cells, 100.0 * cube->cells / CUBE_CELLS);
     exp_claim(&exp, "D4", "~390152 cells, ~2.33%", s, "exact", cube->cells == TALK_D4_CELLS ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
@@ -262,5 +267,20 @@ int main(int argc, char **argv)
     exp_number(&exp, "D5-image-nearest", "%llu", (unsigned long long)bf[near_v].image);
     exp_number(&exp, "D5-image-nearest-offset-percent", "%.3f", near_off);
     exp_number(&exp, "D5-distinct-directions", "%llu", (unsigned long long)distinct->cells);
+    exp_number(&exp, "D4-cells", "%llu", (unsigned long long)cube->cells);
+    exp_number(&exp, "D5-image-lo-percent", "%.2f", 100.0 * bf[lo_v].image / CUBE_CELLS);
+    exp_number(&exp, "D5-image-hi-percent", "%.2f", 100.0 * bf[hi_v].image / CUBE_CELLS);
+    exp_number(&exp, "D5-image-double-unit", "%llu", (unsigned long long)bf[0].image);
+    exp_number(&exp, "D5-image-double-raw", "%llu", (unsigned long long)bf[1].image);
+    exp_number(&exp, "D5-image-float-unit", "%llu", (unsigned long long)bf[2].image);
+    exp_number(&exp, "D5-image-float-raw", "%llu", (unsigned long long)bf[3].image);
+    exp_number(&exp, "D5-image-half", "%llu", (unsigned long long)bf[4].image);
+    exp_number(&exp, "D5-distinct-percent", "%.2f", 100.0 * distinct->cells / CUBE_CELLS);
+    exp_number(&exp, "D5-ratio-lo", "%.0f", ratio_lo); /* ratio_lo divides by the larger old count (D4's) */
+    exp_number(&exp, "D5-ratio-hi", "%.0f", ratio_hi);
+    exp_number(&exp, "D5-orders-lo", "%.1f", log10(ratio_lo));
+    exp_number(&exp, "D5-orders-hi", "%.1f", log10(ratio_hi));
+    exp_number(&exp, "D5-old-bits-lo", "%.1f", log2((double)shell.at_sqrt2));
+    exp_number(&exp, "D5-old-bits-hi", "%.1f", log2((double)cube->cells));
     return 0;
 }

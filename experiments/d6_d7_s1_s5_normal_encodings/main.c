@@ -107,6 +107,8 @@ static void mittring_by_z(const exp_run *exp, size_t n)
               "left-handed view space (in a right-handed GL view space it would favour back-facing normals); the "
               "worst case (%.2f deg at 12:12) sits at z=+1, where |G|=cos(theta/2) is flat; |G|>1 codes are wasted",
               worst[1][BINS - 1]);
+    exp_number(exp, "S1-mittring12-max-deg", "%.1f", worst[1][BINS - 1]);
+    exp_number(exp, "S1-unused-percent", "%.1f", 100.0 * wasted / (4096.0 * 4096.0));
 }
 
 int main(int argc, char **argv)
@@ -182,6 +184,12 @@ int main(int argc, char **argv)
                   "RMS is %.1fx lower than normalized XYZ but its worst case stays %.3f deg near the axes, where the "
                   "talk's quantizer has no zero code",
                   oct->stats.max, sph->stats.max, xyz->stats.rms / fit->stats.rms, fit->stats.max);
+        exp_number(&exp, "S5-sphz-rms-excess-percent", "%.0f", 100.0 * (sphz->stats.rms / oct->stats.rms - 1.0));
+        exp_number(&exp, "S5-sphz-max-deg", "%.2f", sphz->stats.max);
+        exp_number(&exp, "S5-fit-rms-factor", "%.1f", xyz->stats.rms / fit->stats.rms);
+        exp_number(&exp, "S5-fit-max-deg", "%.2f", fit->stats.max);
+        exp_number(&exp, "S5-search-ns", "%.0f", fit->ns);
+        exp_number(&exp, "S5-table512-ns", "%.0f", r[count - 2].ns); /* the 512^2 table, nearest */
         mittring_by_z(&exp, exp.quick ? 200000 : 2000000);
         run_oct_sweep(&exp);
     }
