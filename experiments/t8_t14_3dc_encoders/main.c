@@ -291,6 +291,7 @@ static void t8(const exp_run *exp, const maps *m)
     exp_table_write(t, exp, "t8_source_depth");
     char fig[96];
     snprintf(fig, sizeof fig, "RMS(8-bit src)/RMS(16-bit src) = %.2f (mean of 4 maps)", ratio_sum / INPUT_COUNT);
+    exp_number(exp, "T8-mean-ratio", "%.2f", ratio_sum / INPUT_COUNT);
     exp_claim(exp, "T8", "qualitative: 8 b/ch source much worse", fig, "8-bit source worse on every map, mean RMS ratio >= 1.2",
               worse == INPUT_COUNT && ratio_sum / INPUT_COUNT >= 1.2 ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "common 3Dc encoder, 16-bit interpolation; 8-bit source worse on %d of %d maps; 'much worse' taken as "
