@@ -618,6 +618,27 @@ Test(check_cli, bc5_decoder_rounding_and_encoder_bugs)
     cr_assert_eq(run("$ENGINE --bug bc5-encoder bc5 32 . && $SOL check bc5 --dds bc5.dds --source source.exr"), 1);
 }
 
+Test(check_cli, bc5_encoder_reference_common_or_optimal)
+{
+    cr_assert_eq(run("$ENGINE bc5 32 . && $SOL check bc5 --dds bc5.dds --source source.exr --reference optimal"), 0);
+    cr_assert_eq(run("$SOL check bc5 --dds bc5.dds --source source.exr --reference optimal --json | "
+                     "grep -q '\"reference\": \"optimal\".*\"sol_optimal_mean\".*\"distance\".*\"bounded_blocks\": 0'"),
+                 0);
+    cr_assert_eq(run("$SOL check bc5 --dds bc5.dds --source source.exr --reference common --json | "
+                     "grep -q '\"reference\": \"common\".*\"sol_common_mean\"'"),
+                 0);
+    cr_assert_eq(run("$SOL check bc5 --dds bc5.dds --source source.exr --reference optimal | "
+                     "grep -q \"sol's optimal encoder.*mean\""),
+                 0);
+    cr_assert_eq(run("$ENGINE --bug bc5-encoder bc5 32 . && "
+                     "$SOL check bc5 --dds bc5.dds --source source.exr --reference optimal"),
+                 1);
+    cr_assert_eq(run("$SOL check bc5 --dds bc5.dds --source source.exr --reference best"), 2);
+    cr_assert(err_has("--reference must be common or optimal, not 'best'"));
+    cr_assert_eq(run("$SOL check bc5 --dds bc5.dds --source source.exr --reference"), 2);
+    cr_assert_eq(run("$SOL check bc5 --dds bc5.dds --decoded bc5_decoded.png --reference optimal"), 2);
+}
+
 Test(check_cli, bc1_decoder_rounding_bug)
 {
     cr_assert_eq(run("$ENGINE bc1 32 . && $SOL check bc1 --dds bc1.dds --decoded bc1_decoded.png"), 0);
@@ -745,5 +766,91 @@ Test(check_blocks, encoders_against_the_source)
     cr_assert(!r.passed);
     src.data[4] = 2.0f;
     cr_assert_eq(sol_check_bc1_encode(&src, b1, &r, NULL), SOL_ERR_OUT_OF_RANGE);
+    sol_image_free(&src);
+}
+
+/* sol_check_bc5_encode_against: the pass rule (engine mean <= (1 + slack) x the reference's mean)
+ * against sol's common and optimal encoders on a 16x16 image of varied normals. */
+Test(check_blocks, bc5_encoder_against_common_or_optimal)
+{
+    sol_image src;
+    cr_assert_eq(sol_image_alloc(&src, 16, 16, 3), SOL_OK);
+    for (int i = 0; i < 256; ++i) {
+        double x = 0.5 * sin(i * 0.37) * cos(i * 0.11), y = 0.45 * cos(i * 0.23 + 1.0);
+        src.data[3 * i] = (float)x;
+        src.data[3 * i + 1] = (float)y;
+        src.data[3 * i + 2] = (float)sqrt(1.0 - x * x - y * y);
+    }
+    uint8_t opt_blocks[256], common_blocks[256], bad[256];
+    sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL};
+    sol_bc5_image_stats stats = {0};
+    cr_assert_eq(sol_bc5_encode_image(&src, &o, opt_blocks, &stats), SOL_OK);
+    o.encoder = SOL_BC5_COMMON;
+    cr_assert_eq(sol_bc5_encode_image(&src, &o, common_blocks, NULL), SOL_OK);
+    sol_check_report r;
+    double opt_mean = -1, common_mean = -1, m = -1;
+    uint64_t bounded = 99;
+    /* the engine = sol's optimal blocks: passes against optimal with its exact mean */
+    cr_assert_eq(sol_check_bc5_encode_against(&src, opt_blocks, SOL_BC4_INTERP_16BIT, SOL_BC5_OPTIMAL, &r, &opt_mean,
+                                              &bounded),
+                 SOL_OK);
+    cr_assert(r.passed && r.failures == 0 && r.count == 256);
+    cr_assert(r.mean == opt_mean && opt_mean > 0);
+    cr_assert(fabs(r.tolerance - opt_mean * (1.0 + SOL_CHECK_BC5_ENCODER_SLACK)) <= 1e-12 * opt_mean);
+    cr_assert_eq(bounded, stats.bounded_blocks);
+    cr_assert_eq(bounded, 0); /* smooth blocks: every optimum proven */
+    /* sol's common blocks against optimal: a mean >= the optimum's on this image (the optimum
+     * minimises each block's sum of squared angles; the mean angle follows here) */
+    cr_assert_eq(sol_check_bc5_encode_against(&src, common_blocks, SOL_BC4_INTERP_16BIT, SOL_BC5_OPTIMAL, &r, &m,
+                                              NULL),
+                 SOL_OK);
+    cr_assert(m == opt_mean && r.mean >= opt_mean);
+    cr_assert_eq(r.passed, r.mean <= r.tolerance);
+    /* against common: the common blocks pass with the common mean; the wrapper agrees */
+    cr_assert_eq(sol_check_bc5_encode_against(&src, common_blocks, SOL_BC4_INTERP_16BIT, SOL_BC5_COMMON, &r,
+                                              &common_mean, &bounded),
+                 SOL_OK);
+    cr_assert(r.passed && r.mean == common_mean && bounded == 0);
+    cr_assert(opt_mean <= common_mean);
+    cr_assert_eq(sol_check_bc5_encode(&src, common_blocks, SOL_BC4_INTERP_16BIT, &r, &m), SOL_OK);
+    cr_assert(r.passed && m == common_mean);
+    /* a planted bad encoder: every texel takes anchor e0 (index bits zero) - fails both */
+    memcpy(bad, common_blocks, sizeof bad);
+    for (int b = 0; b < 16; ++b)
+        for (int h = 0; h < 2; ++h)
+            memset(bad + 16 * b + 8 * h + 2, 0, 6);
+    cr_assert_eq(sol_check_bc5_encode_against(&src, bad, SOL_BC4_INTERP_16BIT, SOL_BC5_OPTIMAL, &r, NULL, NULL),
+                 SOL_OK);
+    cr_assert(!r.passed && r.failures == 1 && r.mean > r.tolerance);
+    cr_assert_eq(sol_check_bc5_encode_against(&src, bad, SOL_BC4_INTERP_16BIT, SOL_BC5_COMMON, &r, NULL, NULL),
+                 SOL_OK);
+    cr_assert(!r.passed);
+    /* errors: outputs untouched */
+    sol_check_report keep;
+    memset(&keep, 0x5a, sizeof keep);
+    r = keep;
+    m = -7;
+    bounded = 42;
+    cr_assert_eq(sol_check_bc5_encode_against(&src, opt_blocks, SOL_BC4_INTERP_16BIT, (sol_bc5_encoder)99, &r, &m,
+                                              &bounded),
+                 SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_check_bc5_encode_against(&src, opt_blocks, SOL_BC4_INTERP_16BIT, (sol_bc5_encoder)-1, &r, &m,
+                                              &bounded),
+                 SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_check_bc5_encode_against(NULL, opt_blocks, SOL_BC4_INTERP_16BIT, SOL_BC5_OPTIMAL, &r, &m,
+                                              &bounded),
+                 SOL_ERR_NULL_ARG);
+    cr_assert_eq(sol_check_bc5_encode_against(&src, NULL, SOL_BC4_INTERP_16BIT, SOL_BC5_OPTIMAL, &r, &m, &bounded),
+                 SOL_ERR_NULL_ARG);
+    src.data[3] = NAN;
+    cr_assert_eq(sol_check_bc5_encode_against(&src, opt_blocks, SOL_BC4_INTERP_16BIT, SOL_BC5_OPTIMAL, &r, &m,
+                                              &bounded),
+                 SOL_ERR_INVALID_ARG);
+    cr_assert(!memcmp(&r, &keep, sizeof r) && m == -7 && bounded == 42);
+    src.width = 14;
+    cr_assert_eq(sol_check_bc5_encode_against(&src, opt_blocks, SOL_BC4_INTERP_16BIT, SOL_BC5_OPTIMAL, &r, &m,
+                                              &bounded),
+                 SOL_ERR_INVALID_ARG);
+    src.width = 16;
     sol_image_free(&src);
 }

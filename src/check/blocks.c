@@ -144,12 +144,15 @@ static double mean_angle(const sol_image *src, const sol_image *dec, check_acc *
     return sum / (double)n;
 }
 
-sol_status sol_check_bc5_encode(const sol_image *source, const uint8_t *blocks, sol_bc4_precision precision,
-                                sol_check_report *report, double *reference_mean_deg)
+sol_status sol_check_bc5_encode_against(const sol_image *source, const uint8_t *blocks, sol_bc4_precision precision,
+                                        sol_bc5_encoder reference, sol_check_report *report,
+                                        double *reference_mean_deg, uint64_t *reference_bounded_blocks)
 {
     if (!source || !source->data || !blocks || !report)
         return SOL_ERR_NULL_ARG;
     if (bad_size(source->width, source->height) || source->channels < 3)
+        return SOL_ERR_INVALID_ARG;
+    if ((int)reference < (int)SOL_BC5_COMMON || (int)reference > (int)SOL_BC5_FAST)
         return SOL_ERR_INVALID_ARG;
     size_t n = (size_t)source->width * (size_t)source->height;
     for (size_t i = 0; i < n; ++i) {
@@ -167,9 +170,11 @@ sol_status sol_check_bc5_encode(const sol_image *source, const uint8_t *blocks, 
     ref_blocks = malloc(n); /* 16 bytes per 16 texels */
     if (!ref_blocks)
         st = SOL_ERR_NO_MEMORY;
-    sol_bc5_options opt = {.encoder = SOL_BC5_COMMON, .precision = precision};
+    /* Defaults otherwise: sum-of-squares metric, the talk's +-4 window, the default work bound. */
+    sol_bc5_options opt = {.encoder = reference, .precision = precision};
+    sol_bc5_image_stats stats = {0};
     if (st == SOL_OK)
-        st = sol_bc5_encode_image(&src3, &opt, ref_blocks, NULL);
+        st = sol_bc5_encode_image(&src3, &opt, ref_blocks, &stats);
     if (st == SOL_OK)
         st = sol_bc5_decode_image(ref_blocks, source->width, source->height, precision, &dec_ref);
     if (st == SOL_OK)
@@ -185,12 +190,20 @@ sol_status sol_check_bc5_encode(const sol_image *source, const uint8_t *blocks, 
         report->passed = report->failures == 0;
         if (reference_mean_deg)
             *reference_mean_deg = ref_mean;
+        if (reference_bounded_blocks)
+            *reference_bounded_blocks = stats.bounded_blocks;
     }
     free(ref_blocks);
     sol_image_free(&src3);
     sol_image_free(&dec_ref);
     sol_image_free(&dec_engine);
     return st;
+}
+
+sol_status sol_check_bc5_encode(const sol_image *source, const uint8_t *blocks, sol_bc4_precision precision,
+                                sol_check_report *report, double *reference_mean_deg)
+{
+    return sol_check_bc5_encode_against(source, blocks, precision, SOL_BC5_COMMON, report, reference_mean_deg, NULL);
 }
 
 /* Mean per-texel RGB error (8-bit codes) of BC1 blocks against the source; items go to acc. */

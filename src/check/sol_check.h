@@ -109,11 +109,26 @@ sol_status sol_check_bc1_decode(const uint8_t *blocks, int width, int height, co
 
 /* ---- BC5 encoder quality: an engine's blocks against the source normals ----
  * Error unit: degrees between each source normal (3-channel image, any length) and the engine's
- * decoded normal. The engine passes when its mean angle is at most (1 + SOL_CHECK_BC5_ENCODER_SLACK)
- * times the mean angle of sol's common encoder (two least-squares BC4 blocks) on the same source,
- * the bar any decent encoder clears. report->tolerance = that mean; report->mean the engine's.
- * reference_mean_deg (may be NULL) receives sol's mean. width, height multiples of 4. */
+ * decoded normal (both decoded at `precision`). sol encodes the same source with the `reference`
+ * encoder (sol_bc5_encode_image, options otherwise default: sum-of-squares metric, default work
+ * bound) and measures its mean angle the same way. Pass rule: the engine's mean angle is at most
+ * (1 + SOL_CHECK_BC5_ENCODER_SLACK) times the reference's mean. report->tolerance = that bound,
+ * report->mean the engine's mean, report->failures 1 when it fails, the items the engine's per-texel
+ * angles. SOL_BC5_COMMON (two least-squares BC4 blocks) is the bar any decent encoder clears;
+ * SOL_BC5_OPTIMAL (joint anchors and indices, T10/T11) asks whether the engine is near the best
+ * BC5 can do: an engine equal to the common encoder fails it wherever the optimum is more than 5%
+ * better. The optimal search costs about 0.1-50 ms per block (up to the work bound, ~1 s, on
+ * pathological blocks); blocks that hit the bound hold the best block found, not a proven optimum:
+ * their count goes to *reference_bounded_blocks (may be NULL; 0 for common and fast). The
+ * reference's mean goes to *reference_mean_deg (may be NULL). Outputs untouched on error.
+ * Errors: SOL_ERR_NULL_ARG; SOL_ERR_INVALID_ARG if width or height is not a positive multiple of
+ * 4, the source has fewer than 3 channels, a source normal is zero or not finite, or `reference`
+ * is not a sol_bc5_encoder; SOL_ERR_NO_MEMORY. */
 #define SOL_CHECK_BC5_ENCODER_SLACK 0.05
+sol_status sol_check_bc5_encode_against(const sol_image *source, const uint8_t *blocks, sol_bc4_precision precision,
+                                        sol_bc5_encoder reference, sol_check_report *report,
+                                        double *reference_mean_deg, uint64_t *reference_bounded_blocks);
+/* sol_check_bc5_encode_against with reference SOL_BC5_COMMON (reference_mean_deg: the common mean). */
 sol_status sol_check_bc5_encode(const sol_image *source, const uint8_t *blocks, sol_bc4_precision precision,
                                 sol_check_report *report, double *reference_mean_deg);
 
