@@ -1,3 +1,4 @@
+set key noenhanced  # exp_plot: titles are plain names
 set datafile separator comma
 set xlabel 'distance of the light to the wall (m), radius 5 m'
 set ylabel 'light in the next room / light in its own room'

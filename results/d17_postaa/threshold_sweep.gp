@@ -1,3 +1,5 @@
+set key noenhanced  # exp_plot: titles are plain names
+set datafile columnheaders  # exp_plot: each CSV block starts with a header line
 set datafile separator comma
 set logscale x
 set xlabel 'threshold (deviation of full blur)'

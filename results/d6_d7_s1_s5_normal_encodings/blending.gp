@@ -1,3 +1,4 @@
+set key noenhanced  # exp_plot: titles are plain names
 set datafile separator comma
 set xlabel 'alpha'
 set ylabel 'mean angular error (deg)'

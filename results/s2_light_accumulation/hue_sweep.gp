@@ -1,3 +1,4 @@
+set key noenhanced  # exp_plot: titles are plain names
 set datafile separator comma
 set xlabel 'hue difference between the two lights (degrees)'
 set ylabel 'specular hue error of 4 channels (degrees)'

@@ -1,3 +1,4 @@
+set key noenhanced  # exp_plot: titles are plain names
 set multiplot layout 1,2
 set xlabel 'gloss'
 set ylabel 'n.v'

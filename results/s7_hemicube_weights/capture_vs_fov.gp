@@ -1,3 +1,4 @@
+set key noenhanced  # exp_plot: titles are plain names
 set datafile separator comma
 set xlabel 'field of view of the single plane (degrees)'
 set ylabel 'share of the hemisphere captured'

@@ -1,3 +1,4 @@
+set key noenhanced  # exp_plot: titles are plain names
 set datafile separator comma
 set xlabel 'distance across an axis-aligned shadow edge (texels)'
 set ylabel 'filtered lit fraction'

@@ -1,3 +1,4 @@
+set key noenhanced  # exp_plot: titles are plain names
 set datafile separator comma
 set xlabel 'sub-texel offset f'
 set ylabel 'weight (of 1)'

@@ -1,6 +1,7 @@
+set key noenhanced  # exp_plot: titles are plain names
 set datafile separator comma
 set grid
-set key top left
+set key outside below
 set xlabel 'share of values above the median'
 set ylabel 'log2(RMS gamma / RMS linear)'
 set arrow from 0.75,graph 0 to 0.75,graph 1 nohead dt 2 lc rgb 'gray'

@@ -1,3 +1,4 @@
+set key noenhanced  # exp_plot: titles are plain names
 set logscale x
 set offsets graph 0, graph 0.2, graph 0.12, graph 0.02
 set xlabel 'encode time per 4x4 block (core-ns)'

@@ -1,3 +1,4 @@
+set key noenhanced  # exp_plot: titles are plain names
 set xlabel 'per-block error reduction of the optimal encoder over common (% of sum dN^2)'
 set ylabel 'fraction of blocks'
 set grid

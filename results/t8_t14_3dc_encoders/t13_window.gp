@@ -1,3 +1,4 @@
+set key noenhanced  # exp_plot: titles are plain names
 set xlabel 'window half-width (codes)'
 set ylabel 'blocks at the exact optimum (%)'
 set y2label 'error left vs optimum (% of sum dN^2)'

@@ -1,0 +1,2 @@
+set key noenhanced  # exp_plot: titles are plain names
+set logscale y; set xlabel 'extra starts at K'; set ylabel 'relative L2 error of the K-lobe fit'; set key outside right; set grid; set xtics (0, 2, 4, 8, 16); plot 'convergence.dat' u 1:2 w lp t 'ax 0.10 ay 0.40 K 7', 'convergence.dat' u 1:3 w lp t 'ax 0.10 ay 0.40 K 10', 'convergence.dat' u 1:4 w lp t 'ax 0.05 ay 0.30 K 7', 'convergence.dat' u 1:5 w lp t 'ax 0.05 ay 0.30 K 10'
