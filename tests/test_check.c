@@ -579,6 +579,32 @@ Test(check_cli, normals_gbuffer_dump)
     cr_assert_eq(run("$SOL check normals --method octahedral-12 --directions dirs.exr"), 2);
 }
 
+/* The same dump as an EXR of UNORM values code/255 (what an RGBA8 target reads back as). */
+static void png_gbuffer_to_exr(const char *png, const char *exr)
+{
+    char in[128], out[128];
+    snprintf(in, sizeof in, "%s/%s", work, png);
+    snprintf(out, sizeof out, "%s/%s", work, exr);
+    sol_image img = {0};
+    cr_assert_eq(sol_png_read(in, &img, NULL), SOL_OK);
+    cr_assert_eq(sol_exr_write(out, &img, 1), SOL_OK); /* half: k/255 within 0.07 codes */
+    sol_image_free(&img);
+}
+
+Test(check_cli, normals_gbuffer_dump_as_exr)
+{
+    cr_assert_eq(run("$SOL check normals --method octahedral-12 --emit dirs.exr --size 64 && "
+                     "$ENGINE gbuffer dirs.exr g.png && $ENGINE --bug oct-sign0 gbuffer dirs.exr bug.png"),
+                 0);
+    png_gbuffer_to_exr("g.png", "g.exr");
+    png_gbuffer_to_exr("bug.png", "bug.exr");
+    cr_assert_eq(run("$SOL check normals --method octahedral-12 --directions dirs.exr --gbuffer g.exr"), 0);
+    cr_assert_eq(run("$SOL check normals --method octahedral-12 --directions dirs.exr --gbuffer bug.exr"), 1);
+    /* directions are not codes: refused, naming the file */
+    cr_assert_eq(run("$SOL check normals --method octahedral-12 --directions dirs.exr --gbuffer dirs.exr"), 2);
+    cr_assert(err_has("is not an 8-bit UNORM code"));
+}
+
 Test(check_cli, pack_truncation_bugs)
 {
     const char *fmts[2] = {"r11g11b10f", "fp16"}, *bugs[2] = {"r11-trunc", "fp16-trunc"};

@@ -47,8 +47,9 @@ static void help(FILE *to)
                 "\n"
                 "  normals --method M --csv FILE [--exact]  CSV rows x,y,z,code: the engine's encoder output\n"
                 "          M: xyz-normalized xyz-max-component best-fit-search octahedral-12 spherical-12 ...\n"
-            "  normals --method M --directions EXR --gbuffer PNG   a G-buffer dump: the engine encoded each\n"
+            "  normals --method M --directions EXR --gbuffer PNG|EXR   a G-buffer dump: the engine encoded each\n"
             "          direction of the EXR (from --emit FILE.exr) into an 8-bit RGB(A) PNG, code = r | g<<8 | b<<16\n"
+                "          (or an EXR holding each channel's code as the UNORM value code/255)\n"
                 "  bc5 --dds FILE --decoded PNG [--precision 16|8|float] [--tolerance CODES]\n"
                 "          the engine's decoder: its decoded texels (R = x, G = y) against sol's decoder\n"
                 "  bc5 --dds FILE --source IMAGE [--reference common|optimal]   the engine's encoder: angular\n"
@@ -363,7 +364,26 @@ static int emit_direction_image(const args *a)
     return st == SOL_OK ? CLI_EXIT_OK : bad_file(a->emit, sol_status_string(st));
 }
 
-/* A G-buffer dump: directions (float EXR) and the engine's codes as 8-bit RGB(A) PNG. */
+/* An EXR G-buffer holds each 8-bit code as the UNORM value code/255 (what an RGBA8 target reads
+ * back as); half floats keep k/255 within 0.07 codes, so a value more than 0.25 codes from an
+ * integer code in [0, 255] is not a code and the file is refused. -1: all values are codes. */
+static int check_unorm8_values(const char *path, const sol_image *gb)
+{
+    size_t n = (size_t)gb->width * (size_t)gb->height;
+    for (size_t i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k) {
+            double code = gb->data[i * (size_t)gb->channels + (size_t)k] * 255.0;
+            if (!(code >= -0.25 && code <= 255.25) || fabs(code - floor(code + 0.5)) > 0.25) {
+                fprintf(stderr, "%s: %s: pixel %zu channel %d: %g is not an 8-bit UNORM code (code/255)\n", prog,
+                        path, i, k, code / 255.0);
+                return CLI_EXIT_USAGE;
+            }
+        }
+    return -1;
+}
+
+/* A G-buffer dump: directions (float EXR) and the engine's codes as 8-bit RGB(A) PNG, or as an
+ * RGB(A) EXR of the UNORM values code/255. */
 static int check_gbuffer(const args *a, int m)
 {
     if (!a->directions || !a->gbuffer)
@@ -373,11 +393,15 @@ static int check_gbuffer(const args *a, int m)
     sol_status st = sol_exr_read(a->directions, &dir);
     if (st != SOL_OK)
         return bad_file(a->directions, sol_status_string(st));
-    st = sol_png_read(a->gbuffer, &gb, &bits);
+    size_t name_len = strlen(a->gbuffer);
+    int exr = name_len > 4 && !strcmp(a->gbuffer + name_len - 4, ".exr");
+    st = exr ? sol_exr_read(a->gbuffer, &gb) : sol_png_read(a->gbuffer, &gb, &bits);
     if (st != SOL_OK)
         rc = bad_file(a->gbuffer, sol_status_string(st));
-    else if (bits != 8 || gb.channels < 3)
-        rc = bad_file(a->gbuffer, "the G-buffer PNG must be 8-bit RGB or RGBA");
+    else if ((!exr && bits != 8) || gb.channels < 3)
+        rc = bad_file(a->gbuffer, "the G-buffer must be 8-bit RGB(A) PNG or an RGB(A) EXR of 8-bit UNORM values");
+    else if (exr)
+        rc = check_unorm8_values(a->gbuffer, &gb);
     else if (dir.channels < 3 || gb.width != dir.width || gb.height != dir.height)
         rc = bad_file(a->gbuffer, "size differs from the directions image (or it has fewer than 3 channels)");
     size_t n = (size_t)dir.width * (size_t)dir.height;
