@@ -443,30 +443,46 @@ static sol_status solve_start(const fit_setup *s, sg_fit_work *w, int k, sol_lsq
     return SOL_OK;
 }
 
+/* The best start of one greedy step so far, and the time and iterations of all its starts. */
+typedef struct start_pick {
+    double best_l2;
+    sol_lsq_summary best_sum;
+    int have_best;
+    double total_seconds;
+    int total_iterations;
+} start_pick;
+
+/* Solves the start in w->trial and keeps it in w->best when it beats pick->best_l2. */
+static sol_status solve_and_keep(const fit_setup *s, sg_fit_work *w, int k, start_pick *pick)
+{
+    sol_lsq_summary sum;
+    double l2;
+    sol_status st = solve_start(s, w, k, &sum, &l2);
+    if (st != SOL_OK)
+        return st;
+    if (l2 < pick->best_l2) {
+        pick->best_l2 = l2;
+        pick->best_sum = sum;
+        memcpy(w->best, w->trial, (size_t)(LOBE_PARAMS * k) * sizeof(double));
+        pick->have_best = 1;
+    }
+    pick->total_seconds += sum.solve_seconds;
+    pick->total_iterations += sum.iterations;
+    return SOL_OK;
+}
+
 /* Greedy step to k lobes: every start is solved and the best by evaluation error wins; the k-1 fit
  * padded with a zero lobe is kept when no start beats it (*prev_l2), so the error never rises with
  * k. The summary of step k reports the winner but the time and iterations of all starts. */
 static sol_status fit_k_lobes(const fit_setup *s, sg_fit_work *w, int k, double *prev_l2)
 {
-    int np = LOBE_PARAMS * k, n_cand = k == 1 ? 1 : 4, have_best = 0;
-    double best_l2 = *prev_l2, total_seconds = 0.0;
-    int total_iterations = 0;
-    sol_lsq_summary best_sum = {0};
+    int np = LOBE_PARAMS * k, n_cand = k == 1 ? 1 : 4;
+    start_pick pick = {.best_l2 = *prev_l2};
     for (int c = 0; c < n_cand; ++c) {
         make_start(s, w, k, c);
-        sol_lsq_summary sum;
-        double l2;
-        sol_status st = solve_start(s, w, k, &sum, &l2);
+        sol_status st = solve_and_keep(s, w, k, &pick);
         if (st != SOL_OK)
             return st;
-        if (l2 < best_l2) {
-            best_l2 = l2;
-            best_sum = sum;
-            memcpy(w->best, w->trial, (size_t)np * sizeof(double));
-            have_best = 1;
-        }
-        total_seconds += sum.solve_seconds;
-        total_iterations += sum.iterations;
     }
     /* Extra starts of the last fit (multi-start check): lines, random starts and basin hops. */
     uint64_t rng = sol_mix64(0x5347u * 131u + (uint64_t)k);
@@ -477,38 +493,28 @@ static sol_status fit_k_lobes(const fit_setup *s, sg_fit_work *w, int k, double 
         } else if (r % 2 == 1) {
             random_start(s, w, k, &rng);
         } else {
-            if (have_best)
+            if (pick.have_best)
                 memcpy(w->trial, w->best, (size_t)np * sizeof(double));
             else
                 make_start(s, w, k, 1);
             perturb_start(w, k, &rng);
         }
-        sol_lsq_summary sum;
-        double l2;
-        sol_status st = solve_start(s, w, k, &sum, &l2);
+        sol_status st = solve_and_keep(s, w, k, &pick);
         if (st != SOL_OK)
             return st;
-        if (l2 < best_l2) {
-            best_l2 = l2;
-            best_sum = sum;
-            memcpy(w->best, w->trial, (size_t)np * sizeof(double));
-            have_best = 1;
-        }
-        total_seconds += sum.solve_seconds;
-        total_iterations += sum.iterations;
     }
     sol_lsq_summary *sum_k = &w->sums[k - 1];
-    if (have_best) {
+    if (pick.have_best) {
         memcpy(w->params, w->best, (size_t)np * sizeof(double));
-        *prev_l2 = best_l2;
-        *sum_k = best_sum;
+        *prev_l2 = pick.best_l2;
+        *sum_k = pick.best_sum;
     } else { /* keep fit k-1 and give the new lobe zero amplitude */
         double *fresh = w->params + np - LOBE_PARAMS;
         fresh[0] = 0.0, fresh[1] = 0.0, fresh[2] = log(w->lambda0), fresh[3] = 0.0;
-        *sum_k = k > 1 ? w->sums[k - 2] : best_sum;
+        *sum_k = k > 1 ? w->sums[k - 2] : pick.best_sum;
     }
-    sum_k->solve_seconds = total_seconds;
-    sum_k->iterations = total_iterations;
+    sum_k->solve_seconds = pick.total_seconds;
+    sum_k->iterations = pick.total_iterations;
     return SOL_OK;
 }
 
