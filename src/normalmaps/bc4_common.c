@@ -32,7 +32,7 @@
  * the child of smaller bound visited first; a box is dropped when LB > best, or when LB >= best
  * and its smallest pair index is above the incumbent's (no pair inside can win the tie rule).
  * Boxes of at most SMALL_BOX pairs are scored pair by pair with the reference order and early
- * exit. The bounds are lowered by a relative 1e-9 and delta is raised by 1e-12, far above the
+ * exit. Flat blocks (16 equal targets) list their few candidate pairs directly (flat_search). The bounds are lowered by a relative 1e-9 and delta is raised by 1e-12, far above the
  * rounding of these sums, so no bound exceeds the computed score of a pair it covers: the result is
  * the exhaustive search's, pair for pair (tests compare with the literal brute force). */
 #include "normalmaps_internal.h"
@@ -95,12 +95,14 @@ static inline double exact_score(const common_ctx *c, int pair, double budget)
     const double *pal = c->pal[pair];
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
-        double t = c->t[c->order[k]];
-        double m = (pal[0] - t) * (pal[0] - t);
-        for (int i = 1; i < 8; ++i) {
-            double d = (pal[i] - t) * (pal[i] - t);
-            m = d < m ? d : m;
-        }
+        double t = c->t[c->order[k]], d[8];
+        for (int i = 0; i < 8; ++i)
+            d[i] = (pal[i] - t) * (pal[i] - t);
+        /* a min tree (the same value as a running min: min is exact) */
+        double m01 = d[0] < d[1] ? d[0] : d[1], m23 = d[2] < d[3] ? d[2] : d[3];
+        double m45 = d[4] < d[5] ? d[4] : d[5], m67 = d[6] < d[7] ? d[6] : d[7];
+        double ma = m01 < m23 ? m01 : m23, mb = m45 < m67 ? m45 : m67;
+        double m = ma < mb ? ma : mb;
         s += m;
         if (s > budget)
             return s;
@@ -109,7 +111,7 @@ static inline double exact_score(const common_ctx *c, int pair, double budget)
 }
 
 /* Lower bound of the score of every pair of the box (see the top of the file); stops once above budget. */
-static double box_bound(common_ctx *c, int six, int l1, int l2, int h1, int h2, double budget)
+static __attribute__((noinline)) double box_bound(common_ctx *c, int six, int l1, int l2, int h1, int h2, double budget)
 {
     double lo[8], hi[8];
     double al1 = anchor(l1), al2 = anchor(l2), ah1 = anchor(h1), ah2 = anchor(h2), d = c->delta;
@@ -145,17 +147,25 @@ static double box_bound(common_ctx *c, int six, int l1, int l2, int h1, int h2, 
                 return qb;
         }
     }
-    double s = 0.0;
-    for (int k = 0; k < 16; ++k) {
-        double t = c->t[c->order[k]], m = INFINITY;
-        for (int i = 0; i < n; ++i) {
-            double e = t < lo[i] ? lo[i] - t : (t > hi[i] ? t - hi[i] : 0.0);
-            m = e * e < m ? e * e : m;
+    /* interval by interval over the 16 targets (independent lanes: the compiler vectorises it) */
+    double m[16];
+    for (int p = 0; p < 16; ++p)
+        m[p] = INFINITY;
+    for (int i = 0; i < n; ++i) {
+        const double l = lo[i], h = hi[i];
+        for (int p = 0; p < 16; ++p) {
+            /* dist^2 = max(lo - t, 0)^2 + max(t - hi, 0)^2 (one of them is 0), branch-free with
+             * max(x, 0) = (x + |x|) / 2 (exact) */
+            double a = l - c->sorted[p], b = c->sorted[p] - h;
+            double pa = a + fabs(a), pb = b + fabs(b);
+            double e2 = 0.25 * (pa * pa + pb * pb);
+            m[p] = m[p] < e2 ? m[p] : e2;
         }
-        s += m;
-        if (s > budget)
-            return s;
     }
+    double s = 0.0;
+    for (int p = 0; p < 16; ++p)
+        s += m[p];
+    (void)budget;
     return s;
 }
 
@@ -274,10 +284,14 @@ static void search_mode(common_ctx *c, int six)
         if (box_hopeless(c, six, &b))
             continue;
         if ((b.l2 - b.l1 + 1) * (b.h2 - b.h1 + 1) <= SMALL_BOX) { /* score its pairs directly */
-            for (int l = b.l1; l <= b.l2; ++l)
-                for (int h = b.h1 > l + g.gap ? b.h1 : l + g.gap; h <= b.h2; ++h) {
-                    try_pair(c, six ? (l << 8 | h) : (h << 8 | l));
-                }
+            if (six) /* pairs in table order (L << 8 | H): neighbouring palettes */
+                for (int l = b.l1; l <= b.l2; ++l)
+                    for (int h = b.h1 > l ? b.h1 : l; h <= b.h2; ++h)
+                        try_pair(c, l << 8 | h);
+            else /* H << 8 | L */
+                for (int h = b.h1; h <= b.h2; ++h)
+                    for (int l = b.l1; l <= b.l2 && l < h; ++l)
+                        try_pair(c, h << 8 | l);
             continue;
         }
         box kid[2];
@@ -349,6 +363,69 @@ static void refine(common_ctx *c, int six, int l, int h)
     }
 }
 
+/* ---- flat blocks (all 16 targets equal) ----
+ * The score is then S(m) = 16 equal terms m = min_k (pal_k - t)^2 added in order, non-decreasing in
+ * m, so a pair can reach the incumbent only if one of its entries lies within R = sqrt(m_best) of t
+ * (m_best the incumbent's term; a relative 1e-9 of slack). The box bounds cannot see this (one entry
+ * makes them zero along eight long lines of pairs), so the pairs are listed directly: for each low
+ * anchor L, the rows where L itself is within R, the column of high anchors within R, and for each
+ * interpolant weight w the high anchors H whose exact entry (1 - w) A(L) + w A(H) is within
+ * R + delta of t (an interval of H). Each is scored exactly (S(m), then the tie rule). When t is
+ * within R of the 6-value mode's fixed entries -1 or +1 every 6-value pair qualifies: the general
+ * search handles that case (returns 0). */
+static void flat_consider(common_ctx *c, int pair, double *m_best)
+{
+    const double *pal = c->pal[pair], t = c->t[0];
+    double m = (pal[0] - t) * (pal[0] - t);
+    for (int i = 1; i < 8; ++i) {
+        double d = (pal[i] - t) * (pal[i] - t);
+        m = d < m ? d : m;
+    }
+    if (m > *m_best * (1.0 + 1e-12))
+        return; /* S(m) > S(m_best) */
+    double v = 0.0;
+    for (int k = 0; k < 16; ++k)
+        v += m;
+    if (v < c->best || (v == c->best && pair < c->best_pair)) {
+        c->best = v;
+        c->best_pair = pair;
+        *m_best = m < *m_best ? m : *m_best;
+    }
+}
+
+static int flat_search(common_ctx *c)
+{
+    const double t = c->t[0];
+    const double *pal = c->pal[c->best_pair];
+    double m_best = INFINITY;
+    for (int i = 0; i < 8; ++i)
+        m_best = fmin(m_best, (pal[i] - t) * (pal[i] - t));
+    const double r = sqrt(m_best) * (1.0 + 1e-9) + 1e-300;
+    if (fabs(t + 1.0) <= r || fabs(t - 1.0) <= r)
+        return 0;
+    const double reach = r + c->delta;
+    const int a_lo = code_ceil(t - r), a_hi = code_floor(t + r); /* anchors within r */
+    for (int six = 0; six < 2; ++six) {
+        const int den = six ? 5 : 7, gap = six ? 0 : 1;
+        for (int l = 0; l < 256; ++l) {
+            const double al = anchor(l);
+            if (l >= a_lo && l <= a_hi) /* the low anchor itself: the whole row */
+                for (int h = l + gap; h < 256; ++h)
+                    flat_consider(c, six ? (l << 8 | h) : (h << 8 | l), &m_best);
+            for (int h = a_lo > l + gap ? a_lo : l + gap; h <= a_hi; ++h) /* the high anchor */
+                flat_consider(c, six ? (l << 8 | h) : (h << 8 | l), &m_best);
+            for (int j = 1; j < den; ++j) { /* interpolant of weight w = j / den on H */
+                double w = (double)j / den;
+                int h1 = code_ceil(al + (t - reach - al) / w), h2 = code_floor(al + (t + reach - al) / w);
+                h1 = h1 > l + gap ? h1 : l + gap;
+                for (int h = h1; h <= h2; ++h)
+                    flat_consider(c, six ? (l << 8 | h) : (h << 8 | l), &m_best);
+            }
+        }
+    }
+    return 1;
+}
+
 int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score)
 {
     sol_nm_channel ch; /* for the reference pixel order */
@@ -390,8 +467,13 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
         refine(&c, 0, fast.e1, fast.e0);
     else
         refine(&c, 1, fast.e0, fast.e1);
-    search_mode(&c, 0);
-    search_mode(&c, 1);
+    int flat = 1;
+    for (int p = 1; p < 16; ++p)
+        flat &= c.sorted[p] == c.sorted[0];
+    if (!flat || !flat_search(&c)) {
+        search_mode(&c, 0);
+        search_mode(&c, 1);
+    }
     *score = c.best;
     return c.best_pair;
 }
