@@ -16,9 +16,8 @@
 #include <sys/stat.h>
 
 #include "exp_harness.h"
+#include "scenes.h"
 #include "sol_scene.h"
-
-#define SCENES_DIR "experiments/scenes"
 
 static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
@@ -166,8 +165,10 @@ int main(int argc, char **argv)
     }
     exp_progress_done("scenes");
     exp_table_write(bench, exp, "frame_times");
-    if (!run.bench)
+    if (!run.bench) {
         exp_table_write(summary, exp, "summary");
+        scenes_claims(exp, width, height);
+    }
     for (int i = 0; i < count; ++i)
         free(names[i]);
     return 0;
