@@ -511,6 +511,71 @@ static void claim_d18(const exp_run *exp, int width, int height)
     sol_scene_free(&s);
 }
 
+/* ---- D16: aniso_sg, the principal Phong lobe's normal against the surface normal ---- */
+
+/* Mean and max angle (degrees) between the normals of two renders over the pixels where they
+ * differ (the anisotropic spheres; elsewhere both hold the same normal); returns that count. */
+static long normal_shift(const sol_render_result *a, const sol_render_result *b, double *mean, double *mx)
+{
+    size_t n = (size_t)a->normals.width * a->normals.height;
+    double sum = 0;
+    long moved = 0;
+    *mx = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const float *p = a->normals.data + 3 * i, *q = b->normals.data + 3 * i;
+        if (!memcmp(p, q, 3 * sizeof(float)))
+            continue;
+        double da[3] = {p[0], p[1], p[2]}, db[3] = {q[0], q[1], q[2]};
+        if (sol_dot3(da, da) == 0 || sol_dot3(db, db) == 0)
+            continue;
+        double deg = sol_angle3(da, db) * 180 / M_PI;
+        sum += deg;
+        *mx = fmax(*mx, deg);
+        ++moved;
+    }
+    *mean = moved ? sum / moved : 0;
+    return moved;
+}
+
+static void claim_d16(const exp_run *exp, int width, int height)
+{
+    sol_scene s;
+    load("aniso_sg", &s);
+    const unsigned fl = BIT(SOL_FX_GBUFFER_NORMALS);
+    sol_render_result exact;
+    render(&s, width, height, 0, fl | BIT(SOL_FX_SG_LOBES), &exact, NULL); /* the exact Ward BRDF */
+    const int lobes[2] = {s.pipeline.sg_lobes, 7};                         /* the scene's, the talk's ~7 */
+    double mean[2], mx[2], rms[2];
+    long moved[2];
+    for (int k = 0; k < 2; ++k) {
+        s.pipeline.sg_lobes = lobes[k];
+        sol_render_result lobe;
+        render(&s, width, height, 0, fl, &lobe, NULL); /* principal Phong lobe of the k-lobe fit */
+        moved[k] = normal_shift(&lobe, &exact, &mean[k], &mx[k]);
+        rms[k] = compare(&lobe, &exact).rms_code;
+        sol_render_result_free(&lobe);
+    }
+    char fig[256];
+    snprintf(fig, sizeof fig, "aniso_sg: lobe normal shifted %.2f deg mean (max %.1f) with %d SG lobes, %.2f (max %.1f) "
+                              "with %d; image %.1f / %.1f codes RMS off the exact Ward BRDF",
+             mean[0], mx[0], lobes[0], mean[1], mx[1], lobes[1], rms[0], rms[1]);
+    exp_number(exp, "D16-scene-shift-deg", "%.1f", mean[0]);
+    exp_number(exp, "D16-scene-shift7-deg", "%.1f", mean[1]);
+    exp_number(exp, "D16-scene-rms", "%.1f", rms[0]);
+    double best = fmin(mean[0], mean[1]);
+    exp_claim(exp, "D16", "principal Phong lobe per pixel; the highlight is slightly shifted", fig,
+              "mean normal shift <= 1 deg (the reflection turns up to twice as far: d2_d14_d16's 2 deg)",
+              moved[0] > 0 && best <= 1 ? EXP_REPRODUCED : EXP_NOT_REPRODUCED,
+              "rendered scene aniso_sg (Ward 0.05 x 0.35 and 0.35 x 0.05 spheres, a sun and two SG sky lobes), "
+              "%ld sphere pixels: the engine stores the principal Phong lobe extracted from the SG fit under the "
+              "lights, the other render shades the exact Ward BRDF, both with float G-buffer normals; the extraction "
+              "weights the NDF lobes by the lighting, so the lobe normal leans toward the lights (as in "
+              "d2_d14_d16), and the talk's ~7 lobes %s the shift",
+              moved[0], mean[1] < mean[0] ? "reduce" : "do not reduce");
+    sol_render_result_free(&exact);
+    sol_scene_free(&s);
+}
+
 /* ---- M4: graded, the 16^3 LUT against the exact grading transform ---- */
 static void claim_m4(const exp_run *exp, int width, int height)
 {
@@ -568,4 +633,5 @@ void scenes_claims(const exp_run *exp, int width, int height)
     claim_d17(exp, width, height);
     claim_d18(exp, width, height);
     claim_m4(exp, width, height);
+    claim_d16(exp, width, height);
 }

@@ -4,6 +4,8 @@
  * effect in its reference version). Writes results/scenes/<scene>/{engine,reference,difference}.png,
  * <scene>_plan and <scene>_attribution tables, and a summary table over all scenes; --bench prints
  * the frame times against the goal (960x540 engine path <= 5 s on 2 cores, reference <= 10x).
+ * claims.c adds the claims rows measured on these scenes (T2, T14, M1, M3, M4, D9, D10, D13, D16,
+ * D17, D18), each with its own table.
  *
  * The scenes regenerate the talk's image comparisons as measured figures: car hood banding (T14),
  * dark texture under strong light (T1/T2), light bleeding with and without a clip volume (D13),
