@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "sol_normals.h"
+#include "normals_internal.h" /* the best-fit searches themselves, for the scalar-scan reference */
 
 #define DEG (180.0 / M_PI)
 
@@ -541,5 +542,85 @@ Test(normals, oct_bit_sweep_regression)
         if (bits <= 13)
             cr_assert_float_eq(mean_u, tyler_mean[bits - 8], 0.02 * tyler_mean[bits - 8], "bits %d UNORM cube mean %g",
                                bits, mean_u);
+    }
+}
+
+/* The appendix's search as a plain scalar loop (double, and float statement by statement as the
+ * HLSL), keeping the first minimum with `if (err < best_err)`: the reference the vectorized,
+ * multi-versioned searches (2/4/8 lanes, min reduction then first index) must equal bit for bit. */
+static uint32_t ref_best_fit_double(const double v[3])
+{
+    double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2]))), d[3] = {v[0] / m, v[1] / m, v[2] / m};
+    double best_err = INFINITY;
+    uint32_t best = 0;
+    for (int s = 3; s <= 255; s += 2) {
+        double t = (double)s / 255.0, dev = 0.0;
+        uint32_t c[3];
+        for (int i = 0; i < 3; ++i) {
+            double p = d[i] * t;
+            c[i] = (uint32_t)(int32_t)((p * 0.5 + 0.5) * 255.0 + 0.5);
+            double e = fabs((double)c[i] / 255.0 * 2.0 - 1.0 - p);
+            dev = e > dev ? e : dev;
+        }
+        if (dev / t < best_err) {
+            best_err = dev / t;
+            best = c[0] | (c[1] << 8) | (c[2] << 16);
+        }
+    }
+    return best;
+}
+
+static uint32_t ref_best_fit_float(const double v[3])
+{
+    float n[3] = {(float)v[0], (float)v[1], (float)v[2]};
+    float m = fmaxf(fabsf(n[0]), fmaxf(fabsf(n[1]), fabsf(n[2])));
+    for (int i = 0; i < 3; ++i)
+        n[i] /= m;
+    float best_err = 100000.0f;
+    uint32_t best = 0;
+    for (int k = 0; k < 127; ++k) {
+        float t = (1.5f + (float)k) / 127.5f, dev = 0.0f;
+        uint32_t c[3];
+        for (int i = 0; i < 3; ++i) {
+            float p = n[i] * t;
+            c[i] = (uint32_t)(int32_t)((p * .5f + .5f) * 255.f + .5f);
+            float e = fabsf((float)c[i] / 255.f * 2.f - 1.f - p);
+            dev = e > dev ? e : dev;
+        }
+        if (dev / t < best_err) {
+            best_err = dev / t;
+            best = c[0] | (c[1] << 8) | (c[2] << 16);
+        }
+    }
+    return best;
+}
+
+/* D5/D6: the searches equal the scalar scan on random directions, every cell centre of four slices
+ * (ties between probes on a centre's ray are the common case there), axes, diagonals and
+ * near-axis vectors, unnormalised as the appendix passes them. */
+Test(normals, d5_best_fit_search_equals_the_scalar_scan)
+{
+    uint64_t state = 77;
+    double t;
+    for (int i = 0; i < 200000; ++i) {
+        double n[3];
+        sol_sphere_uniform(sol_rng_uniform(&state, 0, 1), sol_rng_uniform(&state, 0, 1), n);
+        cr_assert_eq(sol_normals_encode_best_fit(n, &t), ref_best_fit_double(n), "(%a, %a, %a)", n[0], n[1], n[2]);
+        cr_assert_eq(sol_normals_encode_best_fit_float(n), ref_best_fit_float(n), "(%a, %a, %a)", n[0], n[1], n[2]);
+    }
+    static const uint32_t slices[4] = {0, 127, 200, 255};
+    for (int r = 0; r < 4; ++r)
+        for (uint32_t g = 0; g < 256; ++g)
+            for (uint32_t b = 0; b < 256; ++b) {
+                double c[3] = {sol_dequantize255(slices[r]), sol_dequantize255(g), sol_dequantize255(b)};
+                cr_assert_eq(sol_normals_encode_best_fit(c, &t), ref_best_fit_double(c));
+                cr_assert_eq(sol_normals_encode_best_fit_float(c), ref_best_fit_float(c));
+            }
+    static const double edge[][3] = {{1, 0, 0},   {0, -1, 0},         {0, 0, 1},     {1, 1, 1},
+                                     {-1, 1, -1}, {1, 1e-9, 0},       {1e-30, 0, 1e-30}, {0.5, -0.5, 1e-7},
+                                     {3, 4, 0},   {1, 0x1p-30, -0x1p-30}};
+    for (size_t i = 0; i < sizeof edge / sizeof edge[0]; ++i) {
+        cr_assert_eq(sol_normals_encode_best_fit(edge[i], &t), ref_best_fit_double(edge[i]), "edge %zu", i);
+        cr_assert_eq(sol_normals_encode_best_fit_float(edge[i]), ref_best_fit_float(edge[i]), "edge %zu", i);
     }
 }

@@ -5,7 +5,8 @@
 #
 # Timing values are, by convention (experiments/common/exp_harness.h):
 #   - CSV columns whose header names a time: it contains "ns", "ms", "us", "time", "(s)", "seconds",
-#     "speed" or "overhead" as a word (e.g. "ns per pixel", "core-ns per block", "1024^2 on 2 cores (s)");
+#     "speed" or "overhead" as a word (e.g. "ns per pixel", "core-ns per block", "1024^2 on 2 cores (s)"),
+#     or seconds as " s at" (d15's "Ceres s at K");
 #   - numbers.tex keys ending in -ns, -ms or -s;
 #   - everything drawn from those (the .md/.tex copies of such tables, plots whose script reads a
 #     timing column, the paper).
@@ -16,7 +17,7 @@
 [ $# -eq 2 ] && [ -d "$1" ] && [ -d "$2" ] || { echo "usage: $0 DIR_A DIR_B (two results trees)" >&2; exit 2; }
 a=$1 b=$2 bad=0
 is_timing_header() {
-  echo "$1" | grep -Eiq '(^|[^a-z])(ns|ms|us|time|seconds|speed|overhead|s\))([^a-z]|$)|core-ns|_ns$|_ms$|^ns|per s$'
+  echo "$1" | grep -Eiq '(^|[^a-z])(ns|ms|us|time|seconds|speed|overhead|s\))([^a-z]|$)|core-ns|_ns$|_ms$|^ns|per s$| s at '
 }
 for f in $(cd "$a" && find . -name '*.csv' | sort); do
   [ -f "$b/$f" ] || { echo "$f: missing in $b"; bad=1; continue; }

@@ -186,6 +186,24 @@ typedef struct store_error {
     double max_code, mean_code, pct_changed, pct_2codes, max_rel_window; /* window: [c_min, c_max] */
 } store_error;
 
+/* The per-pixel work of measure_store and accumulate_lights runs in parallel over blocks of pixels
+ * into per-pixel slots; the sums and maxima are then taken on one thread in pixel order, so every
+ * figure is bit for bit the sequential loop's for any thread count. */
+enum { PIXEL_BLOCK = 1 << 16 };
+
+typedef struct pixel_slots {
+    int diff[3 * PIXEL_BLOCK]; /* |display code stored - wanted| per channel */
+    double rel[3 * PIXEL_BLOCK]; /* relative error inside the window, -1 outside */
+} pixel_slots;
+
+static pixel_slots *pixel_slots_new(void)
+{
+    pixel_slots *ps = malloc(sizeof *ps);
+    if (!ps)
+        exp_die("out of memory");
+    return ps;
+}
+
 static store_error measure_store(const sol_image *scene, format f, policy p, double l, sol_image *out_display)
 {
     double s = policy_scale(p, f, l), c_min, c_max;
@@ -195,25 +213,38 @@ static store_error measure_store(const sol_image *scene, format f, policy p, dou
     c_max *= l;
     store_error e = {0, 0, 0, 0, 0};
     int n = scene->width * scene->height;
-    for (int k = 0; k < n; ++k) {
-        const float *px = scene->data + 3 * k;
-        float scaled[3] = {(float)(px[0] * s), (float)(px[1] * s), (float)(px[2] * s)}, back[3];
-        store(f, scaled, back);
-        double worst = 0.0;
-        for (int i = 0; i < 3; ++i) {
-            double c = back[i] / s;
-            int want = display_code(px[i], l), got = display_code(c, l);
-            worst = fmax(worst, abs(got - want));
-            e.mean_code += abs(got - want) / (3.0 * n);
-            if (px[i] >= c_min && px[i] <= c_max)
-                e.max_rel_window = fmax(e.max_rel_window, fabs(c - px[i]) / px[i]);
-            if (out_display)
-                out_display->data[3 * k + i] = (float)(got / 255.0);
+    pixel_slots *ps = pixel_slots_new();
+    for (int start = 0; start < n; start += PIXEL_BLOCK) {
+        int len = n - start < PIXEL_BLOCK ? n - start : PIXEL_BLOCK;
+#pragma omp parallel for schedule(static)
+        for (int j = 0; j < len; ++j) {
+            int k = start + j;
+            const float *px = scene->data + 3 * k;
+            float scaled[3] = {(float)(px[0] * s), (float)(px[1] * s), (float)(px[2] * s)}, back[3];
+            store(f, scaled, back);
+            for (int i = 0; i < 3; ++i) {
+                double c = back[i] / s;
+                int want = display_code(px[i], l), got = display_code(c, l);
+                ps->diff[3 * j + i] = abs(got - want);
+                ps->rel[3 * j + i] = px[i] >= c_min && px[i] <= c_max ? fabs(c - px[i]) / px[i] : -1.0;
+                if (out_display)
+                    out_display->data[3 * k + i] = (float)(got / 255.0);
+            }
         }
-        e.max_code = fmax(e.max_code, worst);
-        e.pct_changed += worst >= 1.0 ? 100.0 / n : 0.0;
-        e.pct_2codes += worst >= 2.0 ? 100.0 / n : 0.0;
+        for (int j = 0; j < len; ++j) { /* in pixel order, as the sequential loop summed */
+            double worst = 0.0;
+            for (int i = 0; i < 3; ++i) {
+                worst = fmax(worst, ps->diff[3 * j + i]);
+                e.mean_code += ps->diff[3 * j + i] / (3.0 * n);
+                if (ps->rel[3 * j + i] >= 0.0)
+                    e.max_rel_window = fmax(e.max_rel_window, ps->rel[3 * j + i]);
+            }
+            e.max_code = fmax(e.max_code, worst);
+            e.pct_changed += worst >= 1.0 ? 100.0 / n : 0.0;
+            e.pct_2codes += worst >= 2.0 ? 100.0 / n : 0.0;
+        }
     }
+    free(ps);
     return e;
 }
 
@@ -225,26 +256,34 @@ static double accumulate_lights(const sol_image *scene, format f, policy p, doub
     double s = policy_scale(p, f, l), mean = 0.0;
     int n = scene->width * scene->height;
     *max_code = 0.0;
-    for (int k = 0; k < n; ++k) {
-        const float *px = scene->data + 3 * k;
-        float acc[3] = {0, 0, 0};
-        double weight_sum = 0.0, weights[64];
-        for (int j = 0; j < lights; ++j) { /* deterministic uneven split */
-            weights[j] = 0.2 + fmod((k * 0.6180339887 + j * 0.7548776662) * 7.0, 1.0);
-            weight_sum += weights[j];
-        }
-        for (int j = 0; j < lights; ++j) {
-            float sum[3];
+    pixel_slots *ps = pixel_slots_new();
+    for (int start = 0; start < n; start += PIXEL_BLOCK) {
+        int len = n - start < PIXEL_BLOCK ? n - start : PIXEL_BLOCK;
+#pragma omp parallel for schedule(static)
+        for (int j = 0; j < len; ++j) {
+            int k = start + j;
+            const float *px = scene->data + 3 * k;
+            float acc[3] = {0, 0, 0};
+            double weight_sum = 0.0, weights[64];
+            for (int m = 0; m < lights; ++m) { /* deterministic uneven split */
+                weights[m] = 0.2 + fmod((k * 0.6180339887 + m * 0.7548776662) * 7.0, 1.0);
+                weight_sum += weights[m];
+            }
+            for (int m = 0; m < lights; ++m) {
+                float sum[3];
+                for (int i = 0; i < 3; ++i)
+                    sum[i] = acc[i] + (float)(px[i] * s * weights[m] / weight_sum);
+                store(f, sum, acc);
+            }
             for (int i = 0; i < 3; ++i)
-                sum[i] = acc[i] + (float)(px[i] * s * weights[j] / weight_sum);
-            store(f, sum, acc);
+                ps->diff[3 * j + i] = abs(display_code(acc[i] / s, l) - display_code(px[i], l));
         }
-        for (int i = 0; i < 3; ++i) {
-            int d = abs(display_code(acc[i] / s, l) - display_code(px[i], l));
-            mean += d / (3.0 * n);
-            *max_code = fmax(*max_code, d);
+        for (int j = 0; j < 3 * len; ++j) { /* in pixel order, as the sequential loop summed */
+            mean += ps->diff[j] / (3.0 * n);
+            *max_code = fmax(*max_code, ps->diff[j]);
         }
     }
+    free(ps);
     return mean;
 }
 

@@ -78,28 +78,47 @@ static void lobe_from_params(const double *p, sol_sg *g)
     g->amplitude = p[3];
 }
 
+/* The exponential factor exp(x) of a lobe, x = sharpness (axis.h - 1) <= 0. Below -746 exp rounds
+ * to +0 (the smallest subnormal is exp(-744.4), and exp(x) < 2^-1075 rounds to 0 from
+ * x < -745.13), so the factor is 0 without the call, whose underflow path (errno, flags) is slow;
+ * far-away nodes of sharp lobes hit it often. Bit for bit exp(x) for every x. */
+static inline double lobe_exp(double x)
+{
+    return x < -746.0 ? 0.0 : exp(x);
+}
+
+/* The residual callback's state. Ceres evaluates the residuals alone at a trial point and, when it
+ * accepts the step, the residuals with the Jacobian at the same point: the exponential factors of
+ * the first call (n per lobe) are kept with its parameters and reused by the second, so each
+ * accepted step costs one exp per node and lobe instead of two (same values: same arithmetic). */
 typedef struct sg_fit_ctx {
     const ward_nodes *nodes;
     const double *sqrt_w; /* sqrt(weight) / ||target|| */
     int k;
+    double *e_cache;      /* n * k factors of the last evaluation (NULL: no cache) */
+    double *p_cache;      /* its LOBE_PARAMS * k parameters */
+    int cache_valid;
 } sg_fit_ctx;
 
 static int sg_residuals(void *vctx, const double *params, double *res, double *jac)
 {
-    const sg_fit_ctx *c = vctx;
+    sg_fit_ctx *c = vctx;
     const ward_nodes *w = c->nodes;
     int np = LOBE_PARAMS * c->k;
+    int reuse = c->cache_valid && memcmp(c->p_cache, params, (size_t)np * sizeof *params) == 0;
     for (int i = 0; i < w->n; ++i)
         res[i] = -w->target[i] * c->sqrt_w[i];
     for (int k = 0; k < c->k; ++k) {
         const double *p = params + LOBE_PARAMS * k;
+        double *ek = c->e_cache + (size_t)k * (size_t)w->n;
         sol_sg g;
         lobe_from_params(p, &g);
         double st = sin(p[0]), ct = cos(p[0]), sp = sin(p[1]), cp = cos(p[1]);
         double d_theta[3] = {ct * cp, ct * sp, -st}, d_phi[3] = {-st * sp, st * cp, 0.0};
         for (int i = 0; i < w->n; ++i) {
             const double *h = w->dir + 3 * i;
-            double e = exp(g.sharpness * (sol_dot3(g.axis, h) - 1.0));
+            double e = reuse ? ek[i] : lobe_exp(g.sharpness * (sol_dot3(g.axis, h) - 1.0));
+            ek[i] = e;
             double s = c->sqrt_w[i];
             res[i] += s * g.amplitude * e;
             if (jac) {
@@ -112,6 +131,8 @@ static int sg_residuals(void *vctx, const double *params, double *res, double *j
             }
         }
     }
+    memcpy(c->p_cache, params, (size_t)np * sizeof *params);
+    c->cache_valid = 1;
     return 0;
 }
 
@@ -254,6 +275,7 @@ typedef struct sg_fit_work {
     sol_sg *scratch, *out;
     sol_sg_fit_error *errs;
     sol_lsq_summary *sums;
+    double *e_cache, *p_cache; /* the residual callback's cache (sg_fit_ctx), n fit nodes x k_max */
     double ax, ay;         /* the roughness being fitted */
     double lambda0;        /* sharpness of a new lobe at the default width */
     double log_lambda_cap; /* upper bound of log sharpness for this roughness */
@@ -266,10 +288,12 @@ static void sg_fit_work_free(sg_fit_work *w)
     free(w->out);
     free(w->errs);
     free(w->sums);
+    free(w->e_cache);
+    free(w->p_cache);
 }
 
 /* Allocates every buffer; on failure the caller still frees w (free(NULL) is a no-op). */
-static sol_status sg_fit_work_alloc(int k_max, sg_fit_work *w)
+static sol_status sg_fit_work_alloc(int k_max, int n_nodes, sg_fit_work *w)
 {
     int np_max = LOBE_PARAMS * k_max;
     memset(w, 0, sizeof *w);
@@ -279,7 +303,9 @@ static sol_status sg_fit_work_alloc(int k_max, sg_fit_work *w)
     w->out = malloc((size_t)(k_max * (k_max + 1) / 2) * sizeof(sol_sg));
     w->errs = malloc((size_t)k_max * sizeof *w->errs);
     w->sums = calloc((size_t)k_max, sizeof *w->sums);
-    if (!w->params || !w->scratch || !w->out || !w->errs || !w->sums)
+    w->e_cache = malloc((size_t)n_nodes * (size_t)k_max * sizeof *w->e_cache);
+    w->p_cache = malloc((size_t)np_max * sizeof *w->p_cache);
+    if (!w->params || !w->scratch || !w->out || !w->errs || !w->sums || !w->e_cache || !w->p_cache)
         return SOL_ERR_NO_MEMORY;
     w->lower = w->params + np_max;
     w->upper = w->lower + np_max;
@@ -429,7 +455,7 @@ static void perturb_start(const sg_fit_work *w, int k, uint64_t *rng)
  * nodes, which ranks the starts. */
 static sol_status solve_start(const fit_setup *s, sg_fit_work *w, int k, sol_lsq_summary *sum, double *rel_l2)
 {
-    sg_fit_ctx ctx = {&s->fit, s->sqrt_w, k};
+    sg_fit_ctx ctx = {&s->fit, s->sqrt_w, k, w->e_cache, w->p_cache, 0};
     sol_lsq_problem prob = {LOBE_PARAMS * k, s->fit.n, sg_residuals, &ctx, w->lower, w->upper, s->o.max_iterations,
                             s->o.linear_solver};
     sol_status st = sol_lsq_solve(&prob, w->trial, sum);
@@ -544,7 +570,7 @@ sol_status sol_ward_sg_fit(double alpha_x, double alpha_y, int k_max, const sol_
     if ((st = fit_setup_init(alpha_x, alpha_y, opts, &s)) != SOL_OK)
         return st;
     sg_fit_work w;
-    if ((st = sg_fit_work_alloc(k_max, &w)) == SOL_OK) {
+    if ((st = sg_fit_work_alloc(k_max, s.fit.n, &w)) == SOL_OK) {
         sg_fit_work_limits(alpha_x, alpha_y, &w);
         double prev_l2 = INFINITY;
         for (int k = 1; k <= k_max && st == SOL_OK; ++k)

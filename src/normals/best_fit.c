@@ -8,6 +8,51 @@
 
 enum { PROBES = 127 }; /* s = 3, 5, ..., 255 (the appendix's nStep = 1.5, 2.5, ..., 127.5) */
 
+/* The probe loops below run 2 (SSE2), 4 (AVX2) or 8 (AVX-512) lanes wide, picked at run time
+ * (GCC function multi-versioning): every lane does the scalar IEEE operations (mul, add, div,
+ * truncating conversion, compare; no FMA contraction under -std=c11), so every width returns the
+ * same code bit for bit. The searches are d3_d5's and d6_d7's hot loop (~10^10 probes). */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) /* clang cannot vectorize the clones */
+#define SOL_BESTFIT_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define SOL_BESTFIT_CLONES
+#endif
+/* The minimum reductions below vectorize under GCC's omp simd; clang -O1 (the fuzz build) cannot
+ * and would warn, so it gets the plain loop. */
+#if defined(__clang__)
+#define SOL_SIMD_MIN_M
+#else
+#define SOL_SIMD_MIN_M _Pragma("omp simd reduction(min : m)")
+#endif
+
+/* Index of the first minimum of the probes' errors (the appendix's scan keeps the first of equal
+ * errors): the minimum value by a vectorized reduction (exact in any order: the errors are finite
+ * and non-negative), then the first probe holding it. The same index as the scan
+ * `if (err[k] < err[best]) best = k`, without its load-compare chain through `best`. */
+static inline int first_min_double(const double *err)
+{
+    double m = err[0];
+    SOL_SIMD_MIN_M
+    for (int k = 1; k < PROBES; ++k)
+        m = err[k] < m ? err[k] : m;
+    int best = 0;
+    while (best < PROBES - 1 && err[best] != m) /* bounded: no NaN reaches here, but never overrun */
+        ++best;
+    return best;
+}
+
+static inline int first_min_float(const float *err)
+{
+    float m = err[0];
+    SOL_SIMD_MIN_M
+    for (int k = 1; k < PROBES; ++k)
+        m = err[k] < m ? err[k] : m;
+    int best = 0;
+    while (best < PROBES - 1 && err[best] != m) /* bounded: no NaN reaches here, but never overrun */
+        ++best;
+    return best;
+}
+
 /* Appendix A's FindMinimumQuantizationError in double precision. Probes sit at t = s / 255 for
  * odd s = 3..255 (the appendix's nStep = 1.5 .. 127.5 over 127.5): exactly the levels where the
  * ray's largest component crosses a cell centre. The error is the max-norm deviation of the
@@ -15,7 +60,7 @@ enum { PROBES = 127 }; /* s = 3, 5, ..., 255 (the appendix's nStep = 1.5, 2.5, .
  * The probes' errors are computed in one loop the compiler vectorizes (every operation is the
  * scalar IEEE one, so the errors are bit for bit the scalar loop's), then scanned in order.
  * `v` need not be unit length: it is divided by its largest |component| first. */
-uint32_t sol_normals_encode_best_fit(const double v[3], double *t_out)
+SOL_BESTFIT_CLONES uint32_t sol_normals_encode_best_fit(const double v[3], double *t_out)
 {
     double m = sol_normals_max_abs(v);
     double d0 = v[0] / m, d1 = v[1] / m, d2 = v[2] / m;
@@ -34,10 +79,7 @@ uint32_t sol_normals_encode_best_fit(const double v[3], double *t_out)
         /* max(|q-p|) / t equals the appendix's max(|q-p| / t): division is monotonic */
         err[k] = dev / t;
     }
-    int best = 0;
-    for (int k = 1; k < PROBES; ++k)
-        if (err[k] < err[best])
-            best = k;
+    int best = first_min_double(err);
     double t = (double)(2 * best + 3) / 255.0;
     double p[3] = {d0 * t, d1 * t, d2 * t};
     *t_out = t;
@@ -47,7 +89,7 @@ uint32_t sol_normals_encode_best_fit(const double v[3], double *t_out)
 
 /* The search in single precision, statement by statement as the appendix's HLSL (HLSL's round()
  * taken as round-half-up, like sol_quantize255), errors vectorized as above. */
-static uint32_t best_fit_float(float n0, float n1, float n2)
+SOL_BESTFIT_CLONES static uint32_t best_fit_float(float n0, float n1, float n2)
 {
     float m = fmaxf(fabsf(n0), fmaxf(fabsf(n1), fabsf(n2)));
     n0 /= m;
@@ -68,10 +110,7 @@ static uint32_t best_fit_float(float n0, float n1, float n2)
         dev = e2 > dev ? e2 : dev;
         err[k] = dev / t; /* = the appendix's max of |q-p|/t: division is monotonic */
     }
-    int best = 0; /* the appendix starts from fMinError = 100000: every error is below it */
-    for (int k = 1; k < PROBES; ++k)
-        if (err[k] < err[best])
-            best = k;
+    int best = first_min_float(err); /* the appendix starts from fMinError = 100000: every error is below it */
     float t = (1.5f + (float)best) / 127.5f, p[3] = {n0 * t, n1 * t, n2 * t};
     uint32_t c[3];
     for (int i = 0; i < 3; ++i)
