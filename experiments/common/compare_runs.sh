@@ -32,12 +32,12 @@ is_timing_header() {
 # Prints the titles of the columns whose cells differ between two data files, one per line, or
 # ROWCOUNT. $3 = csv: comma-separated, one header line per block (a file, or each block after a
 # blank line); commas inside "quoted" cells are masked first, so a name such as "RGBM (RGBA8,
-# range 8)" is one cell. $3 = dat: blank-separated, titles from a leading "# ..." line, else
-# "field N".
+# range 8)" is one cell. $3 = dat: blank-separated (blanks inside "quoted" names masked the same
+# way), titles from a leading "# ..." line, else "field N".
 diff_columns() {
-  awk -v fmt="$3" 'function mask(s,   out, i, c, q) { for (i = 1; i <= length(s); i++) { c = substr(s, i, 1);
-                        if (c == "\"") q = !q; out = out ((q && c == ",") ? "\001" : c) } return out }
-    function cells(s, arr) { return fmt == "csv" ? split(mask(s), arr, ",") : split(s, arr, " ") }
+  awk -v fmt="$3" 'function mask(s, sep,   out, i, c, q) { for (i = 1; i <= length(s); i++) { c = substr(s, i, 1);
+                        if (c == "\"") q = !q; out = out ((q && c ~ sep) ? "\001" : c) } return out }
+    function cells(s, arr) { return fmt == "csv" ? split(mask(s, ","), arr, ",") : split(mask(s, "[ \t]"), arr, " ") }
     NR == FNR { row[FNR] = $0; n = FNR; next }
     fmt == "csv" && (FNR == 1 || blank) { blank = 0; nh = cells($0, head) }   # file or block header
     fmt == "dat" && FNR == 1 && /^#/ { h = substr($0, 2); nh = split(h, head, index(h, ",") ? "," : " ");
