@@ -30,10 +30,10 @@ TEST_PKGS := gcc g++ make pkg-config libcriterion-dev libceres-dev libgoogle-glo
 REPRODUCE_PKGS := $(TEST_PKGS) gnuplot-nox libsquish-dev libnvtt-dev colobot-common-textures texlive-latex-base \
                   texlive-latex-recommended texlive-fonts-recommended latexmk
 
-# Reruns give identical files except timing values: gnuplot's PDFs (exp_plot) and the paper take
-# their dates from SOURCE_DATE_EPOCH, the time of the last commit that changed what generates
-# results/ (a commit of results/ alone does not move it). FORCE_SOURCE_DATE makes LaTeX's \today
-# follow it too.
+# Reruns give identical files except timing values: gnuplot's PDFs get a fixed date (exp_plot) and
+# the paper takes its date from SOURCE_DATE_EPOCH, the time of the last commit that changed what
+# generates results/ (a commit of results/ alone does not move it). FORCE_SOURCE_DATE makes LaTeX's
+# \today follow it too. `make compare-runs` lists what a rerun changed besides timings.
 SOURCE_DATE_EPOCH ?= $(shell git log -1 --format=%ct -- src experiments paper Makefile 2>/dev/null || echo 0)
 export SOURCE_DATE_EPOCH
 export FORCE_SOURCE_DATE := 1
@@ -73,7 +73,7 @@ TEST_BIN := $(BUILD)/tests/sol_tests
 SOL_BIN := $(BUILD)/sol
 SOL_BIN_OBJ := $(patsubst %.c,$(BUILD)/%.o,$(wildcard src/cli/*.c))
 
-.PHONY: install shared run-examples
+.PHONY: install shared run-examples compare-runs
 .PHONY: all lib experiments test run-tests reproduce run-experiments claims-table paper paper-section bench \
         sanitize valgrind fuzz fuzz-smoke fuzz-build deps-test deps-reproduce clean $(EXPERIMENTS:%=run-%)
 
@@ -262,11 +262,26 @@ paper:
 
 # One section alone (for checking it): build/paper-check/<SECTION>.pdf
 paper-section:
+	@[ -n "$(SECTION)" ] && [ -f paper/sections/$(SECTION).tex ] || { echo "usage: make paper-section SECTION=name, one of:" \
+	  $(basename $(notdir $(wildcard paper/sections/*.tex))); exit 2; }
 	@mkdir -p $(BUILD)/paper-check
-	cd paper && pdflatex -interaction=nonstopmode -halt-on-error -output-directory=../$(BUILD)/paper-check \
+	cd paper && pdflatex -interaction=nonstopmode -halt-on-error -output-directory=$(abspath $(BUILD))/paper-check \
 	  -jobname=$(SECTION) "\def\solsection{$(SECTION)}\input{sol.tex}" >/dev/null \
 	  || { echo "paper-section: LaTeX failed, see $(BUILD)/paper-check/$(SECTION).log"; exit 1; }
 	@echo "built $(BUILD)/paper-check/$(SECTION).pdf"
+
+# What a rerun changed besides timing values (exit 1 if anything else): A and B are two results
+# trees, e.g. a copy of results/ from a first `make reproduce` and results/ after a second one.
+# Without A, the results/ committed at HEAD (extracted under $(BUILD)/compare-head) is compared with
+# B (default results/), so `make compare-runs` right after `make reproduce` checks the rerun.
+compare-runs:
+	@b="$(or $(B),results)"; a="$(A)"; \
+	if [ -z "$$a" ]; then \
+	  a=$(BUILD)/compare-head/results; rm -rf $(BUILD)/compare-head; mkdir -p $(BUILD)/compare-head; \
+	  git archive HEAD results | tar -x -C $(BUILD)/compare-head || exit 2; \
+	fi; \
+	echo "compare-runs: $$a against $$b"; \
+	sh experiments/common/compare_runs.sh "$$a" "$$b"
 
 bench: deps-reproduce
 	@$(MAKE) --no-print-directory experiments

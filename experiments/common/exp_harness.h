@@ -67,7 +67,8 @@ void exp_claim(const exp_run *exp, const char *id, const char *talk, const char 
  * exp_number(exp, "D3-count", "%d", count) appends \solnumdef{D3-count}{289880}; the paper writes
  * \solnum{D3-count}, so every number in its prose comes from the run that made results/. Keys are
  * unique across experiments: start them with the claim ID. Timing values go in keys that end in
- * "-ms", "-s" or "-ns" (they are the only ones a rerun may change). */
+ * "-ms", "-s" or "-ns", and figures computed from timings (a fit's R^2 on times, a speed ratio) in
+ * keys that end in "-timing": they are the only ones a rerun may change. */
 void exp_number(const exp_run *exp, const char *key, const char *value_fmt, ...);
 
 /* ---- timing ---- */

@@ -4,7 +4,6 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 static void render(const exp_run *exp, const char *name, const char *terminal, const char *ext)
 {
@@ -17,23 +16,15 @@ static void render(const exp_run *exp, const char *name, const char *terminal, c
 }
 
 /* cairo (1.16) stamps each PDF with the time it was written, so two runs of the same driver give
- * different files. When SOURCE_DATE_EPOCH is set (the Makefile sets it to the last commit that
- * changed the sources) the date becomes that time, written over the old one with the same length so
- * the PDF's cross-reference offsets stay valid; the file is replaced through a temporary name. */
+ * different files. A plot's date says nothing about it (its data and script do), so every plot PDF
+ * gets one fixed date, 1970-01-01 (SOURCE_DATE_EPOCH = 0, the reproducible-builds convention), written
+ * over cairo's with the same length so the PDF's cross-reference offsets stay valid; the file is
+ * replaced through a temporary name. A fixed date rather than the Makefile's SOURCE_DATE_EPOCH (the
+ * last commit that changed the sources): with that, every commit rewrote all plot PDFs in results/
+ * although their content had not changed. Only the paper takes the commit's date. */
 static void pin_pdf_date(const char *path)
 {
-    const char *epoch = getenv("SOURCE_DATE_EPOCH");
-    if (!epoch || !*epoch)
-        return;
-    char *end;
-    long long seconds = strtoll(epoch, &end, 10);
-    if (*end || seconds < 0)
-        exp_die("SOURCE_DATE_EPOCH='%s' is not a number of seconds", epoch);
-    time_t t = (time_t)seconds;
-    struct tm tm;
-    char stamp[32];
-    if (!gmtime_r(&t, &tm) || strftime(stamp, sizeof stamp, "%Y%m%d%H%M%S", &tm) != 14)
-        exp_die("SOURCE_DATE_EPOCH='%s' is out of range", epoch);
+    static const char stamp[] = "19700101000000";
     FILE *f = fopen(path, "rb");
     if (!f)
         exp_die("cannot read %s", path);

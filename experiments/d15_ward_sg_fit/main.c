@@ -275,7 +275,7 @@ static void convergence(const exp_run *exp, double *last_gain, double *total_gai
     }
     exp_table *t = exp_table_new("Multi-start check of the greedy fit: error of the K-lobe fit vs extra starts at K "
                                  "(3 lines along the long axis, then random starts and basin hops alternating)",
-                                 "ax,ay,K,extra starts,rel L2,gain vs greedy,Ceres s at K");
+                                 "ax,ay,K,extra starts,rel L2,gain vs greedy,Ceres time at K (s)");
     FILE *f = exp_open(exp, "convergence.dat");
     fprintf(f, "# extra starts, then rel L2 per (cell, K) in table order\n");
     *last_gain = *total_gain = 0.0;

@@ -185,7 +185,7 @@ static void quadrature_table(const exp_run *exp)
     exp_table *t = exp_table_new("Sphere quadrature accuracy vs time: normalised Phong n = 20, r at 45 deg",
                                  "method,knob,abs error,us per integral");
     FILE *f = exp_open(exp, "quadrature.dat");
-    fprintf(f, "# method(0 GK, 1 MC) us abs_error\n");
+    fprintf(f, "# method (0 GK 1 MC), us, abs error\n");
     static const double tols[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
     for (int i = 0; i < 5; ++i) {
         quad_timing q = {0, tols[i], 0, 0};

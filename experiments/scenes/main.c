@@ -52,12 +52,12 @@ int main(int argc, char **argv)
     exp_table *summary = exp_table_new("Shipped scenes: engine path vs reference path (display codes, CIEDE2000), "
                                        "largest own error of one effect, frame times",
                                        "scene,effects run,RMS codes,max codes,dE2000 mean,normals deg,objects culled,largest effect,"
-                                       "its RMS codes,engine s,reference s,ratio");
+                                       "its RMS codes,engine time (s),reference time (s),time ratio");
     exp_table *bench = exp_table_new("Scene frame times (goal: engine <= 5 s at 960x540 on 2 cores, reference <= 10x "
                                      "that). Wall time moves with the machine's load; CPU s / 2 is the wall time of an "
                                      "idle 2-core machine with perfect scaling, the goal is judged on it",
-                                     "scene,pixels,engine s,engine CPU s,reference s,reference CPU s,CPU ratio,"
-                                     "engine goal met,reference goal met");
+                                     "scene,pixels,engine time (s),engine CPU time (s),reference time (s),reference CPU time (s),"
+                                     "CPU time ratio,engine time goal met,reference time goal met");
     for (int i = 0; i < count; ++i) {
         char path[1024], scene_dir[512];
         snprintf(path, sizeof path, "%s/%s", SCENES_DIR, names[i]);

@@ -101,6 +101,9 @@ void run_storage_rule(const exp_run *exp)
     double median, unused;
     exp_check(sol_transfer_equal_density(&power, 0.0, &median, &unused), "equal density");
     const double median_talk = 5.0 / 11.0;
+    /* the consistent median as the tables and the plot name it (60/255 for gamma 2.2), computed */
+    char med[32];
+    snprintf(med, sizeof med, "%.0f/255", median * 255.0);
     tex_result *r = calloc((size_t)count, sizeof *r);
     if (!r)
         exp_die("out of memory");
@@ -108,9 +111,12 @@ void run_storage_rule(const exp_run *exp)
     for (int i = 0; i < count; ++i)
         r[i] = measure(&set[i], median, median_talk);
 
+    char columns[256];
+    snprintf(columns, sizeof columns,
+             "texture,source bits,above %s,above 116/255,lin RMS gamma,lin RMS linear,"
+             "lin RMS X360 cache,disp RMS gamma,disp RMS linear,disp RMS X360 cache", med);
     exp_table *t = exp_table_new("Per texture: share of values above the median and 8-bit RMS error per storage",
-                                 "texture,source bits,above 60/255,above 116/255,lin RMS gamma,lin RMS linear,"
-                                 "lin RMS X360 cache,disp RMS gamma,disp RMS linear,disp RMS X360 cache");
+                                 columns);
     FILE *f = exp_open(exp, "storage_points.csv");
     fputs("frac_consistent,frac_talk,log2_ratio_linear_metric,log2_ratio_display_metric\n", f);
     int x360_linear_wins = 0, game = 0;
@@ -132,10 +138,12 @@ void run_storage_rule(const exp_run *exp)
                                  "right at 75%,textures");
     int hits_at[METRICS][2], best[METRICS][2];
     double lo[METRICS][2], hi[METRICS][2];
+    char med_name[64];
+    snprintf(med_name, sizeof med_name, "equal density %s", med);
     for (int m = 0; m < METRICS; ++m)
         for (int k = 0; k < 2; ++k) {
             best_threshold(r, count, m, k, &lo[m][k], &hi[m][k], &best[m][k], &hits_at[m][k]);
-            exp_table_row(b, "%s|%s|%.3f|%.3f|%d|%d|%d", metric_name[m], k ? "talk 116/255" : "equal density 60/255",
+            exp_table_row(b, "%s|%s|%.3f|%.3f|%d|%d|%d", metric_name[m], k ? "talk 116/255" : med_name,
                           lo[m][k], hi[m][k], best[m][k], hits_at[m][k], count);
         }
     exp_table_write(b, exp, "storage_threshold");
@@ -144,15 +152,15 @@ void run_storage_rule(const exp_run *exp)
              "set xlabel 'share of values above the median'\nset ylabel 'log2(RMS gamma / RMS linear)'\n"
              "set arrow from 0.75,graph 0 to 0.75,graph 1 nohead dt 2 lc rgb 'gray'\n"
              "set label '75%%' at 0.76,graph 0.05 tc rgb 'gray'\nset xzeroaxis lw 2\n"
-             "plot 'storage_points.csv' skip 1 using 1:3 with points pt 7 ps 0.6 title 'linear light, median 60/255', "
+             "plot 'storage_points.csv' skip 1 using 1:3 with points pt 7 ps 0.6 title 'linear light, median %s', "
              "'' skip 1 using 2:3 with points pt 6 ps 0.6 title 'linear light, median 116/255', "
-             "'' skip 1 using 1:4 with points pt 5 ps 0.6 title 'display after exposure, median 60/255'");
+             "'' skip 1 using 1:4 with points pt 5 ps 0.6 title 'display after exposure, median %s'", med, med);
 
     char fig[512];
     snprintf(fig, sizeof fig,
-             "display metric: 75%% right on %d/%d with the 60/255 median (best %d at %.2f-%.2f), %d/%d with the "
+             "display metric: 75%% right on %d/%d with the %s median (best %d at %.2f-%.2f), %d/%d with the "
              "talk's 116/255 median (best %d at %.3f); linear-light metric: 75%% right on %d/%d (best %d at %.2f)",
-             hits_at[1][0], count, best[1][0], lo[1][0], hi[1][0], hits_at[1][1], count, best[1][1], lo[1][1],
+             hits_at[1][0], count, med, best[1][0], lo[1][0], hi[1][0], hits_at[1][1], count, best[1][1], lo[1][1],
              hits_at[0][0], count, best[0][0], lo[0][0]);
     /* The talk pairs 75% with its 116/255 median: the rule reproduces only if that pair is near-best. */
     int talk_pair_holds = hits_at[1][1] >= best[1][1] - count / 20;
@@ -161,10 +169,11 @@ void run_storage_rule(const exp_run *exp)
               talk_pair_holds ? EXP_REPRODUCED : EXP_DIFFERS_EXPLAINED,
               "%d textures (%d game textures from colobot-common-textures, 8-bit sources averaged 2x2 in linear); with "
               "the talk's 116/255 median the best threshold is near 0 (any share above 116/255 favours linear), with the "
-              "consistent 60/255 median and a display error metric 75%% is close to the best threshold; in linear light "
+              "consistent %s median and a display error metric 75%% is close to the best threshold; in linear light "
               "the best threshold is lower. On Xbox 360 (PWL gamma through the 8-bit cache) linear storage wins %d of %d "
               "textures (display metric)",
-              count, game, x360_linear_wins, count);
+              count, game, med, x360_linear_wins, count);
+    exp_number(exp, "T4-median-255", "%.0f", median * 255.0);
     exp_number(exp, "T4-textures", "%d", count);
     exp_number(exp, "T4-game-textures", "%d", game);
     exp_number(exp, "T4-disp-right-75", "%d", hits_at[1][0]);
