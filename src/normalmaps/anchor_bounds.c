@@ -193,6 +193,13 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
     size_t n = 0;
     const int collect = out != NULL;
     const double delta = rounding_delta(ch->precision) + 1e-12;
+    /* the high-anchor skip (below), per number u of pixels the lattice bound used: the norm's step
+     * per code, its inverse, and the least bound that skips a step at the current budget */
+    double norm_step[17], inv_norm_step[17], skip_floor[17], skip_budget = -1.0, root_budget = 0.0;
+    for (int u = 1; u <= 16; ++u) {
+        norm_step[u] = (2.0 / 255.0) * (ch->use_max ? 1.0 : sqrt((double)u));
+        inv_norm_step[u] = 1.0 / norm_step[u];
+    }
     for (int six = 0; six < 2; ++six) {
         /* 8-value: e0 > e1, low anchor e1; 6-value: e0 <= e1, low anchor e0 */
         int low_lo = six ? ch->e0_lo : ch->e1_lo, low_hi = six ? ch->e0_hi : ch->e1_hi;
@@ -225,6 +232,12 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
             }
             const int divisions = six ? 5 : 7;
             int next_high = 0;
+            if (*budget != skip_budget) { /* argmin: the budget shrank */
+                skip_budget = *budget;
+                root_budget = sqrt(skip_budget);
+                for (int u = 1; u <= 16; ++u)
+                    skip_floor[u] = (root_budget + norm_step[u]) * (root_budget + norm_step[u]);
+            }
             for (int w = 0; w < 4; ++w) {
                 uint64_t bits = m.w[w];
                 while (bits) {
@@ -239,11 +252,13 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
                     if (lb > *budget) {
                         /* the lattice bound's pixel distances move by at most one code (2 / 255) per
                          * step of the high anchor, so the L2 norm of the `used` pixels' distances (or
-                         * their max) by at most sqrt(used) codes: skip the steps it cannot recover */
-                        double norm_step = (2.0 / 255.0) * (ch->use_max ? 1.0 : sqrt((double)used));
-                        double skip = (sqrt(lb) - sqrt(*budget)) / norm_step * (1.0 - 1e-9) - 1e-6;
-                        if (skip >= 1.0)
-                            next_high = high + 1 + (skip > 512.0 ? 512 : (int)skip);
+                         * their max) by at most sqrt(used) codes: skip the steps it cannot recover
+                         * (root_budget may be stale, i.e. larger: a shorter skip) */
+                        if (lb > skip_floor[used]) {
+                            double skip = (sqrt(lb) - root_budget) * inv_norm_step[used] * (1.0 - 1e-9) - 1e-6;
+                            if (skip >= 1.0)
+                                next_high = high + 1 + (skip > 512.0 ? 512 : (int)skip);
+                        }
                         continue;
                     }
                     double v = score_pair(ch, pair, *budget);
