@@ -4,7 +4,11 @@
  *     library's own bilinear fetches) against the intended 8-neighbour mean.
  *  2. The fetched deviation against the talk's d = sum |s_i - s_0| on random and rendered images.
  *  3. Edge error of 1-sample-per-pixel renders of flat-shaded triangles before and after the
- *     filter, against a 16x16-supersampled reference; threshold sweep; error against time. */
+ *     filter, against a 16x16-supersampled reference; threshold sweep; error against time.
+ *
+ * Not the scene layer's aa_post scene (a fence of thin posts, D17 row of the scenes driver): the
+ * kernel and deviation measurements need 2-D images (random noise, screen-space triangles with
+ * known edges) rather than a 3-D scene; the two are different inputs on purpose. */
 #include "exp_harness.h"
 #include "sol_screen.h"
 

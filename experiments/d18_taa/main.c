@@ -5,7 +5,11 @@
  * (object motion, which camera reprojection does not know about), a camera panning sideways, and
  * a view-dependent reflection on every face (the shading change reprojection cannot see). Every
  * frame is compared with its own 8x8-supersampled reference. Methods: the aliased centre sample,
- * the D17 post-process filter, and temporal accumulation with/without jitter and depth test. */
+ * the D17 post-process filter, and temporal accumulation with/without jitter and depth test.
+ *
+ * Not the scene layer's aa_temporal scene (D18 rows of the scenes driver): a moving object (ghosting,
+ * the depth test) and a view-dependent reflection cannot be written in a scene file (it has camera
+ * paths, not object motion), and the per-region errors need object ids; different scenes. */
 #include "exp_harness.h"
 #include "sol_screen.h"
 

@@ -4,7 +4,10 @@
  *  D14 Fresnel and geometry applied after lighting vs the full microfacet BRDF;
  *  D16 principal Phong lobe extraction from an SG NDF under SG lighting: rendered error and highlight
  *      shift vs lighting lobes m (with the hemisphere cut to ~7) and BRDF lobes n, and the O(n*m)
- *      cost per pixel. */
+ *      cost per pixel.
+ * The D16 measurements shade single pixels (normal, view, lighting lobes) analytically, with no
+ * geometry, so the scene layer (experiments/scenes/aniso_sg.json renders D15/D16 in an image) has
+ * nothing to replace here. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

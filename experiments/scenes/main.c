@@ -4,6 +4,8 @@
  * effect in its reference version). Writes results/scenes/<scene>/{engine,reference,difference}.png,
  * <scene>_plan and <scene>_attribution tables, and a summary table over all scenes; --bench prints
  * the frame times against the goal (960x540 engine path <= 5 s on 2 cores, reference <= 10x).
+ * claims.c adds the claims rows measured on these scenes (T2, T14, M1, M3, M4, D9, D10, D13, D16,
+ * D17, D18), each with its own table.
  *
  * The scenes regenerate the talk's image comparisons as measured figures: car hood banding (T14),
  * dark texture under strong light (T1/T2), light bleeding with and without a clip volume (D13),
@@ -16,9 +18,8 @@
 #include <sys/stat.h>
 
 #include "exp_harness.h"
+#include "scenes.h"
 #include "sol_scene.h"
-
-#define SCENES_DIR "experiments/scenes"
 
 static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
@@ -166,8 +167,10 @@ int main(int argc, char **argv)
     }
     exp_progress_done("scenes");
     exp_table_write(bench, exp, "frame_times");
-    if (!run.bench)
+    if (!run.bench) {
         exp_table_write(summary, exp, "summary");
+        scenes_claims(exp, width, height);
+    }
     for (int i = 0; i < count; ++i)
         free(names[i]);
     return 0;

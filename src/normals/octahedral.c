@@ -119,14 +119,14 @@ uint32_t sol_normals_encode_octahedral(const double unit[3], int precise)
     return c[0] | (c[1] << 12);
 }
 
-static sol_status oct_options(const sol_oct_options *opt, int *bits, oct_quant *q)
+/* The quantiser the options ask for (zero-initialised options: 12 bits, SNORM, plain rounding). */
+static sol_status oct_options(const sol_oct_options *opt, oct_quant *q)
 {
     sol_oct_options o = opt ? *opt : (sol_oct_options){0};
     int b = o.bits ? o.bits : 12;
     if (b < 2 || b > 16 || (o.quantizer != SOL_OCT_SNORM && o.quantizer != SOL_OCT_UNORM) || o.precise < 0 ||
         o.precise > 1)
         return SOL_ERR_INVALID_ARG;
-    *bits = b;
     *q = oct_quant_of(b, o.quantizer);
     return SOL_OK;
 }
@@ -135,9 +135,8 @@ sol_status sol_oct_encode(const sol_oct_options *opt, const double n[3], uint32_
 {
     if (!n || !code)
         return SOL_ERR_NULL_ARG;
-    int bits;
     oct_quant q;
-    sol_status st = oct_options(opt, &bits, &q);
+    sol_status st = oct_options(opt, &q);
     if (st != SOL_OK)
         return st;
     double u[3];
@@ -151,9 +150,8 @@ sol_status sol_oct_decode(const sol_oct_options *opt, const uint32_t code[2], do
 {
     if (!code || !n)
         return SOL_ERR_NULL_ARG;
-    int bits;
     oct_quant q;
-    sol_status st = oct_options(opt, &bits, &q);
+    sol_status st = oct_options(opt, &q);
     if (st != SOL_OK)
         return st;
     if (code[0] > q.last || code[1] > q.last)

@@ -4,7 +4,7 @@
  * its reference version and reference_supersample^2 samples per pixel):
  *   1. textures: albedo through 8-bit storage (T3-T6), BC1 (T7), renormalisation (T1/T2);
  *      normal maps through BC5 (T8-T14). Done once per render.
- *   2. culling (M1): occluder depth at quarter resolution, coverage buffer, object bounds tested.
+ *   2. culling (M1): occluder depth max-downscaled to 4x4-pixel texels (coverage buffer), object bounds tested.
  *   3. G-buffer pass: a primary ray per pixel finds the surface; normal encoded in 24 bits (D3-D7);
  *      anisotropic materials replaced by their principal Phong lobe (D15/D16).
  *   4. obscurance (M3) from the depth buffer.
@@ -830,12 +830,14 @@ static sol_camera screen_camera(const frame *f)
     return c;
 }
 
-/* M1: occluder depth at quarter resolution, its coverage buffer, and each box's screen bounds
- * tested against it; culled boxes are left out of the camera rays. */
+/* M1: occluder depth at every pixel centre, downscaled with the max filter to the coverage
+ * buffer's 4x4-pixel texels (sol_cbuffer_build, block 4: conservative for every pixel centre the
+ * camera rays use), and each box's screen bounds tested against it; culled boxes are left out of
+ * the camera rays. */
 static sol_status cull(frame *f)
 {
     const sol_scene *s = f->s;
-    int w = (f->width + 3) / 4, h = (f->height + 3) / 4;
+    int w = f->width, h = f->height;
     float *depth = malloc((size_t)w * h * sizeof *depth);
     if (!depth)
         return SOL_ERR_NO_MEMORY;
@@ -844,12 +846,12 @@ static sol_status cull(frame *f)
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             double dir[3];
-            camera_ray(f, 4.0 * x + 2.0, 4.0 * y + 2.0, dir);
+            camera_ray(f, x + 0.5, y + 0.5, dir);
             hit hh;
             depth[(size_t)y * w + x] = trace(f, f->eye, dir, s->camera.zfar, 0, &hh) ? (float)hh.t : (float)s->camera.zfar;
         }
     sol_cbuffer cb;
-    sol_cbuffer_options o = {1, SOL_DOWNSCALE_MAX};
+    sol_cbuffer_options o = {4, SOL_DOWNSCALE_MAX};
     sol_status st = sol_cbuffer_build(depth, w, h, &o, &cb);
     free(depth);
     if (st != SOL_OK)
@@ -869,8 +871,8 @@ static sol_status cull(frame *f)
                 ok = 0;
                 break;
             }
-            double sx = (0.5 * f->width + f->focal * sol_dot3(d, f->right) / z) / 4;
-            double sy = (0.5 * f->height - f->focal * sol_dot3(d, f->up) / z) / 4;
+            double sx = 0.5 * f->width + f->focal * sol_dot3(d, f->right) / z;
+            double sy = 0.5 * f->height - f->focal * sol_dot3(d, f->up) / z;
             b.x0 = fmin(b.x0, sx), b.x1 = fmax(b.x1, sx), b.y0 = fmin(b.y0, sy), b.y1 = fmax(b.y1, sy);
             b.znear = fmin(b.znear, z);
         }

@@ -9,6 +9,8 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include "sol_core.h"
+
 /* Returns the path of a file holding exactly data[0..size), or NULL (then the run is skipped). */
 static const char *fuzz_input_path(const uint8_t *data, size_t size)
 {
@@ -29,6 +31,24 @@ static const char *fuzz_input_path(const uint8_t *data, size_t size)
         done += (size_t)n;
     }
     return path;
+}
+
+/* The limits the image readers' targets use: 64 MiB, so that the fuzzer explores formats rather
+ * than the machine's memory (the default-limit path is the same code with larger numbers). */
+static const sol_read_limits FUZZ_IMAGE_LIMITS = {.max_pixels = 1u << 22, .max_bytes = 64u << 20};
+
+/* Aborts unless a successful read gave a consistent image; every value is read, so that an
+ * uninitialised or short buffer shows under the sanitizers. Returns the number of values. */
+static size_t fuzz_check_image(const sol_image *image)
+{
+    if (image->width < 1 || image->height < 1 || image->channels < 1 || image->channels > 4 || !image->data)
+        abort();
+    size_t count = (size_t)image->width * (size_t)image->height * (size_t)image->channels;
+    volatile float sum = 0.0f;
+    for (size_t i = 0; i < count; ++i)
+        sum += image->data[i];
+    (void)sum;
+    return count;
 }
 
 #endif
