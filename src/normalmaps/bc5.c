@@ -150,7 +150,7 @@ static double joint_objective_lower(const double a[8], const double b[8], const 
 {
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
-        *work += 8;
+        *work += 32;
         int i, j;
         const double *np = n[order[k]];
         best_pixel_index(a, b, np, &i, &j);
@@ -512,8 +512,8 @@ typedef struct search_request {
  *    objective without atan2 (joint_objective_quick, then joint_objective_lower), and evaluated
  *    exactly only if it survives both.
  * 4. Work bound: after work_limit work units (a pixel of a candidate through the quick bound 1,
- *    through joint_objective_lower 8, an exact evaluation 128) the search stops with the best found
- *    (info->bounded = 1). */
+ *    through joint_objective_lower 32, an exact evaluation 512: about their relative costs) the
+ *    search stops with the best found (info->bounded = 1). */
 static void search_unit(const double n[16][3], const search_request *rq, search_workspace *ws, sol_bc5_block *out,
                         sol_bc5_info *info)
 {
@@ -619,7 +619,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     continue;
                 if (joint_objective_lower(a, pal[ws->y[j].pair], n, order, use_max, margin, &work) >= margin)
                     continue;
-                work += 128;
+                work += 512;
                 double v = joint_objective(a, pal[ws->y[j].pair], n, use_max, best, NULL, NULL);
                 if (v < best) {
                     best = v;

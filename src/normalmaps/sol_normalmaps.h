@@ -112,11 +112,11 @@ typedef struct sol_bc5_options {
      * SOL_BC5_MAX) exceeds this many degrees. 0 = search every block. */
     double threshold_deg;
     /* Optimal and adaptive: work bound per block, in work units: one pixel of one candidate through
-     * the quick bound counts 1, through the joint index-pair bound 8, an exact evaluation of a
-     * candidate 128 (a candidate costs 1 to 272). A search that reaches it stops with the best block
-     * found so far and reports info->bounded = 1 (the result is then not proven optimal).
-     * 0 = SOL_BC5_DEFAULT_WORK_LIMIT (2^26), about 0.5-1 s of one core; the hardest blocks of the
-     * benchmark maps need under a third of it (about 2^24). */
+     * the quick bound counts 1, through the joint index-pair bound 32, an exact evaluation of a
+     * candidate 512 (a candidate costs 1 to 1040; about their relative costs). A search that reaches
+     * it stops with the best block found so far and reports info->bounded = 1 (the result is then not
+     * proven optimal). 0 = SOL_BC5_DEFAULT_WORK_LIMIT (2^26), about 0.5-1 s of one core; the hardest
+     * blocks of the benchmark maps need about a third of it (2.4 x 10^7). */
     uint64_t work_limit;
 } sol_bc5_options;
 
