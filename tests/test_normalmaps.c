@@ -8,6 +8,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "normalmaps_internal.h"
 #include "sol_normalmaps.h"
 
 /* Small deterministic generator (tests must not depend on rand()'s implementation). */
@@ -117,6 +118,121 @@ Test(normalmaps, bc4_encoder_equals_brute_force_over_all_pairs)
     bad[4] = 1.5;
     cr_assert_eq(sol_bc4_encode_block(bad, 0, &b, NULL), SOL_ERR_OUT_OF_RANGE);
     cr_assert_eq(b.e0, 9);
+}
+
+/* Literal brute force of the common encoder's per-channel search: every ordered pair, the score
+ * summed in the reference pixel order (sol_nm_channel_init), least score then least pair. */
+static int bc4_brute_pair(const double t[16], sol_bc4_precision precision, double *score)
+{
+    sol_nm_channel ch;
+    sol_nm_channel_init(&ch, t, precision, 0, 0, 0, 255, 0, 255);
+    double best = INFINITY;
+    int best_pair = -1;
+    for (int pair = 0; pair < 65536; ++pair) {
+        const double *pal = ch.palettes[pair];
+        double s = 0.0;
+        for (int k = 0; k < 16; ++k) {
+            double v = t[ch.order[k]], m = INFINITY;
+            for (int i = 0; i < 8; ++i)
+                m = fmin(m, (pal[i] - v) * (pal[i] - v));
+            s += m;
+        }
+        if (s < best) {
+            best = s;
+            best_pair = pair;
+        }
+    }
+    *score = best;
+    return best_pair;
+}
+
+/* bc4_common.c's branch and bound against the literal brute force and the previous exact search
+ * (anchor_bounds.c's masks): the same pair, the same score bit for bit, over random blocks of every
+ * spread and degenerate ones (flat, two values, the extremes -1/+1 the 6-value mode holds, values
+ * on the code grid, on the 16-bit grid), for the three decoder precisions. */
+Test(normalmaps, bc4_common_search_equals_brute_force_pair_for_pair, .timeout = 120)
+{
+    for (int trial = 0; trial < 72; ++trial) {
+        double t[16];
+        int kind = trial % 12;
+        double c = 2.0 * uniform() - 1.0, w = kind == 0 ? 0.01 : kind == 1 ? 0.08 : kind == 2 ? 0.5 : 2.0;
+        for (int p = 0; p < 16; ++p) {
+            double v = c + w * (uniform() - 0.5);
+            if (kind == 4)
+                v = c; /* flat */
+            if (kind == 5)
+                v = p & 1 ? c : c + 0.3; /* two values */
+            if (kind == 6)
+                v = p % 3 == 0 ? -1.0 : (p % 3 == 1 ? 1.0 : c); /* extremes and one value: 6-value mode */
+            if (kind == 7)
+                v = round((v + 1.0) * 127.5) / 127.5 - 1.0; /* on the 8-bit code grid */
+            if (kind == 8)
+                v = 2.0 * round((v + 1.0) * 32767.5) / 65535.0 - 1.0; /* on the 16-bit grid */
+            if (kind == 9)
+                v = p < 8 ? -1.0 : 1.0; /* only the extremes */
+            if (kind == 10)
+                v = 0.0; /* flat (0, 0, 1) normals: exactly between two 16-bit values */
+            if (kind == 11)
+                v = p == 0 ? -1.0 : c + 0.02 * (uniform() - 0.5); /* one outlier at the extreme */
+            t[p] = fmin(1.0, fmax(-1.0, v));
+        }
+        sol_bc4_precision prec = (sol_bc4_precision)(trial / 12 % 3);
+        double s_new, s_ref, s_old;
+        int p_new = sol_nm_bc4_common(t, prec, &s_new), p_ref = bc4_brute_pair(t, prec, &s_ref);
+        sol_nm_channel ch;
+        sol_nm_channel_init(&ch, t, prec, 0, 0, 0, 255, 0, 255);
+        int p_old = sol_nm_channel_argmin(&ch, &s_old);
+        cr_assert_eq(p_new, p_ref, "trial %d (kind %d, precision %d): pair %d vs brute force %d", trial, kind, prec,
+                     p_new, p_ref);
+        cr_assert(s_new == s_ref, "trial %d: %.17g vs %.17g", trial, s_new, s_ref);
+        cr_assert(p_old == p_new && s_old == s_new, "trial %d: previous search %d", trial, p_old);
+    }
+}
+
+/* The common BC5 encoder is the per-channel exact search of x and y, indices by nearest value. */
+Test(normalmaps, common_encoder_is_two_exact_channel_searches)
+{
+    for (int trial = 0; trial < 40; ++trial) {
+        double n[16][3], tx[16], ty[16];
+        random_block(n, trial < 20 ? 0.3 : 1.4, trial % 2 ? 0.05 : 0.6);
+        double len[16];
+        for (int p = 0; p < 16; ++p) {
+            len[p] = sqrt(n[p][0] * n[p][0] + n[p][1] * n[p][1] + n[p][2] * n[p][2]);
+            tx[p] = n[p][0] / len[p];
+            ty[p] = n[p][1] / len[p];
+        }
+        sol_bc5_options o = {.encoder = SOL_BC5_COMMON, .precision = (sol_bc4_precision)(trial % 3)};
+        sol_bc5_block b;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, NULL), SOL_OK);
+        double s;
+        int px = sol_nm_bc4_common(tx, o.precision, &s), py = sol_nm_bc4_common(ty, o.precision, &s);
+        cr_assert_eq(b.x.e0 << 8 | b.x.e1, px);
+        cr_assert_eq(b.y.e0 << 8 | b.y.e1, py);
+        sol_nm_channel ch;
+        sol_nm_channel_init(&ch, tx, o.precision, 0, 0, 0, 255, 0, 255);
+        cr_assert_eq(sol_nm_channel_argmin(&ch, &s), px, "trial %d", trial);
+    }
+}
+
+/* Adaptive below its threshold is the common encoder, block for block (T13: only blocks above the
+ * threshold are searched). */
+Test(normalmaps, adaptive_equals_common_below_threshold)
+{
+    for (int trial = 0; trial < 30; ++trial) {
+        double n[16][3];
+        random_block(n, 1.2, trial % 2 ? 0.02 : 0.4);
+        sol_bc5_options oc = {.encoder = SOL_BC5_COMMON, .precision = (sol_bc4_precision)(trial % 3)};
+        sol_bc5_options oa = oc;
+        oa.encoder = SOL_BC5_ADAPTIVE;
+        oa.threshold_deg = 180.0; /* no block's RMS angle exceeds it */
+        sol_bc5_block bc, ba;
+        sol_bc5_info ic, ia;
+        cr_assert_eq(sol_bc5_encode_block(n, &oc, &bc, &ic), SOL_OK);
+        cr_assert_eq(sol_bc5_encode_block(n, &oa, &ba, &ia), SOL_OK);
+        cr_assert_eq(memcmp(&bc, &ba, sizeof bc), 0, "trial %d", trial);
+        cr_assert_eq(ia.searched, 0);
+        cr_assert(ia.error == ic.error);
+    }
 }
 
 static uint8_t clamp_code(int v)

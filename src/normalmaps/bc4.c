@@ -128,14 +128,13 @@ sol_status sol_bc4_encode_block(const double values[16], sol_bc4_precision preci
             return SOL_ERR_OUT_OF_RANGE;
         t[p] = 2.0 * values[p] - 1.0;
     }
-    sol_nm_channel ch;
-    sol_nm_channel_init(&ch, t, precision, 0, 0, 0, 255, 0, 255);
     double score;
-    int pair = sol_nm_channel_argmin(&ch, &score);
+    int pair = sol_nm_bc4_common(t, precision, &score);
+    const double *pal = sol_nm_palettes(precision)[pair];
     out->e0 = (uint8_t)(pair >> 8);
     out->e1 = (uint8_t)(pair & 255);
     for (int p = 0; p < 16; ++p)
-        out->index[p] = (uint8_t)sol_nm_nearest_index(ch.palettes[pair], t[p]);
+        out->index[p] = (uint8_t)sol_nm_nearest_index(pal, t[p]);
     if (squared_error)
         *squared_error = score / 4.0; /* decoded units are 2 v - 1 */
     return SOL_OK;

@@ -702,17 +702,15 @@ static void encode_common(const double n[16][3], sol_bc4_precision precision, so
         tx[p] = n[p][0];
         ty[p] = n[p][1];
     }
-    sol_nm_channel cx, cy;
-    sol_nm_channel_init(&cx, tx, precision, 0, 0, 0, 255, 0, 255);
-    sol_nm_channel_init(&cy, ty, precision, 0, 0, 0, 255, 0, 255);
-    int px = sol_nm_channel_argmin(&cx, &s), py = sol_nm_channel_argmin(&cy, &s);
+    int px = sol_nm_bc4_common(tx, precision, &s), py = sol_nm_bc4_common(ty, precision, &s);
+    const double(*pal)[8] = sol_nm_palettes(precision);
     out->x.e0 = (uint8_t)(px >> 8);
     out->x.e1 = (uint8_t)(px & 255);
     out->y.e0 = (uint8_t)(py >> 8);
     out->y.e1 = (uint8_t)(py & 255);
     for (int p = 0; p < 16; ++p) {
-        out->x.index[p] = (uint8_t)sol_nm_nearest_index(cx.palettes[px], tx[p]);
-        out->y.index[p] = (uint8_t)sol_nm_nearest_index(cy.palettes[py], ty[p]);
+        out->x.index[p] = (uint8_t)sol_nm_nearest_index(pal[px], tx[p]);
+        out->y.index[p] = (uint8_t)sol_nm_nearest_index(pal[py], ty[p]);
     }
 }
 

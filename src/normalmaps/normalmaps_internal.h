@@ -36,6 +36,11 @@ int sol_nm_channel_argmin(const sol_nm_channel *ch, double *score);
  * out holds at least (e0_hi - e0_lo + 1) (e1_hi - e1_lo + 1) entries. */
 size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pair *out);
 
+/* The exact least-squares BC4 pair over all 65536 ordered pairs (bc4_common.c): the same pair and
+ * score as sol_nm_channel_argmin on the full range with use_max = 0 and no loose pixels (least
+ * score, then least e0 << 8 | e1), by branch and bound over boxes of anchor codes. */
+int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score);
+
 /* Index of the palette entry nearest to t (the first on ties): BC4's per-value index choice. */
 int sol_nm_nearest_index(const double pal[8], double t);
 

@@ -66,10 +66,11 @@ sol_status sol_bc4_pack(const sol_bc4_block *block, uint8_t out[8]);
 sol_status sol_bc4_unpack(const uint8_t in[8], sol_bc4_block *out);
 
 /* Least-squares BC4 encoder: the anchors (over all 65536 ordered pairs, both modes) and indices
- * minimising sum (v - decoded)^2 for this decoder precision. Exact (branch and bound over the
- * pairs, early exit per pair). values in [0,1], else SOL_ERR_OUT_OF_RANGE; NaN: SOL_ERR_NONFINITE.
- * squared_error (may be NULL) receives the minimum. Ties go to the first pair in the search
- * order (8-value pairs by increasing low anchor, then 6-value pairs). */
+ * minimising sum (v - decoded)^2 for this decoder precision. Exact (branch and bound over boxes of
+ * anchor codes from the fast encoder's incumbent, bc4_common.c; equal to the literal brute force in
+ * tests). values in [0,1], else SOL_ERR_OUT_OF_RANGE; NaN: SOL_ERR_NONFINITE. squared_error (may
+ * be NULL) receives the minimum. Ties (equal sums, the 16 terms added in a fixed pixel order) go to
+ * the smallest e0 << 8 | e1; each value takes its nearest entry, the first on ties. */
 sol_status sol_bc4_encode_block(const double values[16], sol_bc4_precision precision, sol_bc4_block *out,
                                 double *squared_error);
 

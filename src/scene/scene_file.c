@@ -225,6 +225,44 @@ static sol_status load_image(ctx *c, const char *file, const char *ptr, sol_imag
     return SOL_OK;
 }
 
+/* A lat-long environment (docs/scene-format.md): an RGB EXR of at most SOL_SCENE_ENV_MAX_PIXELS
+ * pixels (checked by sol_read_limits before anything is allocated), every value finite and >= 0
+ * (radiance), all checked here, before anything is rendered. */
+static sol_status load_environment(ctx *c, const char *file, const char *ptr, sol_image *img)
+{
+    if (!has_suffix(file, ".exr"))
+        return fail(c, SOL_ERR_FORMAT, ptr, "%s: an environment is a lat-long .exr image", file);
+    sol_read_limits lim = {SOL_SCENE_ENV_MAX_PIXELS, 0};
+    sol_image im;
+    sol_status st = sol_exr_read_ex(file, &lim, &im);
+    if (st == SOL_ERR_LIMIT)
+        return fail(c, st, ptr, "%s: larger than %d pixels (the environment limit)", file, SOL_SCENE_ENV_MAX_PIXELS);
+    if (st != SOL_OK)
+        return fail(c, st, ptr, "%s: %s", file, sol_status_string(st));
+    if (im.channels < 3) {
+        int ch = im.channels;
+        sol_image_free(&im);
+        return fail(c, SOL_ERR_FORMAT, ptr, "%s: needs R, G, B channels (has %d channel%s)", file, ch, ch == 1 ? "" : "s");
+    }
+    if (im.width < 2 || im.height < 1) {
+        sol_image_free(&im);
+        return fail(c, SOL_ERR_FORMAT, ptr, "%s: a lat-long map needs at least 2 x 1 pixels", file);
+    }
+    for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < im.width; ++x)
+            for (int k = 0; k < 3; ++k) {
+                float v = sol_image_pixel(&im, x, y)[k];
+                if (!isfinite(v) || v < 0) {
+                    sol_image_free(&im);
+                    return fail(c, isfinite(v) ? SOL_ERR_OUT_OF_RANGE : SOL_ERR_NONFINITE, ptr,
+                                "%s: pixel (%d, %d) channel %c is %g (radiance must be finite and >= 0)", file, x, y,
+                                "RGB"[k], v);
+                }
+            }
+    *img = im;
+    return SOL_OK;
+}
+
 static const char *const texture_keys[] = {"file", "procedural", "bits", "storage", "scale", "colors",
                                            "amplitude", NULL};
 
@@ -480,14 +518,9 @@ static sol_status parse_light(ctx *c, const cJSON *v, const char *ptr, int clip_
         if (has_file == (lobes != NULL))
             return fail(c, SOL_ERR_FORMAT, ptr, "an environment needs exactly one of \"file\" and \"lobes\"");
         if (has_file) {
-            int bits;
             PTR(p, ptr, "file");
             TRY(get_file(c, v, "file", ptr, l->env_file));
-            TRY(load_image(c, l->env_file, p, &l->env_image, &bits));
-            if (l->env_image.channels < 3) {
-                sol_image_free(&l->env_image);
-                return fail(c, SOL_ERR_FORMAT, p, "%s: needs RGB channels", l->env_file);
-            }
+            TRY(load_environment(c, l->env_file, p, &l->env_image));
         } else {
             PTR(p, ptr, "lobes");
             int n = cJSON_IsArray(lobes) ? cJSON_GetArraySize(lobes) : -1;
@@ -530,7 +563,7 @@ static const char *const pipeline_keys[] = {
     "gbuffer_normals", "normal_map_codec", "normal_map_encoder", "albedo_codec", "albedo_renormalize",
     "albedo_storage", "light_buffer", "light_range", "range_scaling", "tonemap", "exposure", "lut_size", "look",
     "ssao", "ssao_radius", "ssao_samples", "ssao_half_res", "aa", "culling", "reference_supersample", "sg_lobes",
-    NULL};
+    "env_lobes", NULL};
 
 static sol_status parse_pipeline(ctx *c, const cJSON *v, const char *ptr, sol_scene_pipeline *pl)
 {
@@ -595,6 +628,7 @@ static sol_status parse_pipeline(ctx *c, const cJSON *v, const char *ptr, sol_sc
     pl->culling = k == 0 ? -1 : k - 1;
     TRY(get_int(c, v, "reference_supersample", ptr, 3, 1, 8, &pl->reference_supersample));
     TRY(get_int(c, v, "sg_lobes", ptr, 4, 1, 16, &pl->sg_lobes));
+    TRY(get_int(c, v, "env_lobes", ptr, 24, 1, 48, &pl->env_lobes));
     return SOL_OK;
 }
 

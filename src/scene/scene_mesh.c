@@ -6,14 +6,20 @@
  * colour factor (glTF pbrMetallicRoughness.baseColorFactor, else the diffuse colour), the first
  * camera and the punctual lights (KHR_lights_punctual). A file assimp cannot read, or whose
  * vertices are not finite, or that holds no triangle, is rejected with assimp's message.
- * Base-colour textures (glTF baseColorTexture, else the diffuse texture, e.g. OBJ map_Kd) that are
- * PNG files beside the model are loaded and sampled with the first UV channel; assimp's
- * aiProcess_TransformUVCoords bakes KHR_texture_transform (offset, scale, rotation) into the UVs.
- * Embedded or non-PNG images, and normal textures, are not sampled (the colour factor is used). */
+ * Base-colour textures (glTF baseColorTexture, else the diffuse texture, e.g. OBJ map_Kd) and
+ * normal textures (glTF normalTexture) that are PNG files beside the model are loaded (a missing
+ * one is an error naming it), with the first UV channel and assimp's tangent frames
+ * (aiProcess_CalcTangentSpace); assimp's aiProcess_TransformUVCoords bakes KHR_texture_transform
+ * (offset, scale, rotation) into the UVs. The renderer samples them after the planned effects
+ * (albedo-*, normal-map-bc5) prepared them. Embedded or non-PNG images are not read (the colour
+ * factor / the geometric normal is used). KHR_materials_anisotropy, which assimp 5.2 does not
+ * read, is read from the glTF JSON (read_gltf_anisotropy). */
 #include <assimp/cimport.h>
+#include <cjson/cJSON.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,7 +28,6 @@
 
 typedef struct builder {
     sol_mesh *m;
-    const int *mat_tex; /* material -> index into m->tex, -1 = none */
     size_t cap;
     sol_status st;
     char msg[256];
@@ -77,9 +82,8 @@ static void add_node(builder *b, const struct aiScene *sc, const struct aiNode *
             continue;
         const struct aiMesh *mesh = sc->mMeshes[node->mMeshes[k]];
         float color[3] = {0.8f, 0.8f, 0.8f};
-        int tex = -1;
-        if (mesh->mMaterialIndex < sc->mNumMaterials && b->mat_tex && mesh->mTextureCoords[0])
-            tex = b->mat_tex[mesh->mMaterialIndex];
+        int mat_index = mesh->mMaterialIndex < (unsigned)b->m->mat_count ? (int)mesh->mMaterialIndex : -1;
+        int has_uv = mesh->mTextureCoords[0] != NULL, has_tan = has_uv && mesh->mTangents && mesh->mBitangents;
         if (mesh->mMaterialIndex < sc->mNumMaterials) {
             struct aiColor4D c;
             const struct aiMaterial *mat = sc->mMaterials[mesh->mMaterialIndex];
@@ -111,13 +115,16 @@ static void add_node(builder *b, const struct aiScene *sc, const struct aiNode *
                 float *uv = c ? realloc(b->m->uv, cap * 6 * sizeof *uv) : NULL;
                 if (uv)
                     b->m->uv = uv;
-                int *tt = uv ? realloc(b->m->tri_tex, cap * sizeof *tt) : NULL;
+                float *tg = uv ? realloc(b->m->tan, cap * 18 * sizeof *tg) : NULL;
+                if (tg)
+                    b->m->tan = tg;
+                int *tt = tg ? realloc(b->m->tri_mat, cap * sizeof *tt) : NULL;
                 if (!tt) {
                     b->st = SOL_ERR_NO_MEMORY;
                     snprintf(b->msg, sizeof b->msg, "out of memory");
                     return;
                 }
-                b->m->tri_tex = tt;
+                b->m->tri_mat = tt;
                 b->cap = cap;
             }
             size_t tri = (size_t)b->m->tri_count;
@@ -138,9 +145,17 @@ static void add_node(builder *b, const struct aiScene *sc, const struct aiNode *
                 xform_point(&t, p, &b->m->v[tri * 9 + 3 * corner]);
                 float *uv = &b->m->uv[tri * 6 + 2 * corner];
                 uv[0] = uv[1] = 0;
-                if (tex >= 0 && isfinite(mesh->mTextureCoords[0][idx].x) && isfinite(mesh->mTextureCoords[0][idx].y)) {
+                if (has_uv && isfinite(mesh->mTextureCoords[0][idx].x) && isfinite(mesh->mTextureCoords[0][idx].y)) {
                     uv[0] = mesh->mTextureCoords[0][idx].x;
                     uv[1] = mesh->mTextureCoords[0][idx].y;
+                }
+                float *tg = &b->m->tan[tri * 18 + 6 * corner];
+                memset(tg, 0, 6 * sizeof *tg);
+                if (has_tan && isfinite(mesh->mTangents[idx].x) && isfinite(mesh->mTangents[idx].y) &&
+                    isfinite(mesh->mTangents[idx].z) && isfinite(mesh->mBitangents[idx].x) &&
+                    isfinite(mesh->mBitangents[idx].y) && isfinite(mesh->mBitangents[idx].z)) {
+                    xform_normal(&t, &mesh->mTangents[idx], tg);
+                    xform_normal(&t, &mesh->mBitangents[idx], tg + 3);
                 }
                 if (mesh->mNormals && isfinite(mesh->mNormals[idx].x))
                     xform_normal(&t, &mesh->mNormals[idx], &b->m->n[tri * 9 + 3 * corner]);
@@ -154,7 +169,7 @@ static void add_node(builder *b, const struct aiScene *sc, const struct aiNode *
                     }
             }
             memcpy(&b->m->color[tri * 3], color, sizeof color);
-            b->m->tri_tex[tri] = tex;
+            b->m->tri_mat[tri] = mat_index;
             b->m->tri_count++;
         }
     }
@@ -241,10 +256,12 @@ void sol_mesh_free(sol_mesh *m)
     free(m->n);
     free(m->color);
     free(m->uv);
-    free(m->tri_tex);
+    free(m->tan);
+    free(m->tri_mat);
     for (int i = 0; i < m->tex_count; ++i)
-        sol_image_free(&m->tex[i]);
+        sol_image_free(&m->tex[i].image);
     free(m->tex);
+    free(m->mats);
     free(m->nodes);
     free(m->tri_index);
     free(m->lights);
@@ -268,70 +285,183 @@ static int ends_with_png(const char *s)
     return n >= 4 && (!strcmp(s + n - 4, ".png") || !strcmp(s + n - 4, ".PNG"));
 }
 
-/* Each material's base-colour texture (glTF baseColorTexture, else the diffuse one), when it is a
- * PNG file beside the model that sol_png_read reads (an unreadable one is skipped: the colour
- * factor stays, as for embedded or JPEG images). *mat_tex[i] = index into m->tex or -1. Only
- * SOL_ERR_NO_MEMORY fails. */
-static sol_status load_textures(const struct aiScene *sc, const char *model, sol_mesh *m, int **mat_tex)
+/* One texture of material `mi` (a PNG file beside the model): read into m->tex, its index in
+ * *index. Embedded ("*0"), non-PNG (JPEG) images and names leaving the model's folder are
+ * skipped (*index = -1: the colour factor / the geometric normal stay). A PNG that is missing or
+ * unreadable is an error naming it; so is a normal texture without R, G, B channels. */
+static sol_status load_texture(const struct aiMaterial *mat, enum aiTextureType type, int normal, const char *model,
+                               int mi, sol_mesh *m, int *index, char *msg, size_t msg_size)
 {
-    *mat_tex = NULL;
-    if (sc->mNumMaterials == 0)
+    *index = -1;
+    struct aiString name;
+    if (aiGetMaterialTexture(mat, type, 0, &name, NULL, NULL, NULL, NULL, NULL, NULL) != aiReturn_SUCCESS)
         return SOL_OK;
-    int *mt = malloc(sizeof *mt * sc->mNumMaterials);
-    m->tex = calloc(sc->mNumMaterials, sizeof *m->tex);
-    if (!mt || !m->tex) {
-        free(mt);
-        return SOL_ERR_NO_MEMORY;
-    }
+    if (name.data[0] == '*' || name.data[0] == '/' || strstr(name.data, "..") || !ends_with_png(name.data))
+        return SOL_OK; /* embedded, outside the model's folder, or not PNG */
     const char *slash = strrchr(model, '/');
     int dir_len = slash ? (int)(slash - model) : 1;
     const char *dir = slash ? model : ".";
-    for (unsigned i = 0; i < sc->mNumMaterials; ++i) {
-        mt[i] = -1;
-        struct aiString name;
-        if (aiGetMaterialTexture(sc->mMaterials[i], aiTextureType_BASE_COLOR, 0, &name, NULL, NULL, NULL, NULL, NULL,
-                                 NULL) != aiReturn_SUCCESS &&
-            aiGetMaterialTexture(sc->mMaterials[i], aiTextureType_DIFFUSE, 0, &name, NULL, NULL, NULL, NULL, NULL,
-                                 NULL) != aiReturn_SUCCESS)
-            continue;
-        if (name.data[0] == '*' || name.data[0] == '/' || strstr(name.data, "..") || !ends_with_png(name.data))
-            continue; /* embedded, outside the model's folder, or not PNG */
-        char file[SOL_SCENE_PATH_MAX];
-        int len = snprintf(file, sizeof file, "%.*s/%s", dir_len, dir, name.data);
-        if (len < 0 || (size_t)len >= sizeof file)
-            continue;
-        sol_image img;
-        int bits;
-        if (sol_png_read(file, &img, &bits) != SOL_OK)
-            continue;
-        if (img.channels < 3) {
-            sol_image_free(&img);
-            continue;
-        }
-        m->tex[m->tex_count] = img;
-        mt[i] = m->tex_count++;
+    char file[SOL_SCENE_PATH_MAX];
+    int len = snprintf(file, sizeof file, "%.*s/%s", dir_len, dir, name.data);
+    const char *what = normal ? "normal texture" : "base-colour texture";
+    if (len < 0 || (size_t)len >= sizeof file) {
+        snprintf(msg, msg_size, "%s of material %d: file name too long", what, mi);
+        return SOL_ERR_LIMIT;
     }
-    *mat_tex = mt;
+    for (int i = 0; i < m->tex_count; ++i) /* a file several materials share is read (and prepared) once */
+        if (m->tex[i].normal == normal && !strcmp(m->tex[i].name, name.data)) {
+            *index = i;
+            return SOL_OK;
+        }
+    sol_mesh_texture *t = &m->tex[m->tex_count];
+    memset(t, 0, sizeof *t);
+    sol_status st = sol_png_read(file, &t->image, &t->bits);
+    if (st != SOL_OK) {
+        snprintf(msg, msg_size, "%s %.120s of material \"%.40s\": %s", what, file, m->mats[mi].name,
+                 st == SOL_ERR_IO ? "cannot open or read it" : sol_status_string(st));
+        return st;
+    }
+    if (normal && t->image.channels < 3) {
+        snprintf(msg, msg_size, "normal texture %.120s of material \"%.40s\" has %d channel%s, needs R, G, B", file,
+                 m->mats[mi].name, t->image.channels, t->image.channels == 1 ? "" : "s");
+        sol_image_free(&t->image);
+        return SOL_ERR_FORMAT;
+    }
+    t->normal = normal;
+    t->material = mi;
+    snprintf(t->name, sizeof t->name, "%s", name.data);
+    *index = m->tex_count++;
     return SOL_OK;
 }
 
-/* Bilinear sample with repeat of a base-colour texture at (u, v) (v up, row 0 at the top), sRGB
- * decoded to linear. */
-static void tex_lookup(const sol_image *im, double u, double v, double out[3])
+/* The model's materials: names, base-colour textures (glTF baseColorTexture, else the diffuse
+ * one, e.g. OBJ map_Kd) and normal textures (glTF normalTexture). */
+static sol_status load_materials(const struct aiScene *sc, const char *model, sol_mesh *m, char *msg, size_t msg_size)
 {
-    double x = (u - floor(u)) * im->width - 0.5, y = (1 - (v - floor(v))) * im->height - 0.5;
-    double fx = floor(x), fy = floor(y), ax = x - fx, ay = y - fy;
-    int x0 = (int)fx, y0 = (int)fy;
-    out[0] = out[1] = out[2] = 0;
-    for (int j = 0; j < 2; ++j)
-        for (int i = 0; i < 2; ++i) {
-            int xi = ((x0 + i) % im->width + im->width) % im->width;
-            int yi = ((y0 + j) % im->height + im->height) % im->height;
-            double w = (i ? ax : 1 - ax) * (j ? ay : 1 - ay);
-            const float *px = &im->data[((size_t)yi * (size_t)im->width + (size_t)xi) * (size_t)im->channels];
-            for (int c = 0; c < 3; ++c)
-                out[c] += w * sol_srgb_decode(px[c]);
+    if (sc->mNumMaterials == 0)
+        return SOL_OK;
+    m->mats = calloc(sc->mNumMaterials, sizeof *m->mats);
+    m->tex = calloc((size_t)sc->mNumMaterials * 2, sizeof *m->tex);
+    if (!m->mats || !m->tex) {
+        snprintf(msg, msg_size, "out of memory");
+        return SOL_ERR_NO_MEMORY;
+    }
+    m->mat_count = (int)sc->mNumMaterials;
+    for (unsigned i = 0; i < sc->mNumMaterials; ++i) {
+        const struct aiMaterial *mat = sc->mMaterials[i];
+        sol_mesh_material *mm = &m->mats[i];
+        struct aiString nm;
+        if (aiGetMaterialString(mat, AI_MATKEY_NAME, &nm) == aiReturn_SUCCESS)
+            snprintf(mm->name, sizeof mm->name, "%.63s", nm.data);
+        sol_status st = load_texture(mat, aiTextureType_BASE_COLOR, 0, model, (int)i, m, &mm->base_tex, msg, msg_size);
+        if (st == SOL_OK && mm->base_tex < 0)
+            st = load_texture(mat, aiTextureType_DIFFUSE, 0, model, (int)i, m, &mm->base_tex, msg, msg_size);
+        if (st == SOL_OK)
+            st = load_texture(mat, aiTextureType_NORMALS, 1, model, (int)i, m, &mm->normal_tex, msg, msg_size);
+        if (st != SOL_OK)
+            return st;
+    }
+    return SOL_OK;
+}
+
+/* KHR_materials_anisotropy: Debian's assimp (5.2) does not read this extension, so its fields are
+ * read here from the glTF JSON (the .gltf file, or a .glb's JSON chunk) with libcjson, for the
+ * materials assimp imported (same order as the file's "materials"). Per the extension's spec:
+ * anisotropyStrength in [0, 1] (default 0), anisotropyRotation in radians (default 0, from the
+ * tangent towards the bitangent), anisotropyTexture (noted, not sampled); alpha = roughnessFactor^2
+ * (pbrMetallicRoughness, default 1). A value of the wrong type or out of range is an error naming
+ * its JSON pointer. Other files (OBJ) have no such extension. */
+static sol_status read_gltf_anisotropy(const char *path, sol_mesh *m, char *msg, size_t msg_size)
+{
+    size_t n = strlen(path);
+    int glb = n >= 4 && !strcmp(path + n - 4, ".glb");
+    if (!glb && !(n >= 5 && !strcmp(path + n - 5, ".gltf")))
+        return SOL_OK;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(msg, msg_size, "cannot reopen the model to read KHR_materials_anisotropy");
+        return SOL_ERR_IO;
+    }
+    const size_t cap = (size_t)64 << 20;
+    char *buf = malloc(cap + 1);
+    size_t len = buf ? fread(buf, 1, cap + 1, f) : 0;
+    fclose(f);
+    if (!buf) {
+        snprintf(msg, msg_size, "out of memory");
+        return SOL_ERR_NO_MEMORY;
+    }
+    const char *json = buf;
+    size_t json_len = len;
+    if (glb) { /* 12-byte header, then chunk 0: length, type "JSON", data */
+        uint32_t clen = 0, ctype = 0;
+        if (len >= 20) {
+            memcpy(&clen, buf + 12, 4);
+            memcpy(&ctype, buf + 16, 4);
         }
+        if (len < 20 || ctype != 0x4E4F534Au || clen > len - 20) {
+            free(buf);
+            return SOL_OK; /* assimp read it; no JSON chunk we can see: no extension */
+        }
+        json = buf + 20;
+        json_len = clen;
+    } else if (len > cap) {
+        free(buf);
+        snprintf(msg, msg_size, "glTF JSON larger than %zu bytes (reading KHR_materials_anisotropy)", cap);
+        return SOL_ERR_LIMIT;
+    }
+    cJSON *root = cJSON_ParseWithLength(json, json_len);
+    free(buf);
+    const cJSON *mats = root ? cJSON_GetObjectItemCaseSensitive(root, "materials") : NULL;
+    sol_status st = SOL_OK;
+    int i = 0;
+    for (const cJSON *mat = cJSON_IsArray(mats) ? mats->child : NULL; mat && i < m->mat_count && st == SOL_OK;
+         mat = mat->next, ++i) {
+        const cJSON *ext = cJSON_GetObjectItemCaseSensitive(mat, "extensions");
+        const cJSON *an = ext ? cJSON_GetObjectItemCaseSensitive(ext, "KHR_materials_anisotropy") : NULL;
+        if (!an)
+            continue;
+        static const struct {
+            const char *key;
+            double def, lo, hi;
+        } fields[] = {{"anisotropyStrength", 0, 0, 1}, {"anisotropyRotation", 0, -1e6, 1e6}};
+        double val[2];
+        for (int k = 0; k < 2 && st == SOL_OK; ++k) {
+            const cJSON *v = cJSON_IsObject(an) ? cJSON_GetObjectItemCaseSensitive(an, fields[k].key) : NULL;
+            val[k] = fields[k].def;
+            if (!cJSON_IsObject(an)) {
+                snprintf(msg, msg_size, "/materials/%d/extensions/KHR_materials_anisotropy: must be an object", i);
+                st = SOL_ERR_FORMAT;
+            } else if (v && !cJSON_IsNumber(v)) {
+                snprintf(msg, msg_size, "/materials/%d/extensions/KHR_materials_anisotropy/%s: must be a number", i,
+                         fields[k].key);
+                st = SOL_ERR_FORMAT;
+            } else if (v && !isfinite(v->valuedouble)) {
+                snprintf(msg, msg_size, "/materials/%d/extensions/KHR_materials_anisotropy/%s: must be finite", i,
+                         fields[k].key);
+                st = SOL_ERR_NONFINITE;
+            } else if (v && (v->valuedouble < fields[k].lo || v->valuedouble > fields[k].hi)) {
+                snprintf(msg, msg_size, "/materials/%d/extensions/KHR_materials_anisotropy/%s: must be in [%g, %g] (got %g)",
+                         i, fields[k].key, fields[k].lo, fields[k].hi, v->valuedouble);
+                st = SOL_ERR_OUT_OF_RANGE;
+            } else if (v)
+                val[k] = v->valuedouble;
+        }
+        if (st != SOL_OK)
+            break;
+        double rough = 1;
+        const cJSON *pbr = cJSON_GetObjectItemCaseSensitive(mat, "pbrMetallicRoughness");
+        const cJSON *rf = pbr ? cJSON_GetObjectItemCaseSensitive(pbr, "roughnessFactor") : NULL;
+        if (cJSON_IsNumber(rf) && isfinite(rf->valuedouble))
+            rough = rf->valuedouble < 0 ? 0 : rf->valuedouble > 1 ? 1 : rf->valuedouble;
+        sol_mesh_material *mm = &m->mats[i];
+        mm->aniso = 1;
+        mm->aniso_strength = val[0];
+        mm->aniso_rotation = val[1];
+        mm->alpha = rough * rough;
+        mm->aniso_texture = cJSON_GetObjectItemCaseSensitive(an, "anisotropyTexture") != NULL;
+    }
+    cJSON_Delete(root);
+    return st;
 }
 
 sol_status sol_mesh_load(const char *path, sol_mesh *out, char *message, size_t message_size)
@@ -346,7 +476,7 @@ sol_status sol_mesh_load(const char *path, sol_mesh *out, char *message, size_t 
         import_warning[0] = 0;
         aiAttachLogStream(&stream);
         sc = aiImportFile(path, aiProcess_Triangulate | aiProcess_GenSmoothNormals | aiProcess_ValidateDataStructure |
-                                    aiProcess_SortByPType | aiProcess_TransformUVCoords);
+                                    aiProcess_SortByPType | aiProcess_TransformUVCoords | aiProcess_CalcTangentSpace);
         aiDetachLogStream(&stream);
         memcpy(warning, import_warning, sizeof warning);
     }
@@ -369,14 +499,13 @@ sol_status sol_mesh_load(const char *path, sol_mesh *out, char *message, size_t 
     }
     sol_mesh m;
     memset(&m, 0, sizeof m);
-    int *mat_tex = NULL;
-    sol_status tst = load_textures(sc, path, &m, &mat_tex);
-    builder b = {&m, mat_tex, 0, tst, ""};
-    if (tst != SOL_OK)
-        snprintf(b.msg, sizeof b.msg, "out of memory");
+    builder b = {&m, 0, SOL_OK, ""};
+    b.st = load_materials(sc, path, &m, b.msg, sizeof b.msg);
+    if (b.st == SOL_OK)
+        b.st = read_gltf_anisotropy(path, &m, b.msg, sizeof b.msg);
     struct aiMatrix4x4 id = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    add_node(&b, sc, sc->mRootNode, &id, 0);
-    free(mat_tex);
+    if (b.st == SOL_OK)
+        add_node(&b, sc, sc->mRootNode, &id, 0);
     if (b.st == SOL_OK && m.tri_count == 0) {
         b.st = SOL_ERR_FORMAT;
         snprintf(b.msg, sizeof b.msg, "no triangles");
@@ -495,8 +624,7 @@ static int box_hit(const sol_mesh_node *nd, const double o[3], const double inv[
     return 1;
 }
 
-int sol_mesh_intersect(const sol_mesh *m, const double o[3], const double d[3], double tmax, double *t_out,
-                       double n[3], double color[3])
+int sol_mesh_intersect(const sol_mesh *m, const double o[3], const double d[3], double tmax, sol_mesh_hit *hit)
 {
     double inv[3] = {1 / d[0], 1 / d[1], 1 / d[2]};
     int stack[128], sp = 0, best = -1;
@@ -523,7 +651,7 @@ int sol_mesh_intersect(const sol_mesh *m, const double o[3], const double d[3], 
     if (best < 0)
         return 0;
     const float *p = &m->v[(size_t)best * 9], *vn = &m->n[(size_t)best * 9];
-    double e1[3], e2[3], s = 0;
+    double e1[3], e2[3], s = 0, *n = hit->n, w0 = 1 - bu - bv;
     for (int i = 0; i < 3; ++i) {
         e1[i] = p[3 + i] - p[i];
         e2[i] = p[6 + i] - p[i];
@@ -537,16 +665,15 @@ int sol_mesh_intersect(const sol_mesh *m, const double o[3], const double d[3], 
     s = sqrt(s);
     for (int i = 0; i < 3; ++i)
         n[i] /= s;
-    for (int i = 0; i < 3; ++i)
-        color[i] = m->color[(size_t)best * 3 + i];
-    int tx = m->tri_tex ? m->tri_tex[best] : -1;
-    if (tx >= 0 && tx < m->tex_count) {
-        const float *uv = &m->uv[(size_t)best * 6];
-        double c[3], w0 = 1 - bu - bv;
-        tex_lookup(&m->tex[tx], w0 * uv[0] + bu * uv[2] + bv * uv[4], w0 * uv[1] + bu * uv[3] + bv * uv[5], c);
-        for (int i = 0; i < 3; ++i)
-            color[i] *= c[i];
+    const float *uv = &m->uv[(size_t)best * 6], *tg = &m->tan[(size_t)best * 18];
+    for (int i = 0; i < 3; ++i) {
+        hit->color[i] = m->color[(size_t)best * 3 + i];
+        hit->tangent[i] = w0 * tg[i] + bu * tg[6 + i] + bv * tg[12 + i];
+        hit->bitangent[i] = w0 * tg[3 + i] + bu * tg[9 + i] + bv * tg[15 + i];
     }
-    *t_out = tmax;
+    hit->uv[0] = w0 * uv[0] + bu * uv[2] + bv * uv[4];
+    hit->uv[1] = w0 * uv[1] + bu * uv[3] + bv * uv[5];
+    hit->material = m->tri_mat[best];
+    hit->t = tmax;
     return 1;
 }

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "sol_normals.h"
+#include "scene_internal.h"
 #include "sol_scene.h"
 
 static const sol_effect_info effects[SOL_FX_COUNT] = {
@@ -47,6 +48,10 @@ static const sol_effect_info effects[SOL_FX_COUNT] = {
                         "no culling"},
     [SOL_FX_LUT_GRADING] = {"lut-grading", "M4", "pipeline.look", "display colours",
                             "graded colours through a size^3 trilinear LUT", "the grading transform itself"},
+    [SOL_FX_ENV_SG] = {"env-sg", "D15, D16", "an environment light with a lat-long EXR (file), and geometry",
+                       "lat-long radiance map",
+                       "SG lighting lobes fitted to the map (non-negative least squares over its texels)",
+                       "the map itself: exact irradiance table, importance-sampled specular"},
 };
 
 const sol_effect_info *sol_effect_get(sol_effect effect)
@@ -82,6 +87,39 @@ static int has_albedo8(const sol_scene_material *m)
 static int has_albedo(const sol_scene_material *m) { return m->albedo_texture.source != SOL_TEX_NONE; }
 static int is_aniso(const sol_scene_material *m) { return m->aniso != SOL_ANISO_NONE; }
 
+/* The first mesh object with a texture of the kind asked (normal, or 8-bit base colour when
+ * bits8), or with an anisotropic material (aniso): *object, and *mat (its model material); 0 if none. */
+static int mesh_calls(const sol_scene *s, int normal, int bits8, int aniso, int *object, int *mat, int *tex)
+{
+    for (int o = 0; o < s->object_count; ++o) {
+        const sol_mesh *m = s->objects[o].kind == SOL_GEOM_MESH ? s->objects[o].mesh : NULL;
+        if (!m)
+            continue;
+        for (int k = 0; k < m->mat_count; ++k) {
+            const sol_mesh_material *mm = &m->mats[k];
+            int t = aniso ? -1 : normal ? mm->normal_tex : mm->base_tex;
+            if (aniso ? mm->aniso : t >= 0 && (!bits8 || m->tex[t].bits == 8)) {
+                *object = o, *mat = k, *tex = t;
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
+/* The element of a model's material: the model's own JSON pointer when the scene is the model
+ * (a glTF given to sol plan directly), else the scene's mesh object. */
+static void mesh_element(const sol_scene *s, int object, int mat, const char *field, char *out, size_t size)
+{
+    const char *f = s->objects[object].file;
+    size_t n = strlen(f);
+    int gltf = (n >= 5 && !strcmp(f + n - 5, ".gltf")) || (n >= 4 && !strcmp(f + n - 4, ".glb"));
+    if (!strcmp(s->path, f) && gltf)
+        snprintf(out, size, "/materials/%d/%s", mat, field);
+    else
+        snprintf(out, size, "/objects/%d/file", object);
+}
+
 sol_status sol_scene_plan_build(const sol_scene *s, sol_scene_plan *out)
 {
     if (!s || !out)
@@ -104,20 +142,44 @@ sol_status sol_scene_plan_build(const sol_scene *s, sol_scene_plan *out)
         set(&p, SOL_FX_GBUFFER_NORMALS, 1, "/pipeline/gbuffer_normals", "normals stored as %s",
             sol_normal_method_name((sol_normal_method)pl->gbuffer_normals));
 
-    int m = used_material(s, has_normal_map);
-    if (m < 0)
+    int m = used_material(s, has_normal_map), mo, mm, mt;
+    char what[160];
+    if (m < 0 && mesh_calls(s, 1, 0, 0, &mo, &mm, &mt)) { /* a model's normal texture */
+        const sol_mesh *mesh = s->objects[mo].mesh;
+        mesh_element(s, mo, mm, "normalTexture", ptr, sizeof ptr);
+        snprintf(what, sizeof what, "normal texture %.60s of model material \"%.40s\"", mesh->tex[mt].name,
+                 mesh->mats[mm].name);
+    }
+    if (m < 0 && !mesh_calls(s, 1, 0, 0, &mo, &mm, &mt))
         set(&p, SOL_FX_NORMAL_MAP_BC5, 0, "", "%sno drawn material has a normal map", "");
     else if (pl->normal_map_codec == SOL_CODEC_NONE)
         set(&p, SOL_FX_NORMAL_MAP_BC5, 0, "/pipeline/normal_map_codec", "%snormal_map_codec is none", "");
-    else {
+    else if (m >= 0) {
         snprintf(ptr, sizeof ptr, "/materials/%d/normal_map", m);
         set(&p, SOL_FX_NORMAL_MAP_BC5, 1, ptr, "normal map of material \"%s\"", s->materials[m].name);
-    }
+    } else
+        set(&p, SOL_FX_NORMAL_MAP_BC5, 1, ptr, "%s", what);
 
     m = used_material(s, has_albedo8);
-    if (m < 0) {
-        const char *why = used_material(s, has_albedo) >= 0 ? "%salbedo textures are 16-bit (no 8-bit storage)"
-                                                            : "%sno drawn material has an albedo texture";
+    int mesh_albedo8 = m < 0 && mesh_calls(s, 0, 1, 0, &mo, &mm, &mt);
+    if (mesh_albedo8) { /* a model's 8-bit base-colour texture */
+        const sol_mesh *mesh = s->objects[mo].mesh;
+        mesh_element(s, mo, mm, "pbrMetallicRoughness/baseColorTexture", ptr, sizeof ptr);
+        snprintf(what, sizeof what, "8-bit base-colour texture %.60s of model material \"%.40s\"", mesh->tex[mt].name,
+                 mesh->mats[mm].name);
+        set(&p, SOL_FX_ALBEDO_STORAGE, 1, ptr, "%s", what);
+        if (pl->albedo_codec == SOL_CODEC_NONE)
+            set(&p, SOL_FX_ALBEDO_BC1, 0, "/pipeline/albedo_codec", "%salbedo_codec is none", "");
+        else
+            set(&p, SOL_FX_ALBEDO_BC1, 1, ptr, "%s", what);
+        if (!pl->albedo_renormalize)
+            set(&p, SOL_FX_ALBEDO_RENORM, 0, "/pipeline/albedo_renormalize", "%salbedo_renormalize is false", "");
+        else
+            set(&p, SOL_FX_ALBEDO_RENORM, 1, ptr, "%s", what);
+    } else if (m < 0) {
+        const char *why = used_material(s, has_albedo) >= 0 || mesh_calls(s, 0, 0, 0, &mo, &mm, &mt)
+                              ? "%salbedo textures are 16-bit (no 8-bit storage)"
+                              : "%sno drawn material has an albedo texture";
         set(&p, SOL_FX_ALBEDO_STORAGE, 0, "", why, "");
         set(&p, SOL_FX_ALBEDO_BC1, 0, "", why, "");
         set(&p, SOL_FX_ALBEDO_RENORM, 0, "", why, "");
@@ -151,13 +213,18 @@ sol_status sol_scene_plan_build(const sol_scene *s, sol_scene_plan *out)
     }
 
     m = used_material(s, is_aniso);
-    if (m < 0)
+    int mesh_aniso = m < 0 && mesh_calls(s, 0, 0, 1, &mo, &mm, &mt);
+    if (m < 0 && !mesh_aniso)
         set(&p, SOL_FX_SG_LOBES, 0, "", "%sno drawn material is anisotropic", "");
     else if (s->light_count == 0)
         set(&p, SOL_FX_SG_LOBES, 0, "/lights", "%sno lights", "");
-    else {
+    else if (m >= 0) {
         snprintf(ptr, sizeof ptr, "/materials/%d/anisotropic", m);
         set(&p, SOL_FX_SG_LOBES, 1, ptr, "anisotropic material \"%s\"", s->materials[m].name);
+    } else {
+        mesh_element(s, mo, mm, "extensions/KHR_materials_anisotropy", ptr, sizeof ptr);
+        set(&p, SOL_FX_SG_LOBES, 1, ptr, "KHR_materials_anisotropy of model material \"%.60s\"",
+            s->objects[mo].mesh->mats[mm].name);
     }
 
     int clipped = -1;
@@ -203,6 +270,19 @@ sol_status sol_scene_plan_build(const sol_scene *s, sol_scene_plan *out)
         set(&p, SOL_FX_LUT_GRADING, 0, "/pipeline/look", "%sno look", "");
     else
         set(&p, SOL_FX_LUT_GRADING, 1, "/pipeline/look", "%sa look is set", "");
+
+    int env = -1;
+    for (int l = 0; l < s->light_count && env < 0; ++l)
+        if (s->lights[l].kind == SOL_LIGHT_ENV && s->lights[l].env_image.data)
+            env = l;
+    if (env < 0)
+        set(&p, SOL_FX_ENV_SG, 0, "", "%sno environment light with a lat-long map", "");
+    else if (!drawable)
+        set(&p, SOL_FX_ENV_SG, 0, "", "%sthe scene has no geometry", "");
+    else {
+        snprintf(ptr, sizeof ptr, "/lights/%d/file", env);
+        set(&p, SOL_FX_ENV_SG, 1, ptr, "lat-long environment %.120s", s->lights[env].env_file);
+    }
 
     *out = p;
     return SOL_OK;

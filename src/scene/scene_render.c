@@ -8,7 +8,8 @@
  *   3. G-buffer pass: a primary ray per pixel finds the surface; normal encoded in 24 bits (D3-D7);
  *      anisotropic materials replaced by their principal Phong lobe (D15/D16).
  *   4. obscurance (M3) from the depth buffer.
- *   5. light loop: sun, point, spot, SG environment lobes; clip volumes (D13) for unshadowed
+ *   5. light loop: sun, point, spot, SG environment lobes, lat-long environment maps (as SG lobes
+ *      in the engine path, env-sg; integrated exactly in the reference); clip volumes (D13) for unshadowed
  *      lights; diffuse and specular sums stored in the light buffer format (D9, S9) with range
  *      scaling (D10).
  *   6. composition, temporal accumulation over the camera path (D18), exposure + tone map,
@@ -66,6 +67,14 @@ typedef struct prepared_material {
     sol_sg lobes[16];     /* in the shading frame (x = tangent, z = normal) */
 } prepared_material;
 
+/* A mesh's textures as this path sees them (prepared like a material's), and the SG lobes of its
+ * anisotropic materials (engine, sg-lobes). */
+typedef struct prepared_mesh {
+    sol_image *tex; /* per sol_mesh.tex */
+    int *k;         /* per model material: lobes (0 = none) */
+    sol_sg (*lobes)[16];
+} prepared_mesh;
+
 typedef struct frame {
     const sol_scene *s;
     int reference;
@@ -73,11 +82,13 @@ typedef struct frame {
     int width, height;
     double eye[3], fwd[3], right[3], up[3], focal;
     prepared_material *mats;
+    prepared_mesh *meshes; /* per object (meshes only) */
     unsigned char *culled; /* per object */
     sol_lut3d lut;
     sol_grade grade;
     sol_render_stats *stats;
     float **irradiance; /* per light, per SG lobe: IRR_TABLE values of the clamped-cosine convolution */
+    struct env_light *env; /* per light: its SG lobes as shaded, and a lat-long map's tables */
     sol_bestfit_table bestfit; /* D6: the baked best-fit table the shader uses (xyz-best-fit) */
     double light_scale;        /* D10: range scaling of the light buffer (see prepare) */
 } frame;
@@ -99,13 +110,204 @@ static double lobe_irradiance(const struct frame *f, int li, int j, const double
 
 static int fx(const frame *f, sol_effect e) { return (f->on >> e) & 1u; }
 
+/* ---------------- lat-long environments ----------------
+ * Convention (docs/scene-format.md): column u = 0.5 + atan2(x, -z) / (2 pi), row v = acos(y) / pi,
+ * row 0 at the top (+y), so the middle of the image looks along -z. Texel (x, y) covers the
+ * longitudes 2 pi [x/W - 1/2, (x+1)/W - 1/2] and the polar angles pi [y/H, (y+1)/H]; its solid
+ * angle is (2 pi / W)(cos theta0 - cos theta1). */
+
+#define ENV_WORK_TEXELS 32768 /* texels of the map the exact sums and the SG fit run over */
+#define ENV_IRR_W 128         /* reference irradiance table: normals on a lat-long grid */
+#define ENV_IRR_H 64
+
+typedef struct env_light {
+    const sol_scene_sg_lobe *lobes; /* the lobes the light is shaded with (SG light, or the env-sg fit) */
+    int lobe_count;
+    sol_scene_sg_lobe *fitted;      /* owned: the env-sg fit of a map */
+    int fitted_count;
+    const sol_image *map;           /* the scene's map (radiance before colour and intensity) */
+    float *irr;                     /* reference: ENV_IRR_W x ENV_IRR_H x 3 irradiance (colour included) */
+} env_light;
+
+static void env_dir(double u, double v, double d[3])
+{
+    double phi = 2 * M_PI * (u - 0.5), th = M_PI * v;
+    d[0] = sin(th) * sin(phi), d[1] = cos(th), d[2] = -sin(th) * cos(phi);
+}
+
+/* Bilinear lookup of an RGB lat-long image at direction d (wraps in u, clamps in v). */
+static void env_lookup(const sol_image *im, int stride_rgb, const double d[3], double out[3])
+{
+    double y1 = d[1] < -1 ? -1 : d[1] > 1 ? 1 : d[1];
+    double u = 0.5 + atan2(d[0], -d[2]) / (2 * M_PI), v = acos(y1) / M_PI;
+    double x = u * im->width - 0.5, y = v * im->height - 0.5;
+    double fx0 = floor(x), fy0 = floor(y), ax = x - fx0, ay = y - fy0;
+    int x0 = (int)fx0, y0 = (int)fy0;
+    out[0] = out[1] = out[2] = 0;
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            int xi = ((x0 + i) % im->width + im->width) % im->width;
+            int yi = y0 + j < 0 ? 0 : y0 + j >= im->height ? im->height - 1 : y0 + j;
+            double w = (i ? ax : 1 - ax) * (j ? ay : 1 - ay);
+            const float *px = stride_rgb ? im->data + ((size_t)yi * im->width + xi) * 3 : sol_image_pixel(im, xi, yi);
+            for (int c = 0; c < 3; ++c)
+                out[c] += w * px[c];
+        }
+}
+
+/* The map as cells to sum over, each with its solid angle, radiance (times `color`) and the
+ * direction of its centre. The map is taken as piecewise constant over its texels. A small map's
+ * texels are cut into s x s cells (s the largest leaving at most ENV_WORK_TEXELS cells: the
+ * cosine and the SGs vary within a texel); a large map's b x b blocks are merged into one cell
+ * (b the smallest leaving at most ENV_WORK_TEXELS), of the solid-angle-weighted mean radiance. */
+static sol_status env_work(const sol_image *im, const double color[3], int *count, double **dir, double **omega,
+                           double **rgb)
+{
+    int b = 1, sub = 1;
+    while ((long)((im->width + b - 1) / b) * ((im->height + b - 1) / b) > ENV_WORK_TEXELS)
+        ++b;
+    if (b == 1)
+        while ((long)im->width * im->height * (sub + 1) * (sub + 1) <= ENV_WORK_TEXELS)
+            ++sub;
+    int w = b > 1 ? (im->width + b - 1) / b : im->width * sub, h = b > 1 ? (im->height + b - 1) / b : im->height * sub;
+    int n = w * h;
+    double *D = calloc((size_t)n * 3, sizeof *D), *O = calloc((size_t)n, sizeof *O), *C = calloc((size_t)n * 3, sizeof *C);
+    if (!D || !O || !C) {
+        free(D), free(O), free(C);
+        return SOL_ERR_NO_MEMORY;
+    }
+    if (b == 1) { /* cells of texels */
+        for (int y = 0; y < h; ++y) {
+            double om = 2 * M_PI / w * (cos(M_PI * y / h) - cos(M_PI * (y + 1.0) / h));
+            for (int x = 0; x < w; ++x) {
+                int k = y * w + x;
+                const float *px = sol_image_pixel(im, x / sub, y / sub);
+                O[k] = om;
+                env_dir((x + 0.5) / w, (y + 0.5) / h, &D[3 * k]);
+                for (int c = 0; c < 3; ++c)
+                    C[3 * k + c] = px[c] * color[c];
+            }
+        }
+    } else { /* blocks of texels */
+        for (int y = 0; y < im->height; ++y) {
+            double om = 2 * M_PI / im->width * (cos(M_PI * y / im->height) - cos(M_PI * (y + 1.0) / im->height));
+            for (int x = 0; x < im->width; ++x) {
+                int k = (y / b) * w + x / b;
+                const float *px = sol_image_pixel(im, x, y);
+                O[k] += om;
+                for (int c = 0; c < 3; ++c)
+                    C[3 * k + c] += om * px[c] * color[c];
+            }
+        }
+        for (int k = 0; k < n; ++k) {
+            int bx = k % w, by = k / w;
+            double x0 = (double)bx * b, x1 = fmin((double)(bx + 1) * b, im->width);
+            double y0 = (double)by * b, y1 = fmin((double)(by + 1) * b, im->height);
+            env_dir(0.5 * (x0 + x1) / im->width, 0.5 * (y0 + y1) / im->height, &D[3 * k]);
+            for (int c = 0; c < 3; ++c)
+                C[3 * k + c] = O[k] > 0 ? C[3 * k + c] / O[k] : 0;
+        }
+    }
+    *count = n, *dir = D, *omega = O, *rgb = C;
+    return SOL_OK;
+}
+
+/* Reference diffuse: E(n) = sum over texels L omega max(n.w, 0) at the normals of an
+ * ENV_IRR_W x ENV_IRR_H lat-long grid (looked up bilinearly; irradiance is smooth). */
+static sol_status env_irradiance_table(const sol_image *im, const double color[3], float **out)
+{
+    int n;
+    double *D, *O, *C;
+    sol_status st = env_work(im, color, &n, &D, &O, &C);
+    if (st != SOL_OK)
+        return st;
+    float *t = malloc(sizeof *t * ENV_IRR_W * ENV_IRR_H * 3);
+    if (!t) {
+        free(D), free(O), free(C);
+        return SOL_ERR_NO_MEMORY;
+    }
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < ENV_IRR_H; ++y)
+        for (int x = 0; x < ENV_IRR_W; ++x) {
+            double nn[3], e[3] = {0, 0, 0};
+            env_dir((x + 0.5) / ENV_IRR_W, (y + 0.5) / ENV_IRR_H, nn);
+            for (int k = 0; k < n; ++k) {
+                double c = nn[0] * D[3 * k] + nn[1] * D[3 * k + 1] + nn[2] * D[3 * k + 2];
+                if (c > 0)
+                    for (int q = 0; q < 3; ++q)
+                        e[q] += C[3 * k + q] * O[k] * c;
+            }
+            for (int q = 0; q < 3; ++q)
+                t[((size_t)y * ENV_IRR_W + x) * 3 + q] = (float)e[q];
+        }
+    free(D), free(O), free(C);
+    *out = t;
+    return SOL_OK;
+}
+
+/* env-sg (D15/D16 applied to the environment): K SG lobes with fixed axes (a spherical Fibonacci
+ * set) and one sharpness 1.5 / (1 - cos(spacing)), spacing = sqrt(4 pi / K) (neighbouring lobes
+ * overlap at exp(-1.5)); the RGB amplitudes minimise the solid-angle-weighted squared error over
+ * the map's texels, kept >= 0 (projected Gauss-Seidel on the normal equations, a fixed number of
+ * sweeps: deterministic). */
+static sol_status env_fit_lobes(const sol_image *im, const double color[3], int k, sol_scene_sg_lobe **out)
+{
+    int n;
+    double *D, *O, *C;
+    sol_status st = env_work(im, color, &n, &D, &O, &C);
+    if (st != SOL_OK)
+        return st;
+    sol_scene_sg_lobe *g = calloc((size_t)k, sizeof *g);
+    double *A = calloc((size_t)k * k, sizeof *A), *B = calloc((size_t)k * 3, sizeof *B), *G = malloc(sizeof *G * (size_t)k);
+    if (!g || !A || !B || !G) {
+        free(D), free(O), free(C), free(g), free(A), free(B), free(G);
+        return SOL_ERR_NO_MEMORY;
+    }
+    double spacing = sqrt(4 * M_PI / k), lambda = 1.5 / (1 - cos(fmin(spacing, M_PI)));
+    const double golden = M_PI * (3 - sqrt(5.0));
+    for (int j = 0; j < k; ++j) {
+        double y = 1 - (2 * j + 1.0) / k, r = sqrt(fmax(0, 1 - y * y)), ph = golden * j;
+        v_set(g[j].axis, r * cos(ph), y, r * sin(ph));
+        g[j].sharpness = lambda;
+    }
+    for (int t = 0; t < n; ++t) {
+        for (int j = 0; j < k; ++j)
+            G[j] = exp(lambda * (sol_dot3(g[j].axis, &D[3 * t]) - 1));
+        for (int i = 0; i < k; ++i) {
+            for (int j = 0; j < k; ++j)
+                A[i * k + j] += O[t] * G[i] * G[j];
+            for (int q = 0; q < 3; ++q)
+                B[i * 3 + q] += O[t] * G[i] * C[3 * t + q];
+        }
+    }
+    for (int q = 0; q < 3; ++q)
+        for (int sweep = 0; sweep < 400; ++sweep)
+            for (int i = 0; i < k; ++i) {
+                double r = B[i * 3 + q];
+                for (int j = 0; j < k; ++j)
+                    if (j != i)
+                        r -= A[i * k + j] * g[j].amplitude[q];
+                g[i].amplitude[q] = A[i * k + i] > 0 ? fmax(0, r / A[i * k + i]) : 0;
+            }
+    free(D), free(O), free(C), free(A), free(B), free(G);
+    *out = g;
+    return SOL_OK;
+}
+
+static void env_irradiance(const env_light *e, const double n[3], double out[3])
+{
+    sol_image t = {ENV_IRR_W, ENV_IRR_H, 3, e->irr};
+    env_lookup(&t, 1, n, out);
+}
+
 /* ---------------- geometry: ray casting ---------------- */
 
 typedef struct hit {
     double t;
     int object;
     double p[3], n[3]; /* position, geometric normal (facing the ray) */
-    double color[3];   /* meshes: the triangle's base colour; else -1 */
+    int mesh;          /* the object is a mesh: `mh` holds its hit */
+    sol_mesh_hit mh;
 } hit;
 
 /* Height field y = base + A (1 + sin(2 pi f x) sin(2 pi f z)) / 2 in local x, z. */
@@ -116,7 +318,7 @@ static double hf_height(const sol_scene_object *o, double x, double z)
 }
 
 static int intersect(const sol_scene_object *o, const double org[3], const double dir[3], double tmax, double *t_out,
-                     double n[3], double color[3])
+                     double n[3], sol_mesh_hit *mh)
 {
     switch (o->kind) {
     case SOL_GEOM_PLANE: {
@@ -228,8 +430,12 @@ static int intersect(const sol_scene_object *o, const double org[3], const doubl
         }
         return 0;
     }
-    case SOL_GEOM_MESH: /* triangles through the mesh's BVH; the triangle's base colour */
-        return o->mesh && sol_mesh_intersect(o->mesh, org, dir, tmax, t_out, n, color);
+    case SOL_GEOM_MESH: /* triangles through the mesh's BVH */
+        if (!o->mesh || !sol_mesh_intersect(o->mesh, org, dir, tmax, mh))
+            return 0;
+        *t_out = mh->t;
+        memcpy(n, mh->n, sizeof mh->n);
+        return 1;
     }
     return 0;
 }
@@ -241,15 +447,18 @@ static int trace(const frame *f, const double org[3], const double dir[3], doubl
     int found = 0;
     double best = tmax, n[3];
     for (int i = 0; i < s->object_count; ++i) {
-        double t, color[3] = {-1, -1, -1};
+        double t;
+        sol_mesh_hit mh;
         if (skip_culled && f->culled && f->culled[i])
             continue;
-        if (intersect(&s->objects[i], org, dir, best, &t, n, color)) {
+        if (intersect(&s->objects[i], org, dir, best, &t, n, &mh)) {
             best = t;
             found = 1;
             h->object = i;
             memcpy(h->n, n, sizeof n);
-            memcpy(h->color, color, sizeof color);
+            h->mesh = s->objects[i].kind == SOL_GEOM_MESH;
+            if (h->mesh)
+                h->mh = mh;
         }
     }
     if (!found)
@@ -534,11 +743,14 @@ static int lights_as_sgs(const frame *f, const double p[3], sol_sg *out)
     int n = 0;
     for (int i = 0; i < f->s->light_count && n < MAX_SG_LIGHTS; ++i) {
         const sol_scene_light *l = &f->s->lights[i];
-        if (l->kind == SOL_LIGHT_ENV) {
-            for (int j = 0; j < l->lobe_count && n < MAX_SG_LIGHTS; ++j, ++n) {
-                memcpy(out[n].axis, l->lobes[j].axis, sizeof out[n].axis);
-                out[n].sharpness = l->lobes[j].sharpness;
-                out[n].amplitude = l->intensity * sol_luminance(l->lobes[j].amplitude);
+        if (l->kind == SOL_LIGHT_ENV) { /* SG lobes, or the env-sg fit of a map */
+            const env_light *el = &f->env[i];
+            const sol_scene_sg_lobe *lb = el->lobes ? el->lobes : el->fitted;
+            int count = el->lobes ? el->lobe_count : el->fitted_count;
+            for (int j = 0; j < count && n < MAX_SG_LIGHTS; ++j, ++n) {
+                memcpy(out[n].axis, lb[j].axis, sizeof out[n].axis);
+                out[n].sharpness = lb[j].sharpness;
+                out[n].amplitude = l->intensity * sol_luminance(lb[j].amplitude);
             }
         } else {
             double dir[3], e[3], d;
@@ -624,7 +836,39 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
     double uv[2];
     surface_frame(h.p, h.n, uv, sf->t_axis, sf->b_axis);
     memcpy(sf->n, h.n, sizeof h.n);
-    if (pm->normal_map.data) {
+    /* a mesh: its tangent frame (tangent orthogonalised against the normal, bitangent n x t with
+     * the sign of the mesh's), its material's textures at its texture coordinates */
+    const prepared_mesh *pmesh = h.mesh && f->meshes ? &f->meshes[h.object] : NULL;
+    const sol_mesh_material *mm = NULL;
+    int mi = h.mesh ? h.mh.material : -1;
+    if (h.mesh && mi >= 0 && o->mesh && mi < o->mesh->mat_count)
+        mm = &o->mesh->mats[mi];
+    int has_tan = 0;
+    if (h.mesh) {
+        double mt[3], mb[3];
+        memcpy(mt, h.mh.tangent, sizeof mt);
+        double d = sol_dot3(mt, h.n);
+        for (int i = 0; i < 3; ++i)
+            mt[i] -= d * h.n[i];
+        if (v_norm(mt) > 1e-9) {
+            v_cross(mb, h.n, mt);
+            if (sol_dot3(mb, h.mh.bitangent) < 0)
+                for (int i = 0; i < 3; ++i)
+                    mb[i] = -mb[i];
+            memcpy(sf->t_axis, mt, sizeof mt);
+            memcpy(sf->b_axis, mb, sizeof mb);
+            has_tan = 1;
+        }
+    }
+    if (mm && mm->normal_tex >= 0 && has_tan && pmesh && pmesh->tex[mm->normal_tex].data) {
+        double tn[3]; /* assimp's v is up; the image's row 0 is the top */
+        tex_sample(&pmesh->tex[mm->normal_tex], h.mh.uv[0], 1 - h.mh.uv[1], tn);
+        for (int i = 0; i < 3; ++i)
+            sf->n[i] = tn[0] * sf->t_axis[i] + tn[1] * sf->b_axis[i] + tn[2] * h.n[i];
+        if (v_norm(sf->n) == 0 || sol_dot3(sf->n, h.n) <= 0)
+            memcpy(sf->n, h.n, sizeof h.n);
+    }
+    if (pm->normal_map.data && !h.mesh) {
         double tn[3];
         tex_sample(&pm->normal_map, uv[0] * pm->normal_scale, uv[1] * pm->normal_scale, tn);
         for (int i = 0; i < 3; ++i)
@@ -633,9 +877,15 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
             memcpy(sf->n, h.n, sizeof h.n);
     }
     memcpy(sf->albedo, m->albedo, sizeof sf->albedo);
-    if (h.color[0] >= 0) /* a mesh triangle's base colour */
-        memcpy(sf->albedo, h.color, sizeof sf->albedo);
-    if (pm->albedo.data) {
+    if (h.mesh) { /* the base colour factor times the base-colour texture */
+        memcpy(sf->albedo, h.mh.color, sizeof sf->albedo);
+        if (mm && mm->base_tex >= 0 && pmesh && pmesh->tex[mm->base_tex].data) {
+            double a[3];
+            tex_sample(&pmesh->tex[mm->base_tex], h.mh.uv[0], 1 - h.mh.uv[1], a);
+            for (int i = 0; i < 3; ++i)
+                sf->albedo[i] *= a[i];
+        }
+    } else if (pm->albedo.data) {
         double a[3];
         tex_sample(&pm->albedo, uv[0] * pm->albedo_scale, uv[1] * pm->albedo_scale, a);
         for (int i = 0; i < 3; ++i)
@@ -659,16 +909,40 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
         sf->exact_ward = 1;
         sf->ggx = m->aniso == SOL_ANISO_GGX;
     }
+    const sol_sg *ndf_lobes = pm->lobes;
+    int ndf_k = pm->k;
+    if (mm && mm->aniso) {
+        /* KHR_materials_anisotropy: anisotropic GGX with alpha_t = mix(alpha, 1, strength^2) along
+         * the tangent rotated by anisotropyRotation towards the bitangent, alpha_b = alpha */
+        double c = cos(mm->aniso_rotation), sn = sin(mm->aniso_rotation), t[3];
+        for (int i = 0; i < 3; ++i)
+            t[i] = c * sf->t_axis[i] + sn * sf->b_axis[i];
+        double d = sol_dot3(t, sf->n);
+        for (int i = 0; i < 3; ++i)
+            t[i] -= d * sf->n[i];
+        if (v_norm(t) > 1e-6) {
+            memcpy(sf->t_axis, t, sizeof t);
+            v_cross(sf->b_axis, sf->n, t);
+        }
+        double st2 = mm->aniso_strength * mm->aniso_strength;
+        sf->ax = fmax(1e-3, mm->alpha + (1 - mm->alpha) * st2);
+        sf->ay = fmax(1e-3, mm->alpha);
+        sf->exact_ward = 1;
+        sf->ggx = 1;
+        ndf_lobes = pmesh && pmesh->k ? pmesh->lobes[mi] : NULL;
+        ndf_k = pmesh && pmesh->k ? pmesh->k[mi] : 0;
+    }
+    (void)has_tan;
     memcpy(sf->n_exact, sf->n, sizeof sf->n);
-    if (sf->exact_ward && !f->reference && fx(f, SOL_FX_SG_LOBES) && pm->k > 0) {
+    if (sf->exact_ward && !f->reference && fx(f, SOL_FX_SG_LOBES) && ndf_k > 0) {
         /* D15/D16: the NDF as SG lobes (world frame), lit by the lights as SGs; the principal Phong
          * lobe replaces the material in the G-buffer (normal, exponent). */
         sol_sg ndf[16], lights[MAX_SG_LIGHTS];
-        for (int k = 0; k < pm->k; ++k) {
-            ndf[k] = pm->lobes[k];
+        for (int k = 0; k < ndf_k; ++k) {
+            ndf[k] = ndf_lobes[k];
             for (int i = 0; i < 3; ++i)
-                ndf[k].axis[i] = pm->lobes[k].axis[0] * sf->t_axis[i] + pm->lobes[k].axis[1] * sf->b_axis[i] +
-                                 pm->lobes[k].axis[2] * sf->n[i];
+                ndf[k].axis[i] = ndf_lobes[k].axis[0] * sf->t_axis[i] + ndf_lobes[k].axis[1] * sf->b_axis[i] +
+                                 ndf_lobes[k].axis[2] * sf->n[i];
         }
         int nl = lights_as_sgs(f, sf->p, lights);
         double v[3];
@@ -676,7 +950,7 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
             v[i] = -dir[i];
         v_norm(v);
         sol_phong_lobe lobe;
-        if (nl > 0 && sol_extract_phong_lobe(ndf, pm->k, lights, nl, v, &lobe) == SOL_OK &&
+        if (nl > 0 && sol_extract_phong_lobe(ndf, ndf_k, lights, nl, v, &lobe) == SOL_OK &&
             sol_dot3(lobe.normal, h.n) > 0) {
             memcpy(sf->n, lobe.normal, sizeof lobe.normal);
             v_norm(sf->n);
@@ -705,9 +979,66 @@ static void light_loop(const frame *f, const surface *sf, const double v[3], dou
     diff[0] = diff[1] = diff[2] = spec[0] = spec[1] = spec[2] = 0;
     for (int li = 0; li < s->light_count; ++li) {
         const sol_scene_light *l = &s->lights[li];
+        if (l->kind == SOL_LIGHT_ENV && !f->env[li].lobes) { /* a lat-long map, integrated exactly */
+            const env_light *el = &f->env[li];
+            double e[3], sp[3] = {0, 0, 0}, L[3];
+            env_irradiance(el, sf->n, e);
+            /* specular: R2 points, 32 per sample in the supersampled reference (each sample taking
+             * the next 32), 128 in the engine path; the exact anisotropic BRDF over uniform sphere
+             * directions, the normalised Phong lobe by importance sampling it (pdf (n+1)/(2 pi)
+             * (r.l)^n, so each direction weighs (n+2)/(n+1) n.l) */
+            const int count = f->reference ? 32 : 128;
+            if (sf->exact_ward) {
+                for (int k = 0; k < count; ++k) {
+                    double u, w, d[3];
+                    sol_r2_point((uint64_t)(sf->quad_base + k), &u, &w);
+                    sol_sphere_uniform(u, w, d);
+                    double b = specular(sf, v, d);
+                    if (b > 0) {
+                        env_lookup(el->map, 0, d, L);
+                        for (int c = 0; c < 3; ++c)
+                            sp[c] += L[c] * b;
+                    }
+                }
+                for (int c = 0; c < 3; ++c)
+                    sp[c] *= 4 * M_PI / count;
+            } else {
+                double r[3], t[3], b[3], vn = sol_dot3(v, sf->n), ne = sf->exponent;
+                for (int i = 0; i < 3; ++i)
+                    r[i] = 2 * vn * sf->n[i] - v[i];
+                v_norm(r);
+                v_set(t, fabs(r[0]) < 0.9 ? 1 : 0, fabs(r[0]) < 0.9 ? 0 : 1, 0);
+                double d0 = sol_dot3(t, r);
+                for (int i = 0; i < 3; ++i)
+                    t[i] -= d0 * r[i];
+                v_norm(t);
+                v_cross(b, r, t);
+                for (int k = 0; k < count; ++k) {
+                    double u, w, d[3];
+                    sol_r2_point((uint64_t)(sf->quad_base + k), &u, &w);
+                    double ca = pow(1 - u, 1 / (ne + 1)), sa = sqrt(fmax(0, 1 - ca * ca)), ph = 2 * M_PI * w;
+                    for (int i = 0; i < 3; ++i)
+                        d[i] = sa * cos(ph) * t[i] + sa * sin(ph) * b[i] + ca * r[i];
+                    double nl = sol_dot3(d, sf->n);
+                    if (nl > 0) {
+                        env_lookup(el->map, 0, d, L);
+                        for (int c = 0; c < 3; ++c)
+                            sp[c] += L[c] * nl;
+                    }
+                }
+                for (int c = 0; c < 3; ++c)
+                    sp[c] *= sf->lobe_scale * (ne + 2) / (ne + 1) / count;
+            }
+            for (int c = 0; c < 3; ++c) {
+                diff[c] += l->intensity * e[c];
+                spec[c] += l->intensity * l->color[c] * sp[c];
+            }
+            continue;
+        }
         if (l->kind == SOL_LIGHT_ENV) {
-            for (int j = 0; j < l->lobe_count; ++j) {
-                sol_sg g = {{l->lobes[j].axis[0], l->lobes[j].axis[1], l->lobes[j].axis[2]}, l->lobes[j].sharpness, 1};
+            const sol_scene_sg_lobe *lobes = f->env[li].lobes;
+            for (int j = 0; j < f->env[li].lobe_count; ++j) {
+                sol_sg g = {{lobes[j].axis[0], lobes[j].axis[1], lobes[j].axis[2]}, lobes[j].sharpness, 1};
                 double e = l->intensity * lobe_irradiance(f, li, j, g.axis, sf->n);
                 double sp;
                 if (sf->exact_ward) {
@@ -731,8 +1062,8 @@ static void light_loop(const frame *f, const surface *sf, const double v[3], dou
                     sp = l->intensity * sf->lobe_scale * sol_sg_inner_product(&g, &ph) * fmax(0, sol_dot3(r, sf->n));
                 }
                 for (int c = 0; c < 3; ++c) {
-                    diff[c] += e * l->lobes[j].amplitude[c];
-                    spec[c] += sp * l->lobes[j].amplitude[c];
+                    diff[c] += e * lobes[j].amplitude[c];
+                    spec[c] += sp * lobes[j].amplitude[c];
                 }
             }
             continue;
@@ -912,7 +1243,7 @@ static sol_status render_frame(frame *f, double jx, double jy, unsigned ao_frame
     }
     /* the per-pixel effects run inside the passes below; they are counted once per pass */
     static const sol_effect per_pixel[] = {SOL_FX_GBUFFER_NORMALS, SOL_FX_LIGHT_BUFFER, SOL_FX_RANGE_SCALING,
-                                           SOL_FX_CLIP_VOLUMES};
+                                           SOL_FX_CLIP_VOLUMES, SOL_FX_ENV_SG};
     for (size_t k = 0; k < sizeof per_pixel / sizeof per_pixel[0]; ++k)
         if (!f->reference && fx(f, per_pixel[k]))
             f->stats->effect_runs[per_pixel[k]]++;
@@ -1057,13 +1388,49 @@ static void free_frame(frame *f)
             sol_image_free(&f->mats[i].normal_map);
         }
     free(f->mats);
+    if (f->meshes)
+        for (int i = 0; i < f->s->object_count; ++i) {
+            if (f->meshes[i].tex && f->s->objects[i].mesh)
+                for (int t = 0; t < f->s->objects[i].mesh->tex_count; ++t)
+                    sol_image_free(&f->meshes[i].tex[t]);
+            free(f->meshes[i].tex);
+            free(f->meshes[i].k);
+            free(f->meshes[i].lobes);
+        }
+    free(f->meshes);
     free(f->culled);
     if (f->irradiance)
         for (int i = 0; i < f->s->light_count; ++i)
             free(f->irradiance[i]);
     free(f->irradiance);
+    if (f->env)
+        for (int i = 0; i < f->s->light_count; ++i) {
+            free(f->env[i].fitted);
+            free(f->env[i].irr);
+        }
+    free(f->env);
     sol_bestfit_table_free(&f->bestfit);
     sol_lut3d_free(&f->lut);
+}
+
+/* D15: K isotropic SG lobes fitted to the Ward NDF of the pair (Ceres); fit K at offset K(K-1)/2.
+ * A GGX material gets the lobes of the Ward NDF with the same roughness pair (the talk fits Ward,
+ * D15); GGX's longer tail that they miss is part of this effect's error against the reference,
+ * which shades the exact GGX BRDF. */
+static sol_status fit_ndf_lobes(frame *f, double ax, double ay, sol_sg out[16], int *k_out)
+{
+    int k = f->s->pipeline.sg_lobes;
+    sol_sg *all = malloc(sizeof(sol_sg) * (size_t)(k * (k + 1) / 2));
+    sol_sg_fit_error *errs = malloc(sizeof *errs * (size_t)k);
+    sol_status st = !all || !errs ? SOL_ERR_NO_MEMORY : sol_ward_sg_fit(ax, ay, k, NULL, all, errs, NULL);
+    if (st == SOL_OK) {
+        memcpy(out, all + k * (k - 1) / 2, sizeof(sol_sg) * (size_t)k);
+        *k_out = k;
+        f->stats->effect_runs[SOL_FX_SG_LOBES]++;
+    }
+    free(all);
+    free(errs);
+    return st;
 }
 
 static sol_status prepare(frame *f)
@@ -1072,19 +1439,42 @@ static sol_status prepare(frame *f)
     sol_status st;
     f->mats = calloc((size_t)(s->material_count > 0 ? s->material_count : 1), sizeof *f->mats);
     f->culled = calloc((size_t)(s->object_count > 0 ? s->object_count : 1), 1);
+    f->meshes = calloc((size_t)(s->object_count > 0 ? s->object_count : 1), sizeof *f->meshes);
     f->irradiance = calloc((size_t)(s->light_count > 0 ? s->light_count : 1), sizeof *f->irradiance);
-    if (!f->mats || !f->culled || !f->irradiance)
+    f->env = calloc((size_t)(s->light_count > 0 ? s->light_count : 1), sizeof *f->env);
+    if (!f->mats || !f->culled || !f->irradiance || !f->env || !f->meshes)
         return SOL_ERR_NO_MEMORY;
     for (int li = 0; li < s->light_count; ++li) {
         const sol_scene_light *l = &s->lights[li];
-        if (l->lobe_count == 0)
+        env_light *el = &f->env[li];
+        if (l->kind != SOL_LIGHT_ENV)
             continue;
-        float *t = malloc(sizeof *t * (size_t)l->lobe_count * IRR_TABLE);
+        if (l->env_image.data) {
+            el->map = &l->env_image;
+            /* the engine path fits the lobes (the lights as SGs of the D16 extraction use them too);
+             * it shades with them when env-sg runs, else with the map like the reference */
+            if (!f->reference &&
+                (st = env_fit_lobes(&l->env_image, l->color, s->pipeline.env_lobes, &el->fitted)) != SOL_OK)
+                return st;
+            el->fitted_count = el->fitted ? s->pipeline.env_lobes : 0;
+            if (!f->reference && fx(f, SOL_FX_ENV_SG)) {
+                f->stats->effect_runs[SOL_FX_ENV_SG]++;
+                el->lobes = el->fitted;
+                el->lobe_count = el->fitted_count;
+            } else if ((st = env_irradiance_table(&l->env_image, l->color, &el->irr)) != SOL_OK)
+                return st;
+        } else {
+            el->lobes = l->lobes;
+            el->lobe_count = l->lobe_count;
+        }
+        if (el->lobe_count == 0)
+            continue;
+        float *t = malloc(sizeof *t * (size_t)el->lobe_count * IRR_TABLE);
         if (!t)
             return SOL_ERR_NO_MEMORY;
         f->irradiance[li] = t;
-        for (int j = 0; j < l->lobe_count; ++j) {
-            sol_sg g = {{0, 0, 1}, l->lobes[j].sharpness, 1};
+        for (int j = 0; j < el->lobe_count; ++j) {
+            sol_sg g = {{0, 0, 1}, el->lobes[j].sharpness, 1};
             for (int k = 0; k < IRR_TABLE; ++k) {
                 double c = -1 + 2.0 * k / (IRR_TABLE - 1), n[3] = {sqrt(fmax(0, 1 - c * c)), 0, c};
                 t[(size_t)j * IRR_TABLE + k] = (float)sol_sg_cosine_convolve(&g, n);
@@ -1104,24 +1494,44 @@ static sol_status prepare(frame *f)
             if ((st = prepare_normal_map(f, &m->normal_map, &pm->normal_map)) != SOL_OK)
                 return st;
         }
-        if (m->aniso != SOL_ANISO_NONE && !f->reference && fx(f, SOL_FX_SG_LOBES)) {
-            /* D15: K isotropic SG lobes fitted to the Ward NDF (Ceres); fit K at offset K(K-1)/2.
-             * A GGX material gets the lobes of the Ward NDF with the same roughness pair (the
-             * talk fits Ward, D15); GGX's longer tail that they miss is part of this effect's
-             * error against the reference, which shades the exact GGX BRDF. */
-            int k = s->pipeline.sg_lobes;
-            sol_sg *all = malloc(sizeof(sol_sg) * (size_t)(k * (k + 1) / 2));
-            sol_sg_fit_error *errs = malloc(sizeof *errs * (size_t)k);
-            st = !all || !errs ? SOL_ERR_NO_MEMORY
-                               : sol_ward_sg_fit(m->roughness[0], m->roughness[1], k, NULL, all, errs, NULL);
-            if (st == SOL_OK) {
-                memcpy(pm->lobes, all + k * (k - 1) / 2, sizeof(sol_sg) * (size_t)k);
-                pm->k = k;
-                f->stats->effect_runs[SOL_FX_SG_LOBES]++;
-            }
-            free(all);
-            free(errs);
+        if (m->aniso != SOL_ANISO_NONE && !f->reference && fx(f, SOL_FX_SG_LOBES) &&
+            (st = fit_ndf_lobes(f, m->roughness[0], m->roughness[1], pm->lobes, &pm->k)) != SOL_OK)
+            return st;
+    }
+    /* meshes: their textures through the same effects as a material's (a base-colour texture is
+     * an sRGB albedo texture of its PNG's bits, a normal texture a linear normal map), and the SG
+     * lobes of their KHR_materials_anisotropy materials */
+    for (int i = 0; i < s->object_count; ++i) {
+        const sol_mesh *mesh = s->objects[i].mesh;
+        if (s->objects[i].kind != SOL_GEOM_MESH || !mesh)
+            continue;
+        prepared_mesh *pmesh = &f->meshes[i];
+        pmesh->tex = calloc((size_t)(mesh->tex_count > 0 ? mesh->tex_count : 1), sizeof *pmesh->tex);
+        pmesh->k = calloc((size_t)(mesh->mat_count > 0 ? mesh->mat_count : 1), sizeof *pmesh->k);
+        pmesh->lobes = calloc((size_t)(mesh->mat_count > 0 ? mesh->mat_count : 1), sizeof *pmesh->lobes);
+        if (!pmesh->tex || !pmesh->k || !pmesh->lobes)
+            return SOL_ERR_NO_MEMORY;
+        for (int t = 0; t < mesh->tex_count; ++t) {
+            sol_scene_texture *tt = malloc(sizeof *tt);
+            if (!tt)
+                return SOL_ERR_NO_MEMORY;
+            memset(tt, 0, sizeof *tt);
+            tt->source = SOL_TEX_FILE;
+            tt->bits = mesh->tex[t].bits;
+            tt->linear = mesh->tex[t].normal;
+            tt->scale = 1;
+            tt->image = mesh->tex[t].image; /* borrowed: read only */
+            st = mesh->tex[t].normal ? prepare_normal_map(f, tt, &pmesh->tex[t]) : prepare_albedo(f, tt, &pmesh->tex[t]);
+            free(tt);
             if (st != SOL_OK)
+                return st;
+        }
+        for (int k = 0; k < mesh->mat_count; ++k) {
+            const sol_mesh_material *mm = &mesh->mats[k];
+            if (!mm->aniso || f->reference || !fx(f, SOL_FX_SG_LOBES))
+                continue;
+            double ax = fmax(1e-3, mm->alpha + (1 - mm->alpha) * mm->aniso_strength * mm->aniso_strength);
+            if ((st = fit_ndf_lobes(f, ax, fmax(1e-3, mm->alpha), pmesh->lobes[k], &pmesh->k[k])) != SOL_OK)
                 return st;
         }
     }

@@ -29,6 +29,7 @@ extern "C" {
 #define SOL_SCENE_MAX_FILE_BYTES ((size_t)16 << 20) /* 16 MiB of JSON */
 #define SOL_SCENE_MAX_ITEMS 4096                    /* objects, materials, lights, frames, lobes each */
 #define SOL_SCENE_MAX_PIXELS (8192 * 8192)          /* camera width * height */
+#define SOL_SCENE_ENV_MAX_PIXELS (1 << 25)          /* lat-long environment EXR: 8192 x 4096 */
 #define SOL_SCENE_NAME_MAX 64
 #define SOL_SCENE_PATH_MAX 1024
 
@@ -149,6 +150,7 @@ typedef struct sol_scene_pipeline {
     int culling;               /* -1 auto (on with >= 8 boxes), 0 off, 1 on */
     int reference_supersample; /* samples per pixel side of the reference path; default 3 */
     int sg_lobes;              /* lobes of the Ward-to-SG fit (D15); default 4 */
+    int env_lobes;             /* SG lobes a lat-long environment is fitted with (env-sg); default 24 */
 } sol_scene_pipeline;
 
 typedef struct sol_scene {
@@ -176,11 +178,14 @@ sol_status sol_scene_parse(const char *text, size_t len, const char *path, sol_s
  * .obj is a model, not a scene file: it is imported through assimp (sol_scene_from_model). */
 sol_status sol_scene_load(const char *path, sol_scene *out, sol_scene_error *err);
 /* A scene around one model file imported through assimp's C API (glTF 2.0, OBJ): its meshes with
- * node transforms, base colours (times PNG base-colour textures, see docs/scene-format.md), its
+ * node transforms, base colours (times PNG base-colour textures), PNG normal textures and
+ * KHR_materials_anisotropy (docs/scene-format.md, "Model materials"), its
  * first camera (else a camera framing the model's bounds), its
  * punctual lights (KHR_lights_punctual; else a sun and a sky lobe), every pipeline setting at its
  * default. A file assimp rejects, with non-finite vertices, or without triangles gives
- * SOL_ERR_FORMAT / SOL_ERR_NONFINITE with assimp's or sol's reason in err. */
+ * SOL_ERR_FORMAT / SOL_ERR_NONFINITE with assimp's or sol's reason in err; a missing texture
+ * SOL_ERR_IO naming it, a normal texture without RGB SOL_ERR_FORMAT, a bad anisotropy field
+ * SOL_ERR_FORMAT / SOL_ERR_NONFINITE / SOL_ERR_OUT_OF_RANGE naming its JSON pointer. */
 sol_status sol_scene_from_model(const char *path, sol_scene *out, sol_scene_error *err);
 /* Frees everything the scene owns and zeroes it; safe on NULL or a zeroed scene. */
 void sol_scene_free(sol_scene *scene);
@@ -206,6 +211,7 @@ typedef enum sol_effect {
     SOL_FX_POST_AA,             /* D17: deviation-driven post-process AA */
     SOL_FX_CULLING,             /* M1: coverage-buffer occlusion culling */
     SOL_FX_LUT_GRADING,         /* M4: colour grading through a size^3 LUT */
+    SOL_FX_ENV_SG,              /* D15, D16: a lat-long environment map as SG lighting lobes */
     SOL_FX_COUNT
 } sol_effect;
 
@@ -236,7 +242,9 @@ sol_status sol_scene_plan_build(const sol_scene *scene, sol_scene_plan *out);
  * accumulates diffuse and specular light (the light buffer), composition multiplies by albedo and
  * adds ambient light times obscurance, then exposure, tone map (sol_hdr), grading, and AA.
  *  - reference path: float everywhere, no compression, exact Ward or anisotropic GGX BRDF, ray-traced visibility for
- *    clipped lights, converged obscurance, reference_supersample^2 samples per pixel.
+ *    clipped lights, converged obscurance, lat-long environments integrated exactly (irradiance
+ *    table over the map's texels, importance-sampled specular; docs/scene-format.md),
+ *    reference_supersample^2 samples per pixel.
  *  - engine path: one sample per pixel and every planned effect in the talk's format.
  * Attribution: the engine path with one effect swapped for its reference version
  * (options.reference_effects bit e) measures that effect's share of the error and of the time.

@@ -1,0 +1,479 @@
+/* bc4_common.c - the exact least-squares BC4 search of the common encoder (T10 "usual" per-channel
+ * 3Dc encoding, T13's baseline) by branch and bound over boxes of anchor codes.
+ *
+ * Problem: 16 targets t_p (decoded units 2 v - 1), find the ordered anchor pair (e0, e1) of least
+ * score S(e0, e1) = sum_p min_k (pal_k - t_p)^2 over all 65536 pairs, ties to the smallest
+ * pair = e0 << 8 | e1 - exactly what sol_nm_channel_argmin returns on the full range (the same
+ * score, summed in the same pixel order, so equal scores are bit-identical).
+ *
+ * Bounds. Write L for the low anchor and H for the high one (8-value mode e0 = H > e1 = L, 6-value
+ * mode e0 = L <= e1 = H) and A(c) = 2 c / 255 - 1. Every palette entry is an anchor or an
+ * interpolant (1 - w) A(L) + w A(H) with a fixed weight w (8-value: w = j / 7, j = 1..6; 6-value:
+ * w = j / 5, j = 1..4) rounded by the decoder by at most delta (decoded units: 1/65535 for 16-bit
+ * interpolants, 1/255 for 8-bit, 0 for float); the 6-value mode adds the fixed entries -1 and +1.
+ * Since w is in [0, 1], an entry is non-decreasing in both A(L) and A(H), so over a box of codes
+ * L in [L1, L2], H in [H1, H2] entry k stays inside the interval
+ *     I_k = [(1 - w) A(L1) + w A(H1) - delta, (1 - w) A(L2) + w A(H2) + delta]
+ * and every pair of the box scores at least
+ *     LB(box) = sum_p min_k dist(t_p, I_k)^2.
+ * A second bound counts entries: the targets' terms are each at most best, so the entries they use
+ * lie in the window [tmin - r, tmax + r] (r = sqrt(best), width W); consecutive lattice entries are
+ * at least step - 2 delta apart (step = (A(H) - A(L)) / den >= (A(H1) - A(L2)) / den over the box), so
+ * at most floor(W / (step - 2 delta)) + 1 of them (plus the fixed entries inside the window) serve
+ * the 16 targets, and the score is at least q[m], the least sum of squares of the targets to m free
+ * points (1-D optimal quantisation: contiguous groups of the sorted targets, a small dynamic
+ * programme). This is what prunes the long thin strips of pairs that have ONE entry near a narrow
+ * block (the interval bound alone cannot: one entry is enough to make it zero).
+ * Before the search, per mode, the same two facts give the region that can still reach the
+ * incumbent (mode_region): L <= l_max, H >= h_min, H - L <= span_max.
+ *
+ * Search: the incumbent is the fast encoder's pair (sol_nm_bc4_fast) refined by a least-squares
+ * refit of its anchors (refine), scored exactly. Boxes are split in halves of the longer side,
+ * the child of smaller bound visited first; a box is dropped when LB > best, or when LB >= best
+ * and its smallest pair index is above the incumbent's (no pair inside can win the tie rule).
+ * Boxes of at most SMALL_BOX pairs are scored pair by pair with the reference order and early
+ * exit. Flat blocks (16 equal targets) list their few candidate pairs directly (flat_search). The bounds are lowered by a relative 1e-9 and delta is raised by 1e-12, far above the
+ * rounding of these sums, so no bound exceeds the computed score of a pair it covers: the result is
+ * the exhaustive search's, pair for pair (tests compare with the literal brute force). */
+#include "normalmaps_internal.h"
+
+#include <math.h>
+
+typedef struct common_ctx {
+    const double *t;
+    int order[16];
+    const double (*pal)[8];
+    double delta;
+    double best;
+    int best_pair;
+    double tmin, tmax;
+    /* quantisation bound: q[m] = least sum of squares of the targets to m free points (m = 1..8),
+     * rows of the dynamic programme computed on demand (q_rows of them so far) */
+    double sorted[16], prefix[17], prefix2[17];
+    double dp[9][16];
+    double q[9], q_slack;
+    int q_rows;
+} common_ctx;
+
+/* Sum of squares of sorted[i..j] about their mean. */
+static inline double group_cost(const common_ctx *c, int i, int j)
+{
+    double n = j - i + 1, s = c->prefix[j + 1] - c->prefix[i], s2 = c->prefix2[j + 1] - c->prefix2[i];
+    double v = s2 - s * s / n;
+    return v > 0.0 ? v : 0.0;
+}
+
+/* q[m]: 1-D optimal m-point quantisation of the 16 targets (contiguous groups of the sorted values). */
+static double quantisation_bound(common_ctx *c, int m)
+{
+    while (c->q_rows < m) {
+        int r = ++c->q_rows;
+        for (int j = 0; j < 16; ++j) {
+            double b = INFINITY;
+            if (r == 1)
+                b = group_cost(c, 0, j);
+            else
+                for (int i = r - 1; i <= j; ++i) {
+                    double v = c->dp[r - 1][i - 1] + group_cost(c, i, j);
+                    b = v < b ? v : b;
+                }
+            c->dp[r][j] = r - 1 > j ? 0.0 : b;
+        }
+        c->q[r] = c->dp[r][15];
+    }
+    return c->q[m];
+}
+
+static inline double anchor(int c)
+{
+    return 2.0 * c / 255.0 - 1.0;
+}
+
+/* Exact score of a pair in the reference order, with early exit once above budget. */
+static inline double exact_score(const common_ctx *c, int pair, double budget)
+{
+    const double *pal = c->pal[pair];
+    double s = 0.0;
+    for (int k = 0; k < 16; ++k) {
+        double t = c->t[c->order[k]], d[8];
+        for (int i = 0; i < 8; ++i)
+            d[i] = (pal[i] - t) * (pal[i] - t);
+        /* a min tree (the same value as a running min: min is exact) */
+        double m01 = d[0] < d[1] ? d[0] : d[1], m23 = d[2] < d[3] ? d[2] : d[3];
+        double m45 = d[4] < d[5] ? d[4] : d[5], m67 = d[6] < d[7] ? d[6] : d[7];
+        double ma = m01 < m23 ? m01 : m23, mb = m45 < m67 ? m45 : m67;
+        double m = ma < mb ? ma : mb;
+        s += m;
+        if (s > budget)
+            return s;
+    }
+    return s;
+}
+
+/* Lower bound of the score of every pair of the box (see the top of the file); stops once above budget. */
+static __attribute__((noinline)) double box_bound(common_ctx *c, int six, int l1, int l2, int h1, int h2, double budget)
+{
+    double lo[8], hi[8];
+    double al1 = anchor(l1), al2 = anchor(l2), ah1 = anchor(h1), ah2 = anchor(h2), d = c->delta;
+    int n = 0;
+    lo[n] = al1;
+    hi[n++] = al2;
+    lo[n] = ah1;
+    hi[n++] = ah2;
+    const int den = six ? 5 : 7;
+    for (int j = 1; j < den; ++j) {
+        double w = (double)j / den;
+        lo[n] = (1.0 - w) * al1 + w * ah1 - d;
+        hi[n++] = (1.0 - w) * al2 + w * ah2 + d;
+    }
+    if (six) {
+        lo[n] = hi[n] = -1.0;
+        ++n;
+        lo[n] = hi[n] = 1.0;
+        ++n;
+    }
+    /* the used entries lie within r = sqrt(best) of a target, so in a window of width W; entries are
+     * at least step - 2 delta apart, so at most floor(W / (step - 2 delta)) + 1 of them are there */
+    double r = sqrt(c->best) * (1.0 + 1e-9) + 1e-12, wlo = c->tmin - r, whi = c->tmax + r;
+    double gap = (ah1 - al2) / den - 2.0 * d;
+    if (gap > 0.0) {
+        double fit = floor((whi - wlo) / gap) + 1.0;
+        int used = fit < (double)(den + 1) ? (int)fit : den + 1;
+        if (six)
+            used += (wlo <= -1.0) + (whi >= 1.0);
+        if (used < 8) {
+            double qb = quantisation_bound(c, used) * (1.0 - 1e-9) - c->q_slack;
+            if (qb > budget)
+                return qb;
+        }
+    }
+    /* interval by interval over the 16 targets (independent lanes: the compiler vectorises it) */
+    double m[16];
+    for (int p = 0; p < 16; ++p)
+        m[p] = INFINITY;
+    for (int i = 0; i < n; ++i) {
+        const double l = lo[i], h = hi[i];
+        for (int p = 0; p < 16; ++p) {
+            /* dist^2 = max(lo - t, 0)^2 + max(t - hi, 0)^2 (one of them is 0), branch-free with
+             * max(x, 0) = (x + |x|) / 2 (exact) */
+            double a = l - c->sorted[p], b = c->sorted[p] - h;
+            double pa = a + fabs(a), pb = b + fabs(b);
+            double e2 = 0.25 * (pa * pa + pb * pb);
+            m[p] = m[p] < e2 ? m[p] : e2;
+        }
+    }
+    double s = 0.0;
+    for (int p = 0; p < 16; ++p)
+        s += m[p];
+    (void)budget;
+    return s;
+}
+
+typedef struct box {
+    double bound;
+    uint8_t l1, l2, h1, h2;
+} box;
+
+/* The smallest pair index of a box: 8-value pairs are H << 8 | L, 6-value pairs L << 8 | H. */
+static inline int box_min_pair(int six, const box *b)
+{
+    return six ? (b->l1 << 8 | b->h1) : (b->h1 << 8 | b->l1);
+}
+
+static inline int box_hopeless(const common_ctx *c, int six, const box *b)
+{
+    return b->bound > c->best || (b->bound >= c->best && box_min_pair(six, b) > c->best_pair);
+}
+
+/* The part of a mode's pairs that can still reach the incumbent (computed once per mode): low anchor
+ * L <= l_max, high anchor H >= h_min, span H - L <= span_max codes. */
+typedef struct region {
+    int gap; /* 8-value: H >= L + 1; 6-value: H >= L */
+    int l_max, h_min, span_max;
+} region;
+
+/* Clips a box to the region; 0 if no pair is left. */
+static int box_clip(const region *g, int l1, int l2, int h1, int h2, box *b)
+{
+    l2 = l2 < g->l_max ? l2 : g->l_max;
+    h1 = h1 > g->h_min ? h1 : g->h_min;
+    if (h1 < l1 + g->gap)
+        h1 = l1 + g->gap;
+    if (l2 > h2 - g->gap)
+        l2 = h2 - g->gap;
+    if (h2 > l2 + g->span_max)
+        h2 = l2 + g->span_max;
+    if (l1 < h1 - g->span_max)
+        l1 = h1 - g->span_max;
+    if (l1 > l2 || h1 > h2)
+        return 0;
+    b->l1 = (uint8_t)l1;
+    b->l2 = (uint8_t)l2;
+    b->h1 = (uint8_t)h1;
+    b->h2 = (uint8_t)h2;
+    return 1;
+}
+
+static int code_floor(double v)
+{
+    double c = floor((v + 1.0) * 127.5 + 1e-7);
+    return c < 0.0 ? -1 : (c > 255.0 ? 255 : (int)c);
+}
+
+static int code_ceil(double v)
+{
+    double c = ceil((v + 1.0) * 127.5 - 1e-7);
+    return c < 0.0 ? 0 : (c > 255.0 ? 256 : (int)c);
+}
+
+/* The region of a mode from the incumbent (score `best`); 0 if the whole mode is out of reach.
+ * - Every entry of an 8-value palette lies in [A(L), A(H)], so the smallest target, whose term is at
+ *   most best, needs A(L) <= tmin + r and A(H) >= tmax - r, r = sqrt(best) (6-value: unless the
+ *   fixed -1 / +1 entry is within r of it).
+ * - The entries the targets use lie in the window [tmin - r, tmax + r] of width W, so (as in
+ *   box_bound) a palette of step s holds at most floor(W / (s - 2 delta)) + 1 lattice entries
+ *   there, plus the fixed entries inside the window; with m_min the fewest entries whose
+ *   quantisation bound q[m] does not exceed best, s <= W / (m_min - fixed - 1) + 2 delta, and the
+ *   span H - L = den s (decoded units) follows. */
+static int mode_region(common_ctx *c, int six, region *g)
+{
+    double r = sqrt(c->best) * (1.0 + 1e-9) + 1e-12, wlo = c->tmin - r, whi = c->tmax + r;
+    int den = six ? 5 : 7, fixed = six ? (wlo <= -1.0) + (whi >= 1.0) : 0;
+    g->gap = six ? 0 : 1;
+    g->l_max = six && wlo <= -1.0 ? 255 : code_floor(c->tmin + r);
+    g->h_min = six && whi >= 1.0 ? 0 : code_ceil(c->tmax - r);
+    g->span_max = 255;
+    int m_min = 0;
+    for (int m = 1; m <= den + 1 + fixed && !m_min; ++m)
+        if (quantisation_bound(c, m) * (1.0 - 1e-9) - c->q_slack <= c->best)
+            m_min = m;
+    if (!m_min)
+        return 0;
+    if (m_min - fixed >= 2) {
+        double step = (whi - wlo) / (m_min - fixed - 1) + 2.0 * c->delta;
+        double span = floor(den * step * 127.5 + 1e-7);
+        g->span_max = span < 255.0 ? (int)span : 255;
+    }
+    return g->l_max >= 0 && g->h_min <= 255;
+}
+
+static void try_pair(common_ctx *c, int pair)
+{
+    double v = exact_score(c, pair, c->best);
+    if (v < c->best || (v == c->best && pair < c->best_pair)) {
+        c->best = v;
+        c->best_pair = pair;
+    }
+}
+
+/* Boxes of at most this many pairs are scored pair by pair (exact scores exit early; cheaper than
+ * splitting further, measured on the benchmark maps). */
+#define SMALL_BOX 16
+
+static void search_mode(common_ctx *c, int six)
+{
+    box stack[64];
+    int top = 0;
+    region g;
+    if (!mode_region(c, six, &g) || !box_clip(&g, 0, 255, 0, 255, &stack[0]))
+        return;
+    stack[0].bound = 0.0;
+    top = 1;
+    while (top > 0) {
+        box b = stack[--top];
+        if (box_hopeless(c, six, &b))
+            continue;
+        if ((b.l2 - b.l1 + 1) * (b.h2 - b.h1 + 1) <= SMALL_BOX) { /* score its pairs directly */
+            if (six) /* pairs in table order (L << 8 | H): neighbouring palettes */
+                for (int l = b.l1; l <= b.l2; ++l)
+                    for (int h = b.h1 > l ? b.h1 : l; h <= b.h2; ++h)
+                        try_pair(c, l << 8 | h);
+            else /* H << 8 | L */
+                for (int h = b.h1; h <= b.h2; ++h)
+                    for (int l = b.l1; l <= b.l2 && l < h; ++l)
+                        try_pair(c, h << 8 | l);
+            continue;
+        }
+        box kid[2];
+        int nk = 0;
+        if (b.l2 - b.l1 >= b.h2 - b.h1) {
+            int mid = (b.l1 + b.l2) >> 1;
+            nk += box_clip(&g, b.l1, mid, b.h1, b.h2, &kid[nk]);
+            nk += box_clip(&g, mid + 1, b.l2, b.h1, b.h2, &kid[nk]);
+        } else {
+            int mid = (b.h1 + b.h2) >> 1;
+            nk += box_clip(&g, b.l1, b.l2, b.h1, mid, &kid[nk]);
+            nk += box_clip(&g, b.l1, b.l2, mid + 1, b.h2, &kid[nk]);
+        }
+        for (int i = 0; i < nk; ++i)
+            kid[i].bound = box_bound(c, six, kid[i].l1, kid[i].l2, kid[i].h1, kid[i].h2, c->best);
+        if (nk == 2 && kid[1].bound > kid[0].bound) { /* push the better one last: visited first */
+            box tmp = kid[0];
+            kid[0] = kid[1];
+            kid[1] = tmp;
+        }
+        for (int i = 0; i < nk; ++i)
+            if (!box_hopeless(c, six, &kid[i]))
+                stack[top++] = kid[i];
+    }
+}
+
+/* A better incumbent for the bounds: from a pair of a mode, a least-squares refit of the two anchors
+ * to the targets' lattice positions (the classic alpha-block refinement), rounded both ways, a few
+ * times. Only an incumbent: the search below proves or improves it. */
+static void refine(common_ctx *c, int six, int l, int h)
+{
+    const int den = six ? 5 : 7;
+    for (int round = 0; round < 3; ++round) {
+        double al = anchor(l), ah = anchor(h), step = (ah - al) / den;
+        double saa = 0.0, sab = 0.0, sbb = 0.0, sat = 0.0, sbt = 0.0;
+        for (int p = 0; p < 16; ++p) {
+            double t = c->t[p], k = step > 0.0 ? floor((t - al) / step + 0.5) : 0.0;
+            k = k < 0.0 ? 0.0 : (k > den ? den : k);
+            if (six && fabs(t - (al + k * step)) > fmin(fabs(t + 1.0), fabs(t - 1.0)))
+                continue; /* served by a fixed entry */
+            double b = k / den, a = 1.0 - b;
+            saa += a * a;
+            sab += a * b;
+            sbb += b * b;
+            sat += a * t;
+            sbt += b * t;
+        }
+        double det = saa * sbb - sab * sab;
+        if (!(fabs(det) > 1e-12))
+            return;
+        double fl = (sat * sbb - sbt * sab) / det, fh = (sbt * saa - sat * sab) / det;
+        int l0 = code_floor(fl), h0 = code_floor(fh), nl = l, nh = h;
+        for (int dl = 0; dl < 2; ++dl)
+            for (int dh = 0; dh < 2; ++dh) {
+                int a = l0 + dl, b = h0 + dh;
+                if (a < 0 || b > 255 || b < a + !six)
+                    continue;
+                int pair = six ? (a << 8 | b) : (b << 8 | a), before = c->best_pair;
+                try_pair(c, pair);
+                if (c->best_pair != before) {
+                    nl = a;
+                    nh = b;
+                }
+            }
+        if (nl == l && nh == h)
+            return;
+        l = nl;
+        h = nh;
+    }
+}
+
+/* ---- flat blocks (all 16 targets equal) ----
+ * The score is then S(m) = 16 equal terms m = min_k (pal_k - t)^2 added in order, non-decreasing in
+ * m, so a pair can reach the incumbent only if one of its entries lies within R = sqrt(m_best) of t
+ * (m_best the incumbent's term; a relative 1e-9 of slack). The box bounds cannot see this (one entry
+ * makes them zero along eight long lines of pairs), so the pairs are listed directly: for each low
+ * anchor L, the rows where L itself is within R, the column of high anchors within R, and for each
+ * interpolant weight w the high anchors H whose exact entry (1 - w) A(L) + w A(H) is within
+ * R + delta of t (an interval of H). Each is scored exactly (S(m), then the tie rule). When t is
+ * within R of the 6-value mode's fixed entries -1 or +1 every 6-value pair qualifies: the general
+ * search handles that case (returns 0). */
+static void flat_consider(common_ctx *c, int pair, double *m_best)
+{
+    const double *pal = c->pal[pair], t = c->t[0];
+    double m = (pal[0] - t) * (pal[0] - t);
+    for (int i = 1; i < 8; ++i) {
+        double d = (pal[i] - t) * (pal[i] - t);
+        m = d < m ? d : m;
+    }
+    if (m > *m_best * (1.0 + 1e-12))
+        return; /* S(m) > S(m_best) */
+    double v = 0.0;
+    for (int k = 0; k < 16; ++k)
+        v += m;
+    if (v < c->best || (v == c->best && pair < c->best_pair)) {
+        c->best = v;
+        c->best_pair = pair;
+        *m_best = m < *m_best ? m : *m_best;
+    }
+}
+
+static int flat_search(common_ctx *c)
+{
+    const double t = c->t[0];
+    const double *pal = c->pal[c->best_pair];
+    double m_best = INFINITY;
+    for (int i = 0; i < 8; ++i)
+        m_best = fmin(m_best, (pal[i] - t) * (pal[i] - t));
+    const double r = sqrt(m_best) * (1.0 + 1e-9) + 1e-300;
+    if (fabs(t + 1.0) <= r || fabs(t - 1.0) <= r)
+        return 0;
+    const double reach = r + c->delta;
+    const int a_lo = code_ceil(t - r), a_hi = code_floor(t + r); /* anchors within r */
+    for (int six = 0; six < 2; ++six) {
+        const int den = six ? 5 : 7, gap = six ? 0 : 1;
+        for (int l = 0; l < 256; ++l) {
+            const double al = anchor(l);
+            if (l >= a_lo && l <= a_hi) /* the low anchor itself: the whole row */
+                for (int h = l + gap; h < 256; ++h)
+                    flat_consider(c, six ? (l << 8 | h) : (h << 8 | l), &m_best);
+            for (int h = a_lo > l + gap ? a_lo : l + gap; h <= a_hi; ++h) /* the high anchor */
+                flat_consider(c, six ? (l << 8 | h) : (h << 8 | l), &m_best);
+            for (int j = 1; j < den; ++j) { /* interpolant of weight w = j / den on H */
+                double w = (double)j / den;
+                int h1 = code_ceil(al + (t - reach - al) / w), h2 = code_floor(al + (t + reach - al) / w);
+                h1 = h1 > l + gap ? h1 : l + gap;
+                for (int h = h1; h <= h2; ++h)
+                    flat_consider(c, six ? (l << 8 | h) : (h << 8 | l), &m_best);
+            }
+        }
+    }
+    return 1;
+}
+
+int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score)
+{
+    sol_nm_channel ch; /* for the reference pixel order */
+    sol_nm_channel_init(&ch, t, precision, 0, 0, 0, 255, 0, 255);
+    common_ctx c;
+    c.t = t;
+    for (int k = 0; k < 16; ++k)
+        c.order[k] = ch.order[k];
+    c.pal = ch.palettes;
+    for (int p = 0; p < 16; ++p) { /* insertion sort */
+        int q = p;
+        for (; q > 0 && c.sorted[q - 1] > t[p]; --q)
+            c.sorted[q] = c.sorted[q - 1];
+        c.sorted[q] = t[p];
+    }
+    c.tmin = c.sorted[0];
+    c.tmax = c.sorted[15];
+    /* prefix sums of the targets about their mean (less cancellation in the group costs); q_slack
+     * covers what is left of the rounding */
+    double mean = 0.0;
+    for (int p = 0; p < 16; ++p)
+        mean += c.sorted[p];
+    mean /= 16.0;
+    c.prefix[0] = c.prefix2[0] = 0.0;
+    for (int p = 0; p < 16; ++p) {
+        double v = c.sorted[p] - mean;
+        c.prefix[p + 1] = c.prefix[p] + v;
+        c.prefix2[p + 1] = c.prefix2[p] + v * v;
+    }
+    c.q_slack = 1e-13 * c.prefix2[16] + 1e-300;
+    c.q_rows = 0;
+    c.delta = (precision == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : precision == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) +
+              1e-12;
+    sol_bc4_block fast;
+    sol_nm_bc4_fast(t, &fast);
+    c.best_pair = fast.e0 << 8 | fast.e1;
+    c.best = exact_score(&c, c.best_pair, INFINITY);
+    if (fast.e0 > fast.e1)
+        refine(&c, 0, fast.e1, fast.e0);
+    else
+        refine(&c, 1, fast.e0, fast.e1);
+    int flat = 1;
+    for (int p = 1; p < 16; ++p)
+        flat &= c.sorted[p] == c.sorted[0];
+    if (!flat || !flat_search(&c)) {
+        search_mode(&c, 0);
+        search_mode(&c, 1);
+    }
+    *score = c.best;
+    return c.best_pair;
+}
