@@ -601,6 +601,64 @@ Test(normalmaps, work_bound_stops_the_search_and_says_so)
     sol_image_free(&img);
 }
 
+/* The hardest blocks of the real terrain map (make bench, 1024^2, issue 13): rough blocks whose
+ * per-channel bounds leave over a million candidates. The old search (joint index bound only) ran
+ * into the work bound on them (bounded, 0.2-0.3 s); with the quick per-candidate bound they finish
+ * in about 0.1 s, proven. Reference: the minimum found by the previous search with an unlimited
+ * work_limit (1.5-1.9 s per block); and literal brute force in a +-2 window around the result. */
+Test(normalmaps, hard_terrain_blocks_finish_exactly_within_the_work_bound)
+{
+    static const double blocks[2][16][3] = {
+        {/* terrain, 16-bit source, block 20894 (1.35 million candidates) */
+         {0.094467572867870331, -0.058212533593177795, 0.9938245415687561},
+         {0.14790652692317963, -0.21764065325260162, 0.96475708484649658},
+         {0.20387466251850128, -0.45399916172027588, 0.86736375093460083},
+         {0.25981250405311584, -0.59111273288726807, 0.76359885931015015},
+         {0.047287631779909134, 0.40721684694290161, 0.91210651397705078},
+         {-0.0085604321211576462, 0.37755933403968811, 0.92594581842422485},
+         {0.0045013660565018654, 0.25264108180999756, 0.96754962205886841},
+         {0.093065336346626282, 0.034500855952501297, 0.99506205320358276},
+         {0.10069343447685242, 0.58824557065963745, 0.80238890647888184},
+         {-0.025040345266461372, 0.62256008386611938, 0.78217130899429321},
+         {-0.10917665809392929, 0.60203564167022705, 0.79097002744674683},
+         {-0.16044875979423523, 0.52886295318603516, 0.83340275287628174},
+         {0.20985895395278931, 0.61141848564147949, 0.76297223567962646},
+         {0.013687330298125744, 0.68444281816482544, 0.72893804311752319},
+         {-0.11140500754117966, 0.69432437419891357, 0.71098703145980835},
+         {-0.17280994355678558, 0.70523244142532349, 0.68759286403656006}},
+        {/* terrain, 8-bit source, block 15885 (1.24 million candidates) */
+         {0.38877975940704346, -0.47517526149749756, 0.78934073448181152},
+         {0.34985455870628357, -0.53854012489318848, 0.76653528213500977},
+         {0.16909357905387878, -0.57806408405303955, 0.79827892780303955},
+         {-0.20785272121429443, -0.52159267663955688, 0.82748913764953613},
+         {0.22381527721881866, -0.5929141640663147, 0.7735370397567749},
+         {0.19962887465953827, -0.70065820217132568, 0.68500101566314697},
+         {0.098019622266292572, -0.78807777166366577, 0.60772162675857544},
+         {-0.058710776269435883, -0.78672438859939575, 0.61450612545013428},
+         {-0.019612368196249008, -0.56091374158859253, 0.82764190435409546},
+         {-0.058916926383972168, -0.64023059606552124, 0.76592004299163818},
+         {-0.027487782761454582, -0.70290184020996094, 0.71075552701950073},
+         {0.058800928294658661, -0.68601083755493164, 0.72521144151687622},
+         {-0.066714905202388763, -0.3178769052028656, 0.9457818865776062},
+         {-0.019680311903357506, -0.15350642800331116, 0.98795163631439209},
+         {0.058819007128477097, 0.20782715082168579, 0.97639548778533936},
+         {0.16029940545558929, 0.34014752507209778, 0.92660874128341675}}};
+    static const double reference[2] = {0.054101528596441871, 0.049765281632251794};
+    for (int c = 0; c < 2; ++c) {
+        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL};
+        sol_bc5_block b;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(blocks[c], &o, &b, &info), SOL_OK);
+        cr_assert(!info.bounded, "block %d: stopped by the work bound", c);
+        cr_assert(info.candidates > 1000000, "block %d: %llu candidates", c, (unsigned long long)info.candidates);
+        cr_assert_eq(info.error, reference[c], "block %d: %.17g, reference %.17g", c, info.error, reference[c]);
+        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
+                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
+                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        cr_assert_eq(bc5_brute_force(blocks[c], &r, &o), info.error, "block %d", c);
+    }
+}
+
 /* The usual fast BC4 encoder: anchors at the extremes, the mode of least 8-bit error. */
 Test(normalmaps, fast_bc4_encoder_takes_the_extremes_T10)
 {

@@ -89,6 +89,40 @@ static inline double score_pair(const sol_nm_channel *ch, int pair, double budge
     return s;
 }
 
+/* A lower bound of score_pair without the palette table: with low anchor value al and step s the
+ * exact (float) decoder's entries are al + k s, k = 0..divisions (and -1, +1 in 6-value mode); a
+ * rounding decoder moves each by at most delta. So a tight term is at least (dist(t, lattice) -
+ * delta)^2, the nearest lattice point found by rounding (t - al) / s; loose pixels count 0. The
+ * arithmetic replaces 8 table entries (a cache line of a 4 MB table) per pixel; pairs that pass are
+ * scored exactly. */
+static inline double score_lower(const sol_nm_channel *ch, double al, double s, int divisions, int six,
+                                 double delta, double budget, int *used)
+{
+    const double inv_s = s > 0.0 ? 1.0 / s : 0.0;
+    double sum = 0.0;
+    for (int k = 0; k < 16; ++k) {
+        int p = ch->order[k];
+        if ((ch->loose >> p) & 1)
+            continue;
+        double t = ch->t[p], u = (t - al) * inv_s;
+        int kk = u <= 0.0 ? 0 : (int)(u + 0.5);
+        kk = kk > divisions ? divisions : kk;
+        double d = fabs(t - (al + kk * s)) - delta, term = d > 0.0 ? d * d : 0.0;
+        if (six) {
+            double lo = (t + 1.0) * (t + 1.0), hi = (t - 1.0) * (t - 1.0);
+            term = lo < term ? lo : term;
+            term = hi < term ? hi : term;
+        }
+        sum = ch->use_max ? (term > sum ? term : sum) : sum + term;
+        if (sum > budget) {
+            *used = k + 1;
+            return sum;
+        }
+    }
+    *used = 16;
+    return sum;
+}
+
 /* ---- enumeration of the pairs that can score <= budget ----
  *
  * Tight terms: a pair can only score <= budget if the smallest and the largest target each lie
@@ -159,6 +193,13 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
     size_t n = 0;
     const int collect = out != NULL;
     const double delta = rounding_delta(ch->precision) + 1e-12;
+    /* the high-anchor skip (below), per number u of pixels the lattice bound used: the norm's step
+     * per code, its inverse, and the least bound that skips a step at the current budget */
+    double norm_step[17], inv_norm_step[17], skip_floor[17], skip_budget = -1.0, root_budget = 0.0;
+    for (int u = 1; u <= 16; ++u) {
+        norm_step[u] = (2.0 / 255.0) * (ch->use_max ? 1.0 : sqrt((double)u));
+        inv_norm_step[u] = 1.0 / norm_step[u];
+    }
     for (int six = 0; six < 2; ++six) {
         /* 8-value: e0 > e1, low anchor e1; 6-value: e0 <= e1, low anchor e0 */
         int low_lo = six ? ch->e0_lo : ch->e1_lo, low_hi = six ? ch->e0_hi : ch->e1_hi;
@@ -189,12 +230,37 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
                 for (int w = 0; w < 4; ++w)
                     m.w[w] &= b.w[w];
             }
+            const int divisions = six ? 5 : 7;
+            int next_high = 0;
+            if (*budget != skip_budget) { /* argmin: the budget shrank */
+                skip_budget = *budget;
+                root_budget = sqrt(skip_budget);
+                for (int u = 1; u <= 16; ++u)
+                    skip_floor[u] = (root_budget + norm_step[u]) * (root_budget + norm_step[u]);
+            }
             for (int w = 0; w < 4; ++w) {
                 uint64_t bits = m.w[w];
                 while (bits) {
                     int high = 64 * w + __builtin_ctzll(bits);
                     bits &= bits - 1;
+                    if (high < next_high)
+                        continue;
                     int pair = six ? (low << 8 | high) : (high << 8 | low);
+                    double al = anchor_value(low), spacing = (anchor_value(high) - al) / divisions;
+                    int used;
+                    double lb = score_lower(ch, al, spacing, divisions, six, delta, *budget, &used);
+                    if (lb > *budget) {
+                        /* the lattice bound's pixel distances move by at most one code (2 / 255) per
+                         * step of the high anchor, so the L2 norm of the `used` pixels' distances (or
+                         * their max) by at most sqrt(used) codes: skip the steps it cannot recover
+                         * (root_budget may be stale, i.e. larger: a shorter skip) */
+                        if (lb > skip_floor[used]) {
+                            double skip = (sqrt(lb) - root_budget) * inv_norm_step[used] * (1.0 - 1e-9) - 1e-6;
+                            if (skip >= 1.0)
+                                next_high = high + 1 + (skip > 512.0 ? 512 : (int)skip);
+                        }
+                        continue;
+                    }
                     double v = score_pair(ch, pair, *budget);
                     if (collect) {
                         if (v <= *budget) {

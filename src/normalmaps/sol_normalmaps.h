@@ -112,15 +112,16 @@ typedef struct sol_bc5_options {
     /* Adaptive: search only blocks whose common RMS angular error (sqrt(mean dN^2), or max dN for
      * SOL_BC5_MAX) exceeds this many degrees. 0 = search every block. */
     double threshold_deg;
-    /* Optimal and adaptive: work bound per block, in pixel evaluations (one pixel's jointly best
-     * index pair for one candidate; a candidate costs 1 to 32). A search that reaches it stops with
-     * the best block found so far and reports info->bounded = 1 (the result is then not proven
-     * optimal). 0 = SOL_BC5_DEFAULT_WORK_LIMIT, about 0.5-1 s of one core; the hardest ordinary
-     * blocks of the benchmark maps need well under a tenth of it. */
+    /* Optimal and adaptive: work bound per block, in work units: one pixel of one candidate through
+     * the quick bound counts 1, through the joint index-pair bound 32, an exact evaluation of a
+     * candidate 512 (a candidate costs 1 to 1040; about their relative costs). A search that reaches
+     * it stops with the best block found so far and reports info->bounded = 1 (the result is then not
+     * proven optimal). 0 = SOL_BC5_DEFAULT_WORK_LIMIT (2^26), about 0.5-1 s of one core; the hardest
+     * blocks of the benchmark maps need about a third of it (2.4 x 10^7). */
     uint64_t work_limit;
 } sol_bc5_options;
 
-#define SOL_BC5_DEFAULT_WORK_LIMIT (UINT64_C(1) << 21)
+#define SOL_BC5_DEFAULT_WORK_LIMIT (UINT64_C(1) << 26)
 
 /* Anchor ranges for sol_bc5_search_block: each anchor code in [lo, hi] (inclusive). */
 typedef struct sol_bc5_range {
@@ -158,17 +159,18 @@ sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_optio
 /* The exact minimum of the joint objective (sol_bc5_choose_indices) over all anchors inside
  * `range` (NULL = all 2^32 anchor combinations), by branch and bound: separable lower bounds
  * sum_p min_a (a - Nx_p)^2 + min_b (b - Ny_p)^2 <= sum_p chord_p^2 <= sum_p dN_p^2 (and their max
- * forms) over anchor pairs sorted by bound; each candidate is rejected through a lower bound of its
- * angles (from chords, no atan2) before an exact evaluation. Only options->precision, ->metric and
- * ->work_limit are used.
+ * forms) over anchor pairs sorted by bound; each candidate is rejected through lower bounds of its
+ * angles (from chords, no atan2: first a quick one from each channel's nearest entries, then one
+ * from each pixel's jointly best index pair) before an exact evaluation. Only options->precision,
+ * ->metric and ->work_limit are used.
  * Ties: the first minimiser in the search order (incumbents - the common anchors, then the
  * full-span 6-value pairs (0, 255) - then x pairs by increasing bound and code, y pairs likewise);
  * its error equals the literal brute force's minimum exactly. Exactly tied anchor pairs (a flat
  * block has hundreds per channel: anchors whose palettes hold the same values near the targets)
  * are recognised as one class and evaluated once, which does not change the result.
  * Degenerate blocks are decided at once: flat or all-equal blocks (ties merged), normals pointing
- * straight away (0, 0, -1) (the incumbent meets the hemisphere bound asin(-z)). Cost: about 0.1-50 ms
- * per block on smooth to creased maps; the work bound (work_limit) caps the rest - near-ties
+ * straight away (0, 0, -1) (the incumbent meets the hemisphere bound asin(-z)). Cost: about 0.1-200 ms
+ * per block on smooth to rough maps; the work bound (work_limit) caps the rest - near-ties
  * the bounds cannot separate, e.g. a block of varied normals all pointing away (z < 0), where
  * info->bounded reports that the result is the best found, not a proven optimum.
  * SOL_ERR_INVALID_ARG if a range has lo > hi. */
