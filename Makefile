@@ -225,8 +225,11 @@ test: deps-test
 run-tests: $(TEST_BIN) $(SOL_BIN) $(ENGINE_FIXTURE)
 	$(TEST_BIN)
 
+# The build runs on every core (JOBS); the drivers run one after another, each with OpenMP.
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+
 reproduce: deps-reproduce
-	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory -j$(JOBS) all
 	@$(MAKE) --no-print-directory run-experiments
 	@$(MAKE) --no-print-directory claims-table
 	@$(MAKE) --no-print-directory paper

@@ -556,7 +556,7 @@ static void t11(const exp_run *exp, const maps *m, const results *r)
 
     exp_table *t = exp_table_new("T11: encode time per 4x4 block and for a 1024x1024 map (65536 blocks)",
                                  "encoder,map,measured on,core-ns per block,1024^2 on all threads (s),threads,"
-                                 "bounded blocks,slowest block CPU s");
+                                 "bounded blocks,slowest block CPU time (s)");
     exp_table_row(t, "literal brute force (2^32 anchor quadruples)|all|%d blocks x 2^%d quadruples, multiplied out|%.3g|"
                   "%.3g|%d|-|-",
                   INPUT_COUNT, (int)log2(bc.combos), per_combo * combos, brute_s, threads);
@@ -1028,11 +1028,11 @@ static void bench_set(const exp_run *exp)
     static const char *const bench_names[] = {"fast", "common", "adaptive", "optimal", "libsquish", "nvtt"};
     enum { N_BENCH_ENC = sizeof encs / sizeof encs[0] };
     exp_table *t = exp_table_new("make bench: the benchmark set, every encoder on each map (wall time of one run)",
-                                 "map,source bits,encoder,mean deg,max deg,wall s (1 thread),CPU s,idle-cores s,threads,"
-                                 "slowest block CPU s,bounded blocks,3 h / idle-cores s");
+                                 "map,source bits,encoder,mean deg,max deg,wall time (s; 1 thread),CPU time (s),idle-cores time (s),"
+                                 "threads,slowest block CPU time (s),bounded blocks,speed vs 3 h (x)");
     exp_table *ratios = exp_table_new("make bench: time ratios against the goals of issue 13",
-                                      "map,source bits,fast / libsquish,common / libsquish,adaptive / fast,"
-                                      "adaptive / common,optimal idle-cores s (goal <= 60),optimal / nvtt highest");
+                                      "map,source bits,time: fast / libsquish,time: common / libsquish,time: adaptive / fast,"
+                                      "time: adaptive / common,optimal idle-cores time (s; goal <= 60),time: optimal / nvtt highest");
     /* T8_BENCH_MAPS / T8_BENCH_ENCODERS (comma lists of the names above, e.g. "terrain" and
      * "optimal") restrict the run while developing; the ratios need every encoder */
     const char *only_maps = getenv("T8_BENCH_MAPS"), *only_encs = getenv("T8_BENCH_ENCODERS");
