@@ -266,3 +266,33 @@ Test(scene_gltf, bad_textures_and_anisotropy_are_rejected)
     cr_expect_str_eq(e.pointer, "/objects/0/file");
     cleanup();
 }
+
+/* sol_mesh_read_anisotropy_json's contract (scene_internal.h): the first mat_count materials,
+ * defaults, the spec's alpha = roughnessFactor^2, errors naming the JSON pointer, and JSON that does
+ * not parse (or is cut short, not NUL-terminated) read as "no extension". */
+Test(scene_gltf, anisotropy_json_reader_contract)
+{
+    sol_mesh_material mats[2];
+    memset(mats, 0, sizeof mats);
+    sol_mesh m;
+    memset(&m, 0, sizeof m);
+    m.mat_count = 2;
+    m.mats = mats;
+    char msg[256] = "";
+    const char *ok = "{\"materials\":[{\"pbrMetallicRoughness\":{\"roughnessFactor\":0.5},\"extensions\":"
+                     "{\"KHR_materials_anisotropy\":{\"anisotropyStrength\":0.25}}},{}, "
+                     "{\"extensions\":{\"KHR_materials_anisotropy\":{\"anisotropyStrength\":1}}}]}";
+    cr_assert_eq(sol_mesh_read_anisotropy_json(ok, strlen(ok), &m, msg, sizeof msg), SOL_OK);
+    cr_assert(mats[0].aniso && mats[0].aniso_strength == 0.25 && mats[0].aniso_rotation == 0.0);
+    cr_assert_float_eq(mats[0].alpha, 0.25, 1e-15);
+    cr_assert(!mats[1].aniso, "a material without the extension is untouched; the third is past mat_count");
+    const char *bad = "{\"materials\":[{},{\"extensions\":{\"KHR_materials_anisotropy\":{\"anisotropyStrength\":-1}}}]}";
+    cr_assert_eq(sol_mesh_read_anisotropy_json(bad, strlen(bad), &m, msg, sizeof msg), SOL_ERR_OUT_OF_RANGE);
+    cr_assert(strstr(msg, "/materials/1/extensions/KHR_materials_anisotropy/anisotropyStrength"), "%s", msg);
+    const char *type = "{\"materials\":[{\"extensions\":{\"KHR_materials_anisotropy\":{\"anisotropyRotation\":\"x\"}}}]}";
+    cr_assert_eq(sol_mesh_read_anisotropy_json(type, strlen(type), &m, msg, sizeof msg), SOL_ERR_FORMAT);
+    memset(mats, 0, sizeof mats);
+    cr_assert_eq(sol_mesh_read_anisotropy_json(ok, 20, &m, msg, sizeof msg), SOL_OK, "cut short: no extension");
+    cr_assert_eq(sol_mesh_read_anisotropy_json("", 0, &m, msg, sizeof msg), SOL_OK);
+    cr_assert(!mats[0].aniso);
+}

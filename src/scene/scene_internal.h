@@ -65,6 +65,11 @@ struct sol_mesh {
 
 /* Imports a model file through assimp; `message` receives the reason on failure. */
 sol_status sol_mesh_load(const char *path, sol_mesh *out, char *message, size_t message_size);
+/* KHR_materials_anisotropy of the first m->mat_count materials of a glTF JSON document (json need
+ * not be NUL-terminated): sets aniso, aniso_strength, aniso_rotation, alpha and aniso_texture of
+ * each material that has the extension. SOL_OK also when the JSON does not parse (no extension);
+ * SOL_ERR_FORMAT / SOL_ERR_NONFINITE / SOL_ERR_OUT_OF_RANGE with msg naming the JSON pointer. */
+sol_status sol_mesh_read_anisotropy_json(const char *json, size_t json_len, sol_mesh *m, char *msg, size_t msg_size);
 void sol_mesh_free(sol_mesh *mesh);
 /* What a ray hit: t, the interpolated shading normal (unit), the base colour factor (linear), the
  * texture coordinates, the interpolated tangent and bitangent (zero when the mesh has none) and

@@ -365,52 +365,16 @@ static sol_status load_materials(const struct aiScene *sc, const char *model, so
 }
 
 /* KHR_materials_anisotropy: Debian's assimp (5.2) does not read this extension, so its fields are
- * read here from the glTF JSON (the .gltf file, or a .glb's JSON chunk) with libcjson, for the
- * materials assimp imported (same order as the file's "materials"). Per the extension's spec:
- * anisotropyStrength in [0, 1] (default 0), anisotropyRotation in radians (default 0, from the
- * tangent towards the bitangent), anisotropyTexture (noted, not sampled); alpha = roughnessFactor^2
- * (pbrMetallicRoughness, default 1). A value of the wrong type or out of range is an error naming
- * its JSON pointer. Other files (OBJ) have no such extension. */
-static sol_status read_gltf_anisotropy(const char *path, sol_mesh *m, char *msg, size_t msg_size)
+ * read from the glTF JSON with libcjson, for the materials assimp imported (same order as the
+ * file's "materials"). Per the extension's spec: anisotropyStrength in [0, 1] (default 0),
+ * anisotropyRotation in radians (default 0, from the tangent towards the bitangent),
+ * anisotropyTexture (noted, not sampled); alpha = roughnessFactor^2 (pbrMetallicRoughness,
+ * default 1). A value of the wrong type or out of range is an error naming its JSON pointer; JSON
+ * that does not parse has no extension (assimp has already accepted the file). Fuzzed by
+ * tests/fuzz/fuzz_gltf_anisotropy.c. */
+sol_status sol_mesh_read_anisotropy_json(const char *json, size_t json_len, sol_mesh *m, char *msg, size_t msg_size)
 {
-    size_t n = strlen(path);
-    int glb = n >= 4 && !strcmp(path + n - 4, ".glb");
-    if (!glb && !(n >= 5 && !strcmp(path + n - 5, ".gltf")))
-        return SOL_OK;
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(msg, msg_size, "cannot reopen the model to read KHR_materials_anisotropy");
-        return SOL_ERR_IO;
-    }
-    const size_t cap = (size_t)64 << 20;
-    char *buf = malloc(cap + 1);
-    size_t len = buf ? fread(buf, 1, cap + 1, f) : 0;
-    fclose(f);
-    if (!buf) {
-        snprintf(msg, msg_size, "out of memory");
-        return SOL_ERR_NO_MEMORY;
-    }
-    const char *json = buf;
-    size_t json_len = len;
-    if (glb) { /* 12-byte header, then chunk 0: length, type "JSON", data */
-        uint32_t clen = 0, ctype = 0;
-        if (len >= 20) {
-            memcpy(&clen, buf + 12, 4);
-            memcpy(&ctype, buf + 16, 4);
-        }
-        if (len < 20 || ctype != 0x4E4F534Au || clen > len - 20) {
-            free(buf);
-            return SOL_OK; /* assimp read it; no JSON chunk we can see: no extension */
-        }
-        json = buf + 20;
-        json_len = clen;
-    } else if (len > cap) {
-        free(buf);
-        snprintf(msg, msg_size, "glTF JSON larger than %zu bytes (reading KHR_materials_anisotropy)", cap);
-        return SOL_ERR_LIMIT;
-    }
     cJSON *root = cJSON_ParseWithLength(json, json_len);
-    free(buf);
     const cJSON *mats = root ? cJSON_GetObjectItemCaseSensitive(root, "materials") : NULL;
     sol_status st = SOL_OK;
     int i = 0;
@@ -461,6 +425,57 @@ static sol_status read_gltf_anisotropy(const char *path, sol_mesh *m, char *msg,
         mm->aniso_texture = cJSON_GetObjectItemCaseSensitive(an, "anisotropyTexture") != NULL;
     }
     cJSON_Delete(root);
+    return st;
+}
+
+/* The glTF JSON of a .gltf file, or a .glb's JSON chunk (12-byte header, then chunk 0: length,
+ * type "JSON", data; the binary chunks after it are not read), at most 64 MiB (sol_read_limits'
+ * default byte bound), handed to sol_mesh_read_anisotropy_json. Other files (OBJ) have no such
+ * extension. */
+static sol_status read_gltf_anisotropy(const char *path, sol_mesh *m, char *msg, size_t msg_size)
+{
+    size_t n = strlen(path);
+    int glb = n >= 4 && !strcmp(path + n - 4, ".glb");
+    if (!glb && !(n >= 5 && !strcmp(path + n - 5, ".gltf")))
+        return SOL_OK;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(msg, msg_size, "cannot reopen the model to read KHR_materials_anisotropy");
+        return SOL_ERR_IO;
+    }
+    const long cap = 64L << 20;
+    long size = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1, json_len = size;
+    int seek_ok = fseek(f, 0, SEEK_SET) == 0;
+    if (glb && size >= 20 && seek_ok) {
+        unsigned char head[20];
+        uint32_t clen = 0, ctype = 0;
+        if (fread(head, 1, 20, f) == 20) {
+            memcpy(&clen, head + 12, 4);
+            memcpy(&ctype, head + 16, 4);
+        }
+        if (ctype != 0x4E4F534Au || clen > (uint64_t)(size - 20)) {
+            fclose(f);
+            return SOL_OK; /* assimp read it; no JSON chunk we can see: no extension */
+        }
+        json_len = (long)clen;
+    } else if (glb) {
+        fclose(f);
+        return SOL_OK;
+    }
+    if (size < 0 || !seek_ok || json_len > cap) {
+        fclose(f);
+        snprintf(msg, msg_size, "glTF JSON unreadable or larger than %ld bytes (reading KHR_materials_anisotropy)", cap);
+        return json_len > cap ? SOL_ERR_LIMIT : SOL_ERR_IO;
+    }
+    char *buf = malloc((size_t)json_len + 1);
+    size_t len = buf ? fread(buf, 1, (size_t)json_len, f) : 0;
+    fclose(f);
+    if (!buf) {
+        snprintf(msg, msg_size, "out of memory");
+        return SOL_ERR_NO_MEMORY;
+    }
+    sol_status st = sol_mesh_read_anisotropy_json(buf, len, m, msg, msg_size);
+    free(buf);
     return st;
 }
 

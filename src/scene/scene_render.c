@@ -817,6 +817,20 @@ static double specular(const surface *sf, const double v[3], const double l[3])
 }
 
 /* The G-buffer of one camera ray: surface, material, normal as the path stores it. */
+/* The anisotropic frame from a tangent direction: t projected into the surface (Gram-Schmidt
+ * against sf->n) becomes the t axis and n x t the b axis; a tangent (nearly) along the normal
+ * leaves the frame as it was. */
+static void set_tangent(surface *sf, const double tangent[3])
+{
+    double t[3], d = sol_dot3(tangent, sf->n);
+    for (int i = 0; i < 3; ++i)
+        t[i] = tangent[i] - d * sf->n[i];
+    if (v_norm(t) > 1e-6) {
+        memcpy(sf->t_axis, t, sizeof t);
+        v_cross(sf->b_axis, sf->n, t);
+    }
+}
+
 static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
 {
     double dir[3];
@@ -895,15 +909,7 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
     sf->lobe_scale = 1;
     if (m->aniso != SOL_ANISO_NONE) {
         /* the tangent of the material, projected into the surface */
-        double t[3];
-        memcpy(t, m->tangent, sizeof t);
-        double d = sol_dot3(t, sf->n);
-        for (int i = 0; i < 3; ++i)
-            t[i] -= d * sf->n[i];
-        if (v_norm(t) > 1e-6) {
-            memcpy(sf->t_axis, t, sizeof t);
-            v_cross(sf->b_axis, sf->n, t);
-        }
+        set_tangent(sf, m->tangent);
         sf->ax = m->roughness[0];
         sf->ay = m->roughness[1];
         sf->exact_ward = 1;
@@ -917,13 +923,7 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
         double c = cos(mm->aniso_rotation), sn = sin(mm->aniso_rotation), t[3];
         for (int i = 0; i < 3; ++i)
             t[i] = c * sf->t_axis[i] + sn * sf->b_axis[i];
-        double d = sol_dot3(t, sf->n);
-        for (int i = 0; i < 3; ++i)
-            t[i] -= d * sf->n[i];
-        if (v_norm(t) > 1e-6) {
-            memcpy(sf->t_axis, t, sizeof t);
-            v_cross(sf->b_axis, sf->n, t);
-        }
+        set_tangent(sf, t);
         double st2 = mm->aniso_strength * mm->aniso_strength;
         sf->ax = fmax(1e-3, mm->alpha + (1 - mm->alpha) * st2);
         sf->ay = fmax(1e-3, mm->alpha);
