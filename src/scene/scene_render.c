@@ -2,7 +2,7 @@
  *
  * The order of a frame (engine path; the reference path is the same code with every effect in
  * its reference version and reference_supersample^2 samples per pixel):
- *   1. textures: albedo through 8-bit storage (T3-T6), BC1 (T7), renormalisation (T1/T2);
+ *   1. textures: albedo through 8-bit storage (T3-T7), BC1 (T1/T2), renormalisation (T1/T2);
  *      normal maps through BC5 (T8-T14). Done once per render.
  *   2. culling (M1): occluder depth max-downscaled to 4x4-pixel texels (coverage buffer), object bounds tested.
  *   3. G-buffer pass: a primary ray per pixel finds the surface; normal encoded in 24 bits (D3-D7);

@@ -199,8 +199,8 @@ void sol_scene_free(sol_scene *scene);
 typedef enum sol_effect {
     SOL_FX_GBUFFER_NORMALS = 0, /* D3-D7, S1, S5: 24-bit G-buffer normal encoding */
     SOL_FX_NORMAL_MAP_BC5,      /* T8-T14: normal maps through BC5 (3Dc) */
-    SOL_FX_ALBEDO_STORAGE,      /* T3-T6: 8-bit albedo storage, gamma or linear by the T4 rule */
-    SOL_FX_ALBEDO_BC1,          /* T7: BC1 (DXT1) albedo */
+    SOL_FX_ALBEDO_STORAGE,      /* T3-T7: 8-bit albedo storage, gamma or linear by the T4 rule */
+    SOL_FX_ALBEDO_BC1,          /* T1, T2: BC1 (DXT1) albedo, its 5:6:5 stage */
     SOL_FX_ALBEDO_RENORM,       /* T1, T2: per-channel range renormalisation of albedo */
     SOL_FX_LIGHT_BUFFER,        /* D9, S9: lossy light-accumulation buffer */
     SOL_FX_RANGE_SCALING,       /* D9, D10: light buffer pre-scaled by the exposure */
