@@ -573,23 +573,22 @@ Test(scene, cli_render_unusable_out_fails_at_once)
  * the folder it made nor temporary files; the exit status is still the signal's. */
 Test(scene, cli_render_killed_leaves_nothing)
 {
-    int rc = system("rm -rf /tmp/sol_cli_kill; "
-                    "build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_kill --size 960x540 "
+    /* the folder carries the shell's pid ($$), so concurrent test runs do not share it */
+    int rc = system("d=/tmp/sol_cli_kill_$$; rm -rf $d; "
+                    "build/sol render experiments/scenes/car_hood.json --out $d --size 960x540 "
                     ">/dev/null 2>&1 & p=$!; i=0; "
-                    "while [ ! -d /tmp/sol_cli_kill ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; "
-                    "kill -TERM $p; wait $p; s=$?; test $s -eq 143 && test ! -e /tmp/sol_cli_kill");
-    cr_expect_eq(rc, 0, "killed render left /tmp/sol_cli_kill or exited otherwise (status %d)", rc);
-    (void)!system("rm -rf /tmp/sol_cli_kill");
+                    "while [ ! -d $d ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; "
+                    "kill -TERM $p; wait $p; s=$?; test $s -eq 143 && test ! -e $d; r=$?; rm -rf $d; exit $r");
+    cr_expect_eq(rc, 0, "killed render left its --out folder or exited otherwise (status %d)", rc);
 }
 
 /* ... but a signal its caller ignores (trap '' INT) stays ignored: the render finishes. */
 Test(scene, cli_render_keeps_ignored_signals)
 {
-    int rc = system("rm -rf /tmp/sol_cli_ign; trap '' INT; "
-                    "build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_ign --size 320x180 "
+    int rc = system("d=/tmp/sol_cli_ign_$$; rm -rf $d; trap '' INT; "
+                    "build/sol render experiments/scenes/car_hood.json --out $d --size 320x180 "
                     ">/dev/null 2>&1 & p=$!; i=0; "
-                    "while [ ! -d /tmp/sol_cli_ign ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; "
-                    "kill -INT $p; wait $p && test -s /tmp/sol_cli_ign/attribution.tsv");
+                    "while [ ! -d $d ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; "
+                    "kill -INT $p; wait $p && test -s $d/attribution.tsv; r=$?; rm -rf $d; exit $r");
     cr_expect_eq(rc, 0, "an ignored SIGINT stopped the render (status %d)", rc);
-    (void)!system("rm -rf /tmp/sol_cli_ign");
 }
