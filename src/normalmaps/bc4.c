@@ -113,6 +113,18 @@ int sol_nm_nearest_index(const double pal[8], double t)
     return best;
 }
 
+sol_status sol_nm_bc4_targets(const double values[16], double t[16])
+{
+    for (int p = 0; p < 16; ++p) {
+        if (!isfinite(values[p]))
+            return SOL_ERR_NONFINITE;
+        if (values[p] < 0.0 || values[p] > 1.0)
+            return SOL_ERR_OUT_OF_RANGE;
+        t[p] = 2.0 * values[p] - 1.0;
+    }
+    return SOL_OK;
+}
+
 sol_status sol_bc4_encode_block(const double values[16], sol_bc4_precision precision, sol_bc4_block *out,
                                 double *squared_error)
 {
@@ -121,13 +133,9 @@ sol_status sol_bc4_encode_block(const double values[16], sol_bc4_precision preci
     if ((unsigned)precision >= SOL_BC4_PRECISION_COUNT)
         return SOL_ERR_INVALID_ARG;
     double t[16];
-    for (int p = 0; p < 16; ++p) {
-        if (!isfinite(values[p]))
-            return SOL_ERR_NONFINITE;
-        if (values[p] < 0.0 || values[p] > 1.0)
-            return SOL_ERR_OUT_OF_RANGE;
-        t[p] = 2.0 * values[p] - 1.0;
-    }
+    sol_status st = sol_nm_bc4_targets(values, t);
+    if (st != SOL_OK)
+        return st;
     double score;
     int pair = sol_nm_bc4_common(t, precision, &score);
     const double *pal = sol_nm_palettes(precision)[pair];

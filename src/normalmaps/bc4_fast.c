@@ -56,13 +56,9 @@ sol_status sol_bc4_encode_block_fast(const double values[16], sol_bc4_block *out
     if (!values || !out)
         return SOL_ERR_NULL_ARG;
     double t[16];
-    for (int p = 0; p < 16; ++p) {
-        if (!isfinite(values[p]))
-            return SOL_ERR_NONFINITE;
-        if (values[p] < 0.0 || values[p] > 1.0)
-            return SOL_ERR_OUT_OF_RANGE;
-        t[p] = 2.0 * values[p] - 1.0;
-    }
+    sol_status st = sol_nm_bc4_targets(values, t);
+    if (st != SOL_OK)
+        return st;
     sol_nm_bc4_fast(t, out);
     return SOL_OK;
 }

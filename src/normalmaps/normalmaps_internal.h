@@ -40,6 +40,9 @@ size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pa
  * score as sol_nm_channel_argmin on the full range with use_max = 0 and no loose pixels (least
  * score, then least e0 << 8 | e1), by branch and bound over boxes of anchor codes. */
 int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score);
+/* The BC4 encoders' input check and mapping: UNORM values in [0, 1] to targets t = 2 v - 1 in the
+ * decoded units; SOL_ERR_NONFINITE or SOL_ERR_OUT_OF_RANGE (t partly written) otherwise. */
+sol_status sol_nm_bc4_targets(const double values[16], double t[16]);
 
 /* Index of the palette entry nearest to t (the first on ties): BC4's per-value index choice. */
 int sol_nm_nearest_index(const double pal[8], double t);
