@@ -149,13 +149,18 @@ static int bc4_brute_pair(const double t[16], sol_bc4_precision precision, doubl
 /* bc4_common.c's branch and bound against the literal brute force and the previous exact search
  * (anchor_bounds.c's masks): the same pair, the same score bit for bit, over random blocks of every
  * spread and degenerate ones (flat, two values, the extremes -1/+1 the 6-value mode holds, values
- * on the code grid, on the 16-bit grid), for the three decoder precisions. */
+ * on the code grid, on the 16-bit grid, narrower than one code, narrow around 0), for the three
+ * decoder precisions. */
 Test(normalmaps, bc4_common_search_equals_brute_force_pair_for_pair, .timeout = 120)
 {
-    for (int trial = 0; trial < 72; ++trial) {
+    for (int trial = 0; trial < 90; ++trial) {
         double t[16];
-        int kind = trial % 12;
+        int kind = trial % 15;
         double c = 2.0 * uniform() - 1.0, w = kind == 0 ? 0.01 : kind == 1 ? 0.08 : kind == 2 ? 0.5 : 2.0;
+        if (kind == 12 || kind == 13)
+            w = kind == 12 ? 0.002 : 0.0003; /* narrower than a code (smooth 16-bit maps) */
+        if (kind == 14)
+            c = 0.0, w = 0.001; /* around 0: between two 16-bit values, many exactly tied pairs */
         for (int p = 0; p < 16; ++p) {
             double v = c + w * (uniform() - 0.5);
             if (kind == 4)
@@ -176,7 +181,7 @@ Test(normalmaps, bc4_common_search_equals_brute_force_pair_for_pair, .timeout = 
                 v = p == 0 ? -1.0 : c + 0.02 * (uniform() - 0.5); /* one outlier at the extreme */
             t[p] = fmin(1.0, fmax(-1.0, v));
         }
-        sol_bc4_precision prec = (sol_bc4_precision)(trial / 12 % 3);
+        sol_bc4_precision prec = (sol_bc4_precision)(trial / 15 % 3);
         double s_new, s_ref, s_old;
         int p_new = sol_nm_bc4_common(t, prec, &s_new), p_ref = bc4_brute_pair(t, prec, &s_ref);
         sol_nm_channel ch;

@@ -27,8 +27,15 @@
  * Before the search, per mode, the same two facts give the region that can still reach the
  * incumbent (mode_region): L <= l_max, H >= h_min, H - L <= span_max.
  *
- * Search: the incumbent is the fast encoder's pair (sol_nm_bc4_fast) refined by a least-squares
- * refit of its anchors (refine), scored exactly. Boxes are split in halves of the longer side,
+ * When at most one lattice entry fits in the window, a single entry e serves all 16 targets and the
+ * score is exactly q[1] + 16 (e - mean)^2, so the bound adds 16 dist(mean, I_k)^2 (nearest interval):
+ * this prunes the pairs of narrow blocks whose one entry misses the targets' mean.
+ * Search: the incumbent is the best of the fast encoder's pair (sol_nm_bc4_fast) refined by a
+ * least-squares refit of its anchors (refine) and, for blocks narrower than a few codes, palettes of
+ * span 1-4 codes centred on the targets (narrow_seeds: the fast pair has span 0 there, and the refit
+ * of a span-0 palette is singular), improved by steps to the best neighbouring pair (descend), all
+ * scored exactly. On a smooth 16-bit map (blocks 0.2 codes wide) this is the optimum, and the
+ * region below then holds a few dozen pairs instead of most of the 65536. Boxes are split in halves of the longer side,
  * the child of smaller bound visited first; a box is dropped when LB > best, or when LB >= best
  * and its smallest pair index is above the incumbent's (no pair inside can win the tie rule).
  * Boxes of at most SMALL_BOX pairs are scored pair by pair with the reference order and early
@@ -41,12 +48,12 @@
 
 typedef struct common_ctx {
     const double *t;
-    int order[16];
+    double to[16]; /* the targets in the reference order */
     const double (*pal)[8];
     double delta;
     double best;
     int best_pair;
-    double tmin, tmax;
+    double tmin, tmax, mean;
     /* quantisation bound: q[m] = least sum of squares of the targets to m free points (m = 1..8),
      * rows of the dynamic programme computed on demand (q_rows of them so far) */
     double sorted[16], prefix[17], prefix2[17];
@@ -89,26 +96,39 @@ static inline double anchor(int c)
     return 2.0 * c / 255.0 - 1.0;
 }
 
-/* Exact score of a pair in the reference order, with early exit once above budget. */
+/* Exact score of a pair in the reference order, with early exit once above budget (checked after
+ * every 4 targets). The per-target minimum is exact whatever the order it is taken in, and the 16
+ * terms are added one by one in the reference order, so the sum is bit-identical to the brute
+ * force's. Written target-parallel so that the compiler vectorises it. */
 static inline double exact_score(const common_ctx *c, int pair, double budget)
 {
     const double *pal = c->pal[pair];
     double s = 0.0;
-    for (int k = 0; k < 16; ++k) {
-        double t = c->t[c->order[k]], d[8];
-        for (int i = 0; i < 8; ++i)
-            d[i] = (pal[i] - t) * (pal[i] - t);
-        /* a min tree (the same value as a running min: min is exact) */
-        double m01 = d[0] < d[1] ? d[0] : d[1], m23 = d[2] < d[3] ? d[2] : d[3];
-        double m45 = d[4] < d[5] ? d[4] : d[5], m67 = d[6] < d[7] ? d[6] : d[7];
-        double ma = m01 < m23 ? m01 : m23, mb = m45 < m67 ? m45 : m67;
-        double m = ma < mb ? ma : mb;
-        s += m;
+    for (int k0 = 0; k0 < 16; k0 += 4) {
+        double m[4];
+        for (int k = 0; k < 4; ++k) {
+            double d = pal[0] - c->to[k0 + k];
+            m[k] = d * d;
+        }
+        for (int i = 1; i < 8; ++i)
+            for (int k = 0; k < 4; ++k) {
+                double d = pal[i] - c->to[k0 + k];
+                d *= d;
+                m[k] = d < m[k] ? d : m[k];
+            }
+        s += m[0];
+        s += m[1];
+        s += m[2];
+        s += m[3];
         if (s > budget)
             return s;
     }
     return s;
 }
+
+/* Bound on the rounding error of the computed mean of the 16 targets (|t| <= 1: 15 additions of
+ * at most 16 in magnitude, then an exact division by 16), for the one-entry bound below. */
+#define MEAN_ERR 4e-15
 
 /* Lower bound of the score of every pair of the box (see the top of the file); stops once above budget. */
 static __attribute__((noinline)) double box_bound(common_ctx *c, int six, int l1, int l2, int h1, int h2, double budget)
@@ -141,7 +161,17 @@ static __attribute__((noinline)) double box_bound(common_ctx *c, int six, int l1
         int used = fit < (double)(den + 1) ? (int)fit : den + 1;
         if (six)
             used += (wlo <= -1.0) + (whi >= 1.0);
-        if (used < 8) {
+        if (used == 1) { /* one entry e serves all 16 targets: score = q[1] + 16 (e - mean)^2 */
+            double dm = INFINITY;
+            for (int i = 0; i < n; ++i) {
+                double e = lo[i] > c->mean ? lo[i] - c->mean : (hi[i] < c->mean ? c->mean - hi[i] : 0.0);
+                dm = e < dm ? e : dm;
+            }
+            dm = dm > MEAN_ERR ? dm - MEAN_ERR : 0.0;
+            double qb = (quantisation_bound(c, 1) + 16.0 * dm * dm) * (1.0 - 1e-9) - c->q_slack;
+            if (qb > budget)
+                return qb;
+        } else if (used < 8) {
             double qb = quantisation_bound(c, used) * (1.0 - 1e-9) - c->q_slack;
             if (qb > budget)
                 return qb;
@@ -363,6 +393,52 @@ static void refine(common_ctx *c, int six, int l, int h)
     }
 }
 
+static inline int make_pair(int six, int l, int h)
+{
+    return six ? (l << 8 | h) : (h << 8 | l);
+}
+
+/* Incumbent: from a pair of a mode, steps to the best of its 8 neighbours (L +- 1, H +- 1) while
+ * that improves the score (a local minimum of the pair grid). */
+static void descend(common_ctx *c, int six, int l, int h)
+{
+    for (int round = 0; round < 64; ++round) {
+        int nl = l, nh = h;
+        for (int dl = -1; dl <= 1; ++dl)
+            for (int dh = -1; dh <= 1; ++dh) {
+                int a = l + dl, b = h + dh;
+                if ((dl | dh) == 0 || a < 0 || b > 255 || b < a + !six)
+                    continue;
+                int before = c->best_pair;
+                try_pair(c, make_pair(six, a, b));
+                if (c->best_pair != before) {
+                    nl = a;
+                    nh = b;
+                }
+            }
+        if (nl == l && nh == h)
+            return;
+        l = nl;
+        h = nh;
+    }
+}
+
+/* Incumbent seeds for narrow blocks: per mode, palettes of small span S (codes) whose lattice is
+ * centred on the targets' range (the fast encoder's pair has span 0 there, and its refit fails). */
+static void narrow_seeds(common_ctx *c)
+{
+    double centre = 0.5 * (c->tmin + c->tmax), range = (c->tmax - c->tmin) * 127.5;
+    int smax = (int)range + 2;
+    smax = smax > 4 ? 4 : smax;
+    for (int six = 0; six < 2; ++six)
+        for (int s = 1; s <= smax; ++s) {
+            int l0 = (int)floor((centre + 1.0) * 127.5 - 0.5 * s);
+            for (int l = l0; l <= l0 + 1; ++l)
+                if (l >= 0 && l + s <= 255)
+                    try_pair(c, make_pair(six, l, l + s));
+        }
+}
+
 /* ---- flat blocks (all 16 targets equal) ----
  * The score is then S(m) = 16 equal terms m = min_k (pal_k - t)^2 added in order, non-decreasing in
  * m, so a pair can reach the incumbent only if one of its entries lies within R = sqrt(m_best) of t
@@ -433,7 +509,7 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     common_ctx c;
     c.t = t;
     for (int k = 0; k < 16; ++k)
-        c.order[k] = ch.order[k];
+        c.to[k] = t[ch.order[k]];
     c.pal = ch.palettes;
     for (int p = 0; p < 16; ++p) { /* insertion sort */
         int q = p;
@@ -449,6 +525,7 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     for (int p = 0; p < 16; ++p)
         mean += c.sorted[p];
     mean /= 16.0;
+    c.mean = mean;
     c.prefix[0] = c.prefix2[0] = 0.0;
     for (int p = 0; p < 16; ++p) {
         double v = c.sorted[p] - mean;
@@ -467,6 +544,11 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
         refine(&c, 0, fast.e1, fast.e0);
     else
         refine(&c, 1, fast.e0, fast.e1);
+    narrow_seeds(&c);
+    {
+        int e0 = c.best_pair >> 8, e1 = c.best_pair & 255, six = e0 <= e1;
+        descend(&c, six, six ? e0 : e1, six ? e1 : e0);
+    }
     int flat = 1;
     for (int p = 1; p < 16; ++p)
         flat &= c.sorted[p] == c.sorted[0];
