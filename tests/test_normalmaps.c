@@ -194,6 +194,35 @@ Test(normalmaps, bc4_common_search_equals_brute_force_pair_for_pair, .timeout = 
     }
 }
 
+/* Blocks of the benchmark maps (two-valued 8-bit-source blocks and a smooth 16-bit one) on which many
+ * pairs tie exactly: the search returns the least tied pair, as the brute force does (the search
+ * before issue 13's rework returned a larger tied pair on these three). */
+Test(normalmaps, bc4_common_ties_go_to_the_least_pair_on_map_blocks, .timeout = 60)
+{
+    static const double blocks[3][16] = {
+        {0x1.00fbf21712a0cp-8, 0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8, 0x1.00fbf21712a0cp-8,
+         0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8, 0x1.00fbf21712a0cp-8, 0x1.00f3d9da07fffp-8,
+         0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8, 0x1.00fbf21712a0cp-8, 0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8,
+         0x1.00f3d9da07fffp-8},
+        {0x1.b08b7c443c5d6p-4, 0x1.b08b7c443c5d6p-4, 0x1.b19b81cfe1182p-4, 0x1.b19b81cfe1182p-4, 0x1.b08b7c443c5d6p-4,
+         0x1.b08b7c443c5d6p-4, 0x1.b19b81cfe1182p-4, 0x1.b19b81cfe1182p-4, 0x1.b08b7c443c5d6p-4, 0x1.b08b7c443c5d6p-4,
+         0x1.b19b81cfe1182p-4, 0x1.b19b81cfe1182p-4, 0x1.b08b7c443c5d6p-4, 0x1.b08b7c443c5d6p-4, 0x1.b19b81cfe1182p-4,
+         0x1.b19b81cfe1182p-4},
+        {0x1.7737099387eb4p-1, 0x1.773bc5d9f00c9p-1, 0x1.77400462fe1dfp-1, 0x1.7743b377f7c0ap-1, 0x1.774a3c24beb97p-1,
+         0x1.774b1d6cb2088p-1, 0x1.774b7fe76898fp-1, 0x1.7747833004042p-1, 0x1.7757c38008445p-1, 0x1.7754cc1655717p-1,
+         0x1.774f5e36f1b34p-1, 0x1.774b6c3161078p-1, 0x1.775f78527c3f1p-1, 0x1.7758afa867178p-1, 0x1.775343e0da832p-1,
+         0x1.77498637ef806p-1},
+    };
+    for (int b = 0; b < 3; ++b)
+        for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec) {
+            double s_new, s_ref;
+            int p_new = sol_nm_bc4_common(blocks[b], (sol_bc4_precision)prec, &s_new);
+            int p_ref = bc4_brute_pair(blocks[b], (sol_bc4_precision)prec, &s_ref);
+            cr_assert_eq(p_new, p_ref, "block %d, precision %d: pair %04x vs brute force %04x", b, prec, p_new, p_ref);
+            cr_assert(s_new == s_ref, "block %d, precision %d: %.17g vs %.17g", b, prec, s_new, s_ref);
+        }
+}
+
 /* The common BC5 encoder is the per-channel exact search of x and y, indices by nearest value. */
 Test(normalmaps, common_encoder_is_two_exact_channel_searches)
 {

@@ -46,6 +46,15 @@
 
 #include <math.h>
 
+/* The two hot functions (box_bound, try_pair) are also compiled for AVX2 and picked at run time
+ * (GCC target_clones on x86-64): the same operations in wider lanes - no FMA contraction (C11 mode),
+ * sums in the same order - so the results are bit-identical to the baseline build. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define HOT_CLONES __attribute__((noinline, target_clones("avx2", "default")))
+#else
+#define HOT_CLONES __attribute__((noinline))
+#endif
+
 typedef struct common_ctx {
     const double *t;
     double to[16]; /* the targets in the reference order */
@@ -54,6 +63,7 @@ typedef struct common_ctx {
     double best;
     int best_pair;
     double tmin, tmax, mean;
+    double window_best, wlo, whi; /* update_window */
     /* quantisation bound: q[m] = least sum of squares of the targets to m free points (m = 1..8),
      * rows of the dynamic programme computed on demand (q_rows of them so far) */
     double sorted[16], prefix[17], prefix2[17];
@@ -130,73 +140,92 @@ static inline double exact_score(const common_ctx *c, int pair, double budget)
  * at most 16 in magnitude, then an exact division by 16), for the one-entry bound below. */
 #define MEAN_ERR 4e-15
 
-/* Lower bound of the score of every pair of the box (see the top of the file); stops once above budget. */
-static __attribute__((noinline)) double box_bound(common_ctx *c, int six, int l1, int l2, int h1, int h2, double budget)
+/* The window [tmin - r, tmax + r] of the entries the targets use, r = sqrt(best) (with slack), for
+ * the incumbent's current score (recomputed when it changes). */
+static inline void update_window(common_ctx *c)
 {
-    double lo[8], hi[8];
-    double al1 = anchor(l1), al2 = anchor(l2), ah1 = anchor(h1), ah2 = anchor(h2), d = c->delta;
-    int n = 0;
-    lo[n] = al1;
-    hi[n++] = al2;
-    lo[n] = ah1;
-    hi[n++] = ah2;
+    if (c->window_best == c->best)
+        return;
+    double r = sqrt(c->best) * (1.0 + 1e-9) + 1e-12;
+    c->wlo = c->tmin - r;
+    c->whi = c->tmax + r;
+    c->window_best = c->best;
+}
+
+/* Lower bound of the score of every pair of the box (see the top of the file); stops once above budget. */
+static HOT_CLONES double box_bound(common_ctx *c, int six, int l1, int l2, int h1, int h2, double budget)
+{
     const int den = six ? 5 : 7;
-    for (int j = 1; j < den; ++j) {
-        double w = (double)j / den;
-        lo[n] = (1.0 - w) * al1 + w * ah1 - d;
-        hi[n++] = (1.0 - w) * al2 + w * ah2 + d;
-    }
-    if (six) {
-        lo[n] = hi[n] = -1.0;
-        ++n;
-        lo[n] = hi[n] = 1.0;
-        ++n;
-    }
+    const double al1 = anchor(l1), al2 = anchor(l2), ah1 = anchor(h1), ah2 = anchor(h2), d = c->delta;
     /* the used entries lie within r = sqrt(best) of a target, so in a window of width W; entries are
      * at least step - 2 delta apart, so at most floor(W / (step - 2 delta)) + 1 of them are there */
-    double r = sqrt(c->best) * (1.0 + 1e-9) + 1e-12, wlo = c->tmin - r, whi = c->tmax + r;
-    double gap = (ah1 - al2) / den - 2.0 * d;
+    update_window(c);
+    const double wlo = c->wlo, whi = c->whi, gap = (ah1 - al2) / den - 2.0 * d;
+    int used = 8;
     if (gap > 0.0) {
         double fit = floor((whi - wlo) / gap) + 1.0;
-        int used = fit < (double)(den + 1) ? (int)fit : den + 1;
+        used = fit < (double)(den + 1) ? (int)fit : den + 1;
         if (six)
             used += (wlo <= -1.0) + (whi >= 1.0);
-        if (used == 1) { /* one entry e serves all 16 targets: score = q[1] + 16 (e - mean)^2 */
-            double dm = INFINITY;
-            for (int i = 0; i < n; ++i) {
-                double e = lo[i] > c->mean ? lo[i] - c->mean : (hi[i] < c->mean ? c->mean - hi[i] : 0.0);
-                dm = e < dm ? e : dm;
-            }
-            dm = dm > MEAN_ERR ? dm - MEAN_ERR : 0.0;
-            double qb = (quantisation_bound(c, 1) + 16.0 * dm * dm) * (1.0 - 1e-9) - c->q_slack;
-            if (qb > budget)
-                return qb;
-        } else if (used < 8) {
+        if (used > 1 && used < 8) {
             double qb = quantisation_bound(c, used) * (1.0 - 1e-9) - c->q_slack;
             if (qb > budget)
                 return qb;
         }
     }
-    /* interval by interval over the 16 targets (independent lanes: the compiler vectorises it) */
-    double m[16];
-    for (int p = 0; p < 16; ++p)
-        m[p] = INFINITY;
-    for (int i = 0; i < n; ++i) {
-        const double l = lo[i], h = hi[i];
-        for (int p = 0; p < 16; ++p) {
-            /* dist^2 = max(lo - t, 0)^2 + max(t - hi, 0)^2 (one of them is 0), branch-free with
-             * max(x, 0) = (x + |x|) / 2 (exact) */
-            double a = l - c->sorted[p], b = c->sorted[p] - h;
-            double pa = a + fabs(a), pb = b + fabs(b);
-            double e2 = 0.25 * (pa * pa + pb * pb);
-            m[p] = m[p] < e2 ? m[p] : e2;
-        }
+    /* the entries' intervals: the anchors (with a 1e-12 margin for their rounding), the interpolants
+     * of weight w = j / den, each widened by delta (the 6-value mode's fixed entries -1, +1 below) */
+    double lo[8], hi[8];
+    lo[0] = al1 - 1e-12;
+    hi[0] = al2 + 1e-12;
+    lo[1] = ah1 - 1e-12;
+    hi[1] = ah2 + 1e-12;
+    for (int j = 1; j < den; ++j) {
+        double w = (double)j / den;
+        lo[j + 1] = (1.0 - w) * al1 + w * ah1 - d;
+        hi[j + 1] = (1.0 - w) * al2 + w * ah2 + d;
     }
+    if (used == 1) { /* one entry e serves all 16 targets: score = q[1] + 16 (e - mean)^2 */
+        double dm = INFINITY;
+        for (int i = 0; i <= den; ++i) {
+            double e = lo[i] > c->mean ? lo[i] - c->mean : (hi[i] < c->mean ? c->mean - hi[i] : 0.0);
+            dm = e < dm ? e : dm;
+        }
+        if (six) /* the fixed entries */
+            dm = fmin(dm, fmin(fabs(c->mean + 1.0), fabs(c->mean - 1.0)));
+        dm = dm > MEAN_ERR ? dm - MEAN_ERR : 0.0;
+        double qb = (quantisation_bound(c, 1) + 16.0 * dm * dm) * (1.0 - 1e-9) - c->q_slack;
+        if (qb > budget)
+            return qb;
+    }
+    if (six) {
+        lo[6] = hi[6] = -1.0;
+        lo[7] = hi[7] = 1.0;
+    }
+    /* interval by interval, four targets at a time (independent lanes, 8 intervals in either mode:
+     * the compiler vectorises it), the outer sorted targets first (the likeliest to be far from a
+     * poor palette), stopping once above budget (a partial sum is a bound too) */
+    static const int chunk_order[4] = {0, 12, 4, 8};
     double s = 0.0;
-    for (int p = 0; p < 16; ++p)
-        s += m[p];
-    (void)budget;
-    return s;
+    for (int q = 0; q < 4; ++q) {
+        const double *tp = c->sorted + chunk_order[q];
+        double m[4] = {INFINITY, INFINITY, INFINITY, INFINITY};
+        for (int i = 0; i < 8; ++i) {
+            const double l = lo[i], h = hi[i];
+            for (int p = 0; p < 4; ++p) {
+                /* dist^2 = max(lo - t, 0)^2 + max(t - hi, 0)^2 (one of them is 0), branch-free with
+                 * max(x, 0) = (x + |x|) / 2 (exact) */
+                double a = l - tp[p], b = tp[p] - h;
+                double pa = a + fabs(a), pb = b + fabs(b);
+                double e2 = 0.25 * (pa * pa + pb * pb);
+                m[p] = m[p] < e2 ? m[p] : e2;
+            }
+        }
+        s += (m[0] + m[1]) + (m[2] + m[3]);
+        if (s * (1.0 - 1e-12) > budget)
+            break;
+    }
+    return s * (1.0 - 1e-12);
 }
 
 typedef struct box {
@@ -287,7 +316,7 @@ static int mode_region(common_ctx *c, int six, region *g)
     return g->l_max >= 0 && g->h_min <= 255;
 }
 
-static void try_pair(common_ctx *c, int pair)
+static HOT_CLONES void try_pair(common_ctx *c, int pair)
 {
     double v = exact_score(c, pair, c->best);
     if (v < c->best || (v == c->best && pair < c->best_pair)) {
@@ -518,6 +547,7 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
         c.sorted[q] = t[p];
     }
     c.tmin = c.sorted[0];
+    c.window_best = -1.0;
     c.tmax = c.sorted[15];
     /* prefix sums of the targets about their mean (less cancellation in the group costs); q_slack
      * covers what is left of the rounding */
