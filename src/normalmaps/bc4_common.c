@@ -29,7 +29,12 @@
  *
  * When at most one lattice entry fits in the window, a single entry e serves all 16 targets and the
  * score is exactly q[1] + 16 (e - mean)^2, so the bound adds 16 dist(mean, I_k)^2 (nearest interval):
- * this prunes the pairs of narrow blocks whose one entry misses the targets' mean.
+ * this prunes the pairs of narrow blocks whose one entry misses the targets' mean. A box all of whose
+ * pairs have at most one entry in the window is not split further: the pairs that can reach the
+ * incumbent are those with an entry within R = sqrt((best - q[1]) / 16) (+ slack) of the mean,
+ * listed directly per low anchor and weight as intervals of the high anchor (one_entry_scan) - the
+ * interval bound cannot see this until its boxes are single pairs (blocks of an 8-bit source hold
+ * two or three values, and hundreds of pairs put one entry on the same 16-bit value).
  * Search: the incumbent is the best of the fast encoder's pair (sol_nm_bc4_fast) refined by a
  * least-squares refit of its anchors (refine) and, for blocks narrower than a few codes, palettes of
  * span 1-4 codes centred on the targets (narrow_seeds: the fast pair has span 0 there, and the refit
@@ -101,6 +106,11 @@ static double quantisation_bound(common_ctx *c, int m)
     return c->q[m];
 }
 
+static inline int make_pair(int six, int l, int h)
+{
+    return six ? (l << 8 | h) : (h << 8 | l);
+}
+
 static inline double anchor(int c)
 {
     return 2.0 * c / 255.0 - 1.0;
@@ -152,6 +162,22 @@ static inline void update_window(common_ctx *c)
     c->window_best = c->best;
 }
 
+/* At most how many entries of a pair of the box (low anchors up to l2, high anchors from h1) lie in
+ * the window (8 when the box allows entries closer than 2 delta). */
+static inline int box_used(common_ctx *c, int six, int l2, int h1)
+{
+    const int den = six ? 5 : 7;
+    update_window(c);
+    const double gap = (anchor(h1) - anchor(l2)) / den - 2.0 * c->delta;
+    if (!(gap > 0.0))
+        return 8;
+    double fit = floor((c->whi - c->wlo) / gap) + 1.0;
+    int used = fit < (double)(den + 1) ? (int)fit : den + 1;
+    if (six)
+        used += (c->wlo <= -1.0) + (c->whi >= 1.0);
+    return used;
+}
+
 /* Lower bound of the score of every pair of the box (see the top of the file); stops once above budget. */
 static HOT_CLONES double box_bound(common_ctx *c, int six, int l1, int l2, int h1, int h2, double budget)
 {
@@ -159,19 +185,11 @@ static HOT_CLONES double box_bound(common_ctx *c, int six, int l1, int l2, int h
     const double al1 = anchor(l1), al2 = anchor(l2), ah1 = anchor(h1), ah2 = anchor(h2), d = c->delta;
     /* the used entries lie within r = sqrt(best) of a target, so in a window of width W; entries are
      * at least step - 2 delta apart, so at most floor(W / (step - 2 delta)) + 1 of them are there */
-    update_window(c);
-    const double wlo = c->wlo, whi = c->whi, gap = (ah1 - al2) / den - 2.0 * d;
-    int used = 8;
-    if (gap > 0.0) {
-        double fit = floor((whi - wlo) / gap) + 1.0;
-        used = fit < (double)(den + 1) ? (int)fit : den + 1;
-        if (six)
-            used += (wlo <= -1.0) + (whi >= 1.0);
-        if (used > 1 && used < 8) {
-            double qb = quantisation_bound(c, used) * (1.0 - 1e-9) - c->q_slack;
-            if (qb > budget)
-                return qb;
-        }
+    const int used = box_used(c, six, l2, h1);
+    if (used > 1 && used < 8) {
+        double qb = quantisation_bound(c, used) * (1.0 - 1e-9) - c->q_slack;
+        if (qb > budget)
+            return qb;
     }
     /* the entries' intervals: the anchors (with a 1e-12 margin for their rounding), the interpolants
      * of weight w = j / den, each widened by delta (the 6-value mode's fixed entries -1, +1 below) */
@@ -329,6 +347,51 @@ static HOT_CLONES void try_pair(common_ctx *c, int pair)
  * splitting further, measured on the benchmark maps). */
 #define SMALL_BOX 16
 
+/* A box whose pairs have at most one entry in the window (box_used == 1): such a pair reaches the
+ * incumbent only if its one serving entry e has q[1] + 16 (e - mean)^2 <= best, i.e. lies within
+ * R of the mean. Its pairs are listed directly instead of split further (the interval bound cannot
+ * see this until the boxes are single pairs): for each low anchor L, the row when A(L) is within
+ * R, the high anchors H with A(H) within R, and for each interpolant weight w the H whose exact
+ * entry (1 - w) A(L) + w A(H) is within R + delta (an interval of H). Returns 0 (nothing done) when
+ * a 6-value fixed entry is within R: then every pair qualifies.
+ * A row (or column) whose anchor A is within R needs only its least pair: every pair of it scores at
+ * most S = sum_p (A - t_p)^2 (A is one of its entries); if S <= best, each of its pairs scores <= best,
+ * so its one entry in the window serves every target, and that entry is A (A is in the window):
+ * every pair scores exactly S, the same terms added in the same order; if S > best, a pair scoring
+ * <= best would be served by its one window entry, A, and score S: none does. The least pair of a
+ * row of low anchor L is the least H in either mode (8-value H << 8 | L, 6-value L << 8 | H), of a
+ * column the least L. */
+static int one_entry_scan(common_ctx *c, int six, const box *b)
+{
+    const int den = six ? 5 : 7, gap = six ? 0 : 1;
+    double slack = c->best * (1.0 + 2e-9) + 2.0 * c->q_slack - quantisation_bound(c, 1) * (1.0 - 1e-9);
+    const double r = sqrt((slack > 0.0 ? slack : 0.0) / 16.0) * (1.0 + 1e-9) + MEAN_ERR + 1e-12, m = c->mean;
+    if (six && (fabs(m + 1.0) <= r || fabs(m - 1.0) <= r))
+        return 0;
+    const int a_lo = code_ceil(m - r), a_hi = code_floor(m + r); /* anchors within r */
+    for (int h = a_lo > b->h1 ? a_lo : b->h1; h <= a_hi && h <= b->h2; ++h) /* the high anchor: a column */
+        if (b->l1 + gap <= h)
+            try_pair(c, make_pair(six, b->l1, h)); /* its least pair (see below) */
+    for (int l = b->l1; l <= b->l2; ++l) {
+        const int h_lo = b->h1 > l + gap ? b->h1 : l + gap;
+        const double al = anchor(l);
+        if (l >= a_lo && l <= a_hi) { /* the low anchor itself: a row, its least pair */
+            if (h_lo <= b->h2)
+                try_pair(c, make_pair(six, l, h_lo));
+            continue;
+        }
+        for (int j = 1; j < den; ++j) { /* interpolant of weight w = j / den */
+            double w = (double)j / den, reach = r + c->delta;
+            int h1 = code_ceil(al + (m - reach - al) / w), h2 = code_floor(al + (m + reach - al) / w);
+            h1 = h1 > h_lo ? h1 : h_lo;
+            h2 = h2 < b->h2 ? h2 : b->h2;
+            for (int h = h1; h <= h2; ++h)
+                try_pair(c, make_pair(six, l, h));
+        }
+    }
+    return 1;
+}
+
 static void search_mode(common_ctx *c, int six)
 {
     box stack[64];
@@ -353,6 +416,8 @@ static void search_mode(common_ctx *c, int six)
                         try_pair(c, h << 8 | l);
             continue;
         }
+        if (box_used(c, six, b.l2, b.h1) == 1 && one_entry_scan(c, six, &b))
+            continue;
         box kid[2];
         int nk = 0;
         if (b.l2 - b.l1 >= b.h2 - b.h1) {
@@ -420,11 +485,6 @@ static void refine(common_ctx *c, int six, int l, int h)
         l = nl;
         h = nh;
     }
-}
-
-static inline int make_pair(int six, int l, int h)
-{
-    return six ? (l << 8 | h) : (h << 8 | l);
 }
 
 /* Incumbent: from a pair of a mode, steps to the best of its 8 neighbours (L +- 1, H +- 1) while
