@@ -311,6 +311,64 @@ Test(normalmaps, joint_search_is_exact_at_the_rim)
     cr_assert_eq(info.error, bc5_brute_force(n, &r, &o));
 }
 
+/* The degenerate families of issue 13 (normals pointing away, z = 0 rims, blocks with both), with
+ * random parameters: pixels pointing away take the rim-direction bound (bc5.c), rims the loose one. */
+static void degenerate_block(int family, double n[16][3])
+{
+    double phi = 2 * M_PI * uniform(), spread = 0.2 + 2.0 * uniform(), rho = 0.05 + 0.9 * uniform();
+    for (int p = 0; p < 16; ++p) {
+        double f = phi + spread * (p / 15.0 - 0.5) + 0.05 * (uniform() - 0.5), z;
+        switch (family) {
+        case 0: /* pointing away, varied */
+            z = -sqrt(1 - rho * rho);
+            break;
+        case 1: /* a rim, some pixels just above or below it */
+            z = p % 3 ? 0.0 : 0.01 * (uniform() - 0.5);
+            rho = 1.0;
+            break;
+        case 2: /* half pointing away */
+            z = p % 2 ? -sqrt(1 - rho * rho) : sqrt(1 - rho * rho);
+            break;
+        default: /* all equal, pointing away */
+            f = phi;
+            z = -sqrt(1 - rho * rho);
+            break;
+        }
+        n[p][0] = rho * cos(f);
+        n[p][1] = rho * sin(f);
+        n[p][2] = z;
+    }
+}
+
+/* The search equals literal brute force on the degenerate families (windows of 7 codes around the
+ * common anchors and at both modes' extremes, both metrics, every precision). */
+Test(normalmaps, joint_search_is_exact_pointing_away_and_at_rims)
+{
+    for (int trial = 0; trial < 16; ++trial) {
+        double n[16][3];
+        degenerate_block(trial % 4, n);
+        sol_bc5_options o = {.precision = (sol_bc4_precision)(trial % 3),
+                             .metric = (trial / 4) % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED};
+        sol_bc5_block common, found;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &common, NULL), SOL_OK);
+        sol_bc5_range r = {clamp_code(common.x.e0 - 3), clamp_code(common.x.e0 + 3), clamp_code(common.x.e1 - 3),
+                           clamp_code(common.x.e1 + 3), clamp_code(common.y.e0 - 3), clamp_code(common.y.e0 + 3),
+                           clamp_code(common.y.e1 - 3), clamp_code(common.y.e1 + 3)};
+        for (int w = 0; w < 3; ++w) {
+            if (w == 1) /* near full span, 8-value mode: where rim directions are reached */
+                r = (sol_bc5_range){249, 255, 0, 6, 249, 255, 0, 6};
+            else if (w == 2) /* both modes: e0 <= e1 (6-value, entries -1 and +1) and e0 > e1 */
+                r = (sol_bc5_range){0, 6, 0, 6, 249, 255, 249, 255};
+            cr_assert_eq(sol_bc5_search_block(n, &r, &o, &found, &info), SOL_OK);
+            double ref = bc5_brute_force(n, &r, &o);
+            cr_assert_eq(info.error, ref, "trial %d window %d: search %.17g, brute force %.17g", trial, w, info.error,
+                         ref);
+            cr_assert(!info.bounded);
+        }
+    }
+}
+
 /* Full-range optimum (all 2^32 anchor combinations): never worse than common or adaptive, and no
  * better solution within +-2 codes of it (a local brute-force check of the global search). */
 Test(normalmaps, optimal_encoder_beats_common_and_adaptive_T12_T13)

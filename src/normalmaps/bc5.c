@@ -138,6 +138,11 @@ static inline double angle2_lower_bound(double a, double b, const double n[3])
         c2 = (a * inv - n[0]) * (a * inv - n[0]) + (b * inv - n[1]) * (b * inv - n[1]) + n[2] * n[2];
     }
     double c = sqrt(c2) * (1.0 - 1e-6) - 1e-15; /* relative and absolute rounding of c and of dN */
+    if (c > 0.2) { /* large angles (rims, pixels pointing away): the series is loose, use dN itself;
+                    * asin's relative change is at least c's, so the lowering still covers rounding */
+        double e = 2.0 * asin(c < 2.0 ? 0.5 * c : 1.0);
+        return e * e;
+    }
     return c > 0.0 ? c * c * (1.0 + c * c / 12.0) : 0.0;
 }
 
@@ -146,7 +151,8 @@ static inline double angle2_lower_bound(double a, double b, const double n[3])
  * best_pixel), its dN^2 bounded below by angle2_lower_bound. The search rejects a candidate when
  * this reaches the incumbent and re-evaluates survivors exactly with joint_objective. */
 static double joint_objective_lower(const double a[8], const double b[8], const double n[16][3],
-                                    const int order[16], int use_max, double budget, uint64_t *work)
+                                    const int order[16], const double away_off[16], int use_max, double budget,
+                                    uint64_t *work)
 {
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
@@ -155,11 +161,63 @@ static double joint_objective_lower(const double a[8], const double b[8], const 
         const double *np = n[order[k]];
         best_pixel_index(a, b, np, &i, &j);
         double e2 = angle2_lower_bound(a[i], b[j], np);
+        e2 = e2 > away_off[k] ? e2 : away_off[k]; /* the hemisphere bound theta0^2 */
         s = use_max ? (e2 > s ? e2 : s) : s + e2;
         if (s >= budget)
             return s;
     }
     return s;
+}
+
+/* ---- pixels pointing away (nz < 0) ----
+ *
+ * A decoded normal u lies on the upper hemisphere (z >= 0). Write the unit source normal as
+ * n = (rho m, -h) with m the unit rim direction of its (x, y), rho = sqrt(1 - h^2), h = -nz > 0,
+ * and u = (cos e w, sin e) with elevation e >= 0 and rim direction w. Then
+ *     cos dN = u . n = rho cos e (w . m) - h sin e <= rho cos e (w . m) = rho (u . m),
+ * and u . m = 1 - c^2 / 2 with c = |u - m| the chord from u to the rim point m. So
+ *     dN >= H(c^2) = acos(rho (1 - c^2 / 2)),
+ * the angle of the closest point of the hemisphere, theta0 = H(0) = atan2(h, rho) = asin(h) (the
+ * hemisphere bound), growing with the chord to m. acos(y)^2 is convex on (-1, 1) (its second
+ * derivative is 2 (1 - y acos(y) / sqrt(1 - y^2)) / (1 - y^2) > 0, as alpha < tan alpha for
+ * y = cos alpha in (0, 1) and trivially for y <= 0), and y is affine in c^2, so H^2 lies above its
+ * tangent at 0:
+ *     dN^2 >= theta0^2 + k c^2,  k = 2 theta0 H'(0) = theta0 rho / h (= theta0 cot theta0).
+ * The chord splits by channel like the rim pixels' loose bound, with m's components as targets:
+ * an unclamped decode (a, b, z) has c^2 >= (a - mx)^2 + (b - my)^2, a clamped one (a, b, 0) / r has
+ * x component a / r in [a / sqrt(1 + a^2), a] (see sol_nm_loose_term). So each channel's loose term
+ * of such a pixel becomes theta0^2 (half of it per channel for the sum metric, all of it for the
+ * max) + k (loose distance of mx)^2, instead of the near-zero loose distance of nx: the lists of
+ * anchor pairs of a block pointing away shrink from nearly all 65536 pairs to those whose entries
+ * can point the decoded rim direction at every m. rho = 0 (n = (0, 0, -1)) gives k = 0: the
+ * hemisphere bound (pi / 2)^2 alone. The quick bound uses the same sum per pixel, and every
+ * per-candidate bound at least theta0^2. */
+typedef struct away_info {
+    unsigned mask;       /* bit p: pixel p points away (and is loose) */
+    double m[2][16];     /* the rim targets mx, my (the pixel's nx, ny where not away) */
+    double w[16];        /* k, lowered by 1e-12 relative (rounding) */
+    double off[16];      /* theta0^2, lowered likewise (0 where not away) */
+} away_info;
+
+static void away_info_init(away_info *aw, const double n[16][3], unsigned loose)
+{
+    aw->mask = 0;
+    for (int p = 0; p < 16; ++p) {
+        aw->m[0][p] = n[p][0];
+        aw->m[1][p] = n[p][1];
+        aw->w[p] = 0.0;
+        aw->off[p] = 0.0;
+        if (!((loose >> p) & 1) || !(n[p][2] < 0.0))
+            continue;
+        double rho = hypot(n[p][0], n[p][1]), h = -n[p][2], theta0 = atan2(h, rho);
+        aw->mask |= 1u << p;
+        if (rho > 0.0) {
+            aw->m[0][p] = n[p][0] / rho;
+            aw->m[1][p] = n[p][1] / rho;
+        }
+        aw->w[p] = theta0 * rho / h * (1.0 - 1e-12);
+        aw->off[p] = theta0 * theta0 * (1.0 - 1e-12);
+    }
 }
 
 /* ---- the quick per-candidate bound ----
@@ -176,12 +234,17 @@ static double joint_objective_lower(const double a[8], const double b[8], const 
  * rough blocks alike is most pixels; the survivors go on to joint_objective_lower. */
 typedef struct channel_side {
     double v[16], m1[16], m2[16]; /* per pixel, in the search's visiting order */
+    double lt[16];                /* pixels pointing away: k (loose distance of m's component)^2, else 0 */
 } channel_side;
 
 /* Fills s for palette pal against component c (0 = x, 1 = y) of the pixels n[order[k]]. */
 static void channel_side_init(const double pal[8], const double n[16][3], const int order[16], int c,
-                              channel_side *s)
+                              const away_info *aw, channel_side *s)
 {
+    for (int k = 0; k < 16; ++k) {
+        int p = order[k];
+        s->lt[k] = (aw->mask >> p) & 1 ? aw->w[p] * sol_nm_loose_term(pal, aw->m[c][p]) : 0.0;
+    }
     for (int k = 0; k < 16; ++k) {
         double t = n[order[k]][c], d[8];
         int i0 = 0;
@@ -204,7 +267,8 @@ static void channel_side_init(const double pal[8], const double n[16][3], const 
  * the rounding allowance of angle2_lower_bound; the chord of (v_x, v_y) is computed with the decoder's
  * z = sqrt(1 - a^2 - b^2). */
 static double joint_objective_quick(const channel_side *xs, const channel_side *ys, const double n[16][3],
-                                    const int order[16], int use_max, double budget, uint64_t *work)
+                                    const int order[16], const double away_off[16], int use_max, double budget,
+                                    uint64_t *work)
 {
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
@@ -223,7 +287,8 @@ static double joint_objective_quick(const channel_side *xs, const channel_side *
         }
         lb = c2 < lb ? c2 : lb;
         double e2 = lb * (1.0 - 3e-6) - 5e-15;
-        e2 = e2 > 0.0 ? e2 : 0.0;
+        double away = (away_off[k] + xs->lt[k] + ys->lt[k]) * (1.0 - 1e-12); /* 0 unless pointing away */
+        e2 = e2 > away ? e2 : away;
         s = use_max ? (e2 > s ? e2 : s) : s + e2;
         if (s >= budget)
             return s;
@@ -551,12 +616,21 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     uint64_t work = 0; /* pixel evaluations of candidates */
     if (best > 0.0 && best > hemisphere_bound(n, use_max)) {
         unsigned loose = 0;
+        away_info aw;
+        away_info_init(&aw, n, 0);
         if (best * (1.0 + BOUND_SLACK) >= min_nz2) { /* rim pixels: loose bounds for them */
             for (int p = 0; p < 16; ++p)
                 if (n[p][2] * n[p][2] <= best * (1.0 + BOUND_SLACK))
                     loose |= 1u << p;
-            sol_nm_channel_init(&cx, tx, precision, use_max, loose, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi);
-            sol_nm_channel_init(&cy, ty, precision, use_max, loose, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi);
+            away_info_init(&aw, n, loose); /* pixels pointing away: rim targets, weights, offsets */
+            sol_nm_channel_init(&cx, aw.m[0], precision, use_max, loose, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi);
+            sol_nm_channel_init(&cy, aw.m[1], precision, use_max, loose, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi);
+            for (int p = 0; p < 16; ++p)
+                if ((aw.mask >> p) & 1) {
+                    double off = use_max ? aw.off[p] : 0.5 * aw.off[p];
+                    sol_nm_channel_rim_weight(&cx, p, aw.w[p], off);
+                    sol_nm_channel_rim_weight(&cy, p, aw.w[p], off);
+                }
             sol_nm_channel_argmin(&cx, &sx_min);
             sol_nm_channel_argmin(&cy, &sy_min);
         }
@@ -586,6 +660,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 order[q] = order[q - 1];
                 order[q - 1] = t;
             }
+        double away_off[16]; /* theta0^2 of the pixels pointing away, in visiting order */
+        for (int k = 0; k < 16; ++k)
+            away_off[k] = aw.off[order[k]];
         /* the y list's channel sides for the quick bound (without memory, the search runs without it) */
         int quick = 1;
         if (ny > ws->yside_cap) {
@@ -598,14 +675,14 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             }
         }
         for (size_t j = 0; quick && j < ny; ++j)
-            channel_side_init(pal[ws->y[j].pair], n, order, 1, &ws->yside[j]);
+            channel_side_init(pal[ws->y[j].pair], n, order, 1, &aw, &ws->yside[j]);
         channel_side xside;
         for (size_t i = 0; i < nx && ny > 0 && !bounded; ++i) {
             if (combine(ws->x[i].score, ws->y[0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                 break;
             const double *a = pal[ws->x[i].pair];
             if (quick)
-                channel_side_init(a, n, order, 0, &xside);
+                channel_side_init(a, n, order, 0, &aw, &xside);
             for (size_t j = 0; j < ny; ++j) {
                 if (combine(ws->x[i].score, ws->y[j].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                     break;
@@ -615,9 +692,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 }
                 ++candidates;
                 double margin = best * (1.0 + BOUND_SLACK);
-                if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, use_max, margin, &work) >= margin)
+                if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, away_off, use_max, margin, &work) >= margin)
                     continue;
-                if (joint_objective_lower(a, pal[ws->y[j].pair], n, order, use_max, margin, &work) >= margin)
+                if (joint_objective_lower(a, pal[ws->y[j].pair], n, order, away_off, use_max, margin, &work) >= margin)
                     continue;
                 work += 512;
                 double v = joint_objective(a, pal[ws->y[j].pair], n, use_max, best, NULL, NULL);
