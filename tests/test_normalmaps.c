@@ -340,7 +340,7 @@ static void degenerate_block(int family, double n[16][3])
     }
 }
 
-/* The search equals literal brute force on the degenerate families (windows of 7 codes around the
+/* The search equals literal brute force on the degenerate families (windows of 11 codes around the
  * common anchors and at both modes' extremes, both metrics, every precision). */
 Test(normalmaps, joint_search_is_exact_pointing_away_and_at_rims)
 {
@@ -352,14 +352,15 @@ Test(normalmaps, joint_search_is_exact_pointing_away_and_at_rims)
         sol_bc5_block common, found;
         sol_bc5_info info;
         cr_assert_eq(sol_bc5_encode_block(n, &o, &common, NULL), SOL_OK);
-        sol_bc5_range r = {clamp_code(common.x.e0 - 3), clamp_code(common.x.e0 + 3), clamp_code(common.x.e1 - 3),
-                           clamp_code(common.x.e1 + 3), clamp_code(common.y.e0 - 3), clamp_code(common.y.e0 + 3),
-                           clamp_code(common.y.e1 - 3), clamp_code(common.y.e1 + 3)};
+        /* windows of 11 codes: lists long enough for the coupling filter and the equal-block solver */
+        sol_bc5_range r = {clamp_code(common.x.e0 - 5), clamp_code(common.x.e0 + 5), clamp_code(common.x.e1 - 5),
+                           clamp_code(common.x.e1 + 5), clamp_code(common.y.e0 - 5), clamp_code(common.y.e0 + 5),
+                           clamp_code(common.y.e1 - 5), clamp_code(common.y.e1 + 5)};
         for (int w = 0; w < 3; ++w) {
             if (w == 1) /* near full span, 8-value mode: where rim directions are reached */
-                r = (sol_bc5_range){249, 255, 0, 6, 249, 255, 0, 6};
+                r = (sol_bc5_range){245, 255, 0, 10, 245, 255, 0, 10};
             else if (w == 2) /* both modes: e0 <= e1 (6-value, entries -1 and +1) and e0 > e1 */
-                r = (sol_bc5_range){0, 6, 0, 6, 249, 255, 249, 255};
+                r = (sol_bc5_range){0, 10, 0, 10, 245, 255, 245, 255};
             cr_assert_eq(sol_bc5_search_block(n, &r, &o, &found, &info), SOL_OK);
             double ref = bc5_brute_force(n, &r, &o);
             cr_assert_eq(info.error, ref, "trial %d window %d: search %.17g, brute force %.17g", trial, w, info.error,
@@ -620,8 +621,9 @@ Test(normalmaps, degenerate_blocks_are_decided_directly_and_exactly)
     cr_assert(info.error <= window.error);
 }
 
-/* The documented work bound: a block the bounds cannot separate (varied normals all pointing away,
- * every candidate within 0.2% of the hemisphere bound) stops at its work_limit and says so. */
+/* The documented work bound: a search stops at its work_limit and says so. The block: varied
+ * normals all pointing away, every candidate within 0.2% of the hemisphere bound (before the rim
+ * direction bound of bc5.c it ran into the default bound, ~1 s; now it is proven within it). */
 Test(normalmaps, work_bound_stops_the_search_and_says_so)
 {
     double n[16][3];
@@ -636,7 +638,7 @@ Test(normalmaps, work_bound_stops_the_search_and_says_so)
     sol_bc5_info info;
     cr_assert_eq(sol_bc5_search_block(n, NULL, &o, &b, &info), SOL_OK);
     cr_assert(info.bounded && info.candidates <= 100, "%llu", (unsigned long long)info.candidates);
-    cr_assert(info.candidates >= 3); /* 100 pixel evaluations: at least the 3 incumbents and a few more */
+    cr_assert(info.candidates >= 2); /* at least the two incumbents */
     double own;
     cr_assert_eq(sol_bc5_block_error(&b, n, o.precision, o.metric, &own), SOL_OK);
     cr_assert_float_eq(own, info.error, 1e-12 * info.error);
@@ -644,6 +646,8 @@ Test(normalmaps, work_bound_stops_the_search_and_says_so)
     o.work_limit = 0; /* the default bound */
     cr_assert_eq(sol_bc5_search_block(n, NULL, &o, &b, &info), SOL_OK);
     cr_assert(info.candidates <= SOL_BC5_DEFAULT_WORK_LIMIT);
+    cr_assert(!info.bounded); /* proven: issue 13's known failure */
+    cr_assert(info.error >= 16 * pow(asin(1.0 / sqrt(1.01)), 2));
     /* images count the blocks the bound stopped */
     sol_image img = {0};
     cr_assert_eq(sol_image_alloc(&img, 4, 4, 3), SOL_OK);
