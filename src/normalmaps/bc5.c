@@ -157,8 +157,8 @@ static inline double angle2_lower_bound(double a, double b, const double n[3])
  * best_pixel), its dN^2 bounded below by angle2_lower_bound. The search rejects a candidate when
  * this reaches the incumbent and re-evaluates survivors exactly with joint_objective. */
 static double joint_objective_lower(const double a[8], const double b[8], const double n[16][3],
-                                    const int order[16], const double away_off[16], int use_max, double budget,
-                                    uint64_t *work)
+                                    const int order[16], const double away_off[16], int use_max, double best,
+                                    double budget, uint64_t *work)
 {
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
@@ -168,6 +168,15 @@ static double joint_objective_lower(const double a[8], const double b[8], const 
         best_pixel_index(a, b, np, &i, &j);
         double e2 = angle2_lower_bound(a[i], b[j], np);
         e2 = e2 > away_off[k] ? e2 : away_off[k]; /* the hemisphere bound theta0^2 */
+        if (use_max && e2 < budget && e2 >= best * (1.0 - 1e-5)) {
+            /* max metric, a pixel within the bounds' slack of the incumbent: its exact angle is the
+             * one joint_objective would compute (same index pair, same function), and the max of the
+             * block is at least it; so a pixel at or above the incumbent rejects the candidate
+             * exactly (it cannot be strictly better), which decides exact ties of the worst pixel */
+            double e = decoded_angle(a[i], b[j], np);
+            if (e * e >= best)
+                return budget;
+        }
         s = use_max ? (e2 > s ? e2 : s) : s + e2;
         if (s >= budget)
             return s;
@@ -1135,7 +1144,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 double margin = best * (1.0 + BOUND_SLACK);
                 if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, away_off, use_max, margin, &work) >= margin)
                     continue;
-                if (joint_objective_lower(a, pal[ws->y[j].pair], n, order, away_off, use_max, margin, &work) >= margin)
+                if (joint_objective_lower(a, pal[ws->y[j].pair], n, order, away_off, use_max, best, margin, &work) >= margin)
                     continue;
                 work += 512;
                 double v = joint_objective(a, pal[ws->y[j].pair], n, use_max, best, NULL, NULL);
