@@ -323,7 +323,7 @@ static void filter_cost_rows(const exp_run *exp, const test_images *im, int repe
 {
     for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
         filter_job job = {&im->aliased, {(sol_postaa_taps)taps, 0.0}};
-        double ns = exp_time_per_item_ns(run_filter, &job, (size_t)im->size * im->size, repeats);
+        double ns = exp_cpu_time_per_item_ns(run_filter, &job, (size_t)im->size * im->size, repeats);
         sol_image out;
         exp_check(sol_postaa_filter(&im->aliased, &job.opt, &out), "filtering");
         errors(&out, &im->reference, &im->aliased, &r->default_all[taps], &r->default_edge[taps]);
@@ -344,9 +344,9 @@ static void supersampling_cost_rows(const test_images *im, int repeats, exp_tabl
         sol_image ss;
         exp_check(sol_image_alloc(&ss, im->size, im->size, 3), "allocating");
         render_job job = {&im->s, n, &ss};
-        double ns = exp_time_per_item_ns(run_render, &job, pixels, repeats);
+        double ns = exp_cpu_time_per_item_ns(run_render, &job, pixels, repeats);
         render_job one = {&im->s, 1, &ss};
-        double ns1 = exp_time_per_item_ns(run_render, &one, pixels, repeats);
+        double ns1 = exp_cpu_time_per_item_ns(run_render, &one, pixels, repeats);
         render(&im->s, n, &ss);
         double a, e;
         errors(&ss, &im->reference, &im->aliased, &a, &e);
@@ -362,7 +362,7 @@ static void edge_error_table(const exp_run *exp, const test_images *im, filter_r
 {
     const int repeats = exp->quick ? 3 : 7;
     exp_table *cost = exp_table_new("Edge anti-aliasing: error against a 16x16 supersampled reference, and cost",
-                                    "method,RMS error (all),RMS error (edge pixels),edge error vs aliased %,ns per pixel");
+                                    "method,RMS error (all),RMS error (edge pixels),edge error vs aliased %,core-ns per pixel");
     FILE *csv = exp_open(exp, "error_vs_time.csv");
     fputs("method,ns,rms_edge\n", csv);
     exp_table_row(cost, "aliased (1 sample)|%.5f|%.5f|100.0|-", im->rms_alias_all, im->rms_alias_edge);
@@ -397,7 +397,7 @@ static void plot_results(const exp_run *exp, const test_images *im)
                  k ? ", " : "", k, k, k + 5, k + 1, name);
     }
     exp_plot(exp, "error_vs_time",
-             "set datafile separator comma\nset xlabel 'ns per pixel (median)'\nset ylabel 'RMS error on edge pixels'\n"
+             "set datafile separator comma\nset xlabel 'core-ns per pixel (median, one thread)'\nset ylabel 'RMS error on edge pixels'\n"
              "set grid\nset key outside right top\nset logscale x\nset offsets graph 0.1, graph 0.1, graph 0.1, graph 0.1\n"
              "plot %s", clauses);
 }
