@@ -217,5 +217,7 @@ int main(int argc, char **argv)
     run_d6_table(&exp);
     if (!exp.bench)
         run_d7_blending(&exp);
+    else
+        run_oct_bench(&exp);
     return 0;
 }
