@@ -372,6 +372,30 @@ static void edge_error_table(const exp_run *exp, const test_images *im, filter_r
     exp_table_write(cost, exp, "edge_error");
 }
 
+/* --bench only (threshold_knobs): the filter's threshold, its one numeric knob, for each fetch
+ * placement: error and core-ns per pixel, with the aliased image (no filter) as the baseline. */
+static void threshold_knobs_table(const exp_run *exp, const test_images *im)
+{
+    exp_table *t = exp_table_new("Post-process AA threshold (deviation of full blur) per fetch placement: error against "
+                                 "the supersampled reference and time per pixel (one thread)",
+                                 "method,threshold,RMS error (all),RMS error (edge pixels),core-ns per pixel");
+    exp_table_row(t, "aliased (no filter)|-|%.5f|%.5f|0", im->rms_alias_all, im->rms_alias_edge);
+    static const double thresholds[] = {0.125, 0.25, 0.5, 1.0, 2.0, 4.0};
+    for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps)
+        for (size_t i = 0; i < sizeof thresholds / sizeof *thresholds; ++i) {
+            filter_job job = {&im->aliased, {(sol_postaa_taps)taps, thresholds[i]}};
+            double ns = exp_cpu_time_per_item_ns(run_filter, &job, (size_t)im->size * im->size, exp->quick ? 3 : 5);
+            sol_image out;
+            exp_check(sol_postaa_filter(&im->aliased, &job.opt, &out), "filtering");
+            double a, e;
+            errors(&out, &im->reference, &im->aliased, &a, &e);
+            sol_image_free(&out);
+            exp_table_row(t, "filter, %s|%g%s|%.5f|%.5f|%.1f", taps_name((sol_postaa_taps)taps), thresholds[i],
+                          thresholds[i] == 0.5 ? " (default)" : "", a, e, ns);
+        }
+    exp_table_write(t, exp, "threshold_knobs");
+}
+
 static void plot_results(const exp_run *exp, const test_images *im)
 {
     exp_plot(exp, "threshold_sweep",
@@ -453,6 +477,8 @@ int main(int argc, char **argv)
         threshold_sweep(&exp, &im, &r);
     }
     edge_error_table(&exp, &im, &r);
+    if (exp.bench)
+        threshold_knobs_table(&exp, &im);
     if (!exp.bench) {
         plot_results(&exp, &im);
         write_claims(&exp, &im, pinwheel_kernel_err, edge_pin, &r);
