@@ -166,7 +166,7 @@ static void measure_sample_counts(const exp_run *exp, ssao_scene *sc, double err
     fputs("samples,full_rms,full_ns,half_rms,half_ns\n", csv);
     for (int k = 0, s = 4; s <= 64; s *= 2, ++k) {
         full_job fj = {&sc->cam, sc->depth, sc->vo, {.radius = RADIUS, .samples = s}};
-        double ns_full = exp_time_per_item_ns(run_full, &fj, sc->n, sc->repeats);
+        double ns_full = exp_cpu_time_per_item_ns(run_full, &fj, sc->n, sc->repeats);
         err_full[k] = rms_error(sc->vo, sc->ref, sc->depth, sc->n, sc->cam.zfar);
         if (k == 0 && !exp->bench) {
             save_gray(exp, "vo_4_samples.png", sc->vo, sc->cam.width, sc->cam.height, 2.0);
@@ -174,7 +174,7 @@ static void measure_sample_counts(const exp_run *exp, ssao_scene *sc, double err
         }
         half_pipeline hp = {&sc->cam, sc->half_cam, sc->depth, sc->half_depth, sc->half_vo, sc->vo,
                             {.radius = RADIUS, .samples = s}};
-        double ns_half = exp_time_per_item_ns(run_half, &hp, sc->n, sc->repeats);
+        double ns_half = exp_cpu_time_per_item_ns(run_half, &hp, sc->n, sc->repeats);
         err_half[k] = rms_error(sc->vo, sc->ref, sc->depth, sc->n, sc->cam.zfar);
         exp_table_row(t, "%d|%.5f|%.1f|%.5f|%.1f", s, err_full[k], ns_full, err_half[k], ns_half);
         fprintf(csv, "%d,%.6f,%.3f,%.6f,%.3f\n", s, err_full[k], ns_full, err_half[k], ns_half);
