@@ -278,7 +278,7 @@ static void table_knobs(const exp_run *exp, d6_data *d)
                                  "encoder,precision,filter,rms deg,max deg,same cell as search %,core-ns per normal");
     knob_timing c = {NULL, SOL_TABLE_NEAREST, d->dirs, d->tn, 0};
     exp_table_row(t, "peer: exact search|double|-|%.5f|%.5f|100.00|%.1f", d->exact_stats.rms, d->exact_stats.max,
-                  exp_cpu_time_per_item_ns(time_knob, &c, d->tn, 5));
+                  exp_cpu_time_per_item_ns(time_knob, &c, d->tn, 15));
     sol_bestfit_table base;
     exp_check(sol_bestfit_table_build(512, 0, &base), "table 512");
     for (size_t b = 0; b < N_BITS; ++b) {
@@ -289,7 +289,7 @@ static void table_knobs(const exp_run *exp, d6_data *d)
             knob_timing k = {&tb, (sol_table_filter)f, d->dirs, d->tn, 0};
             exp_table_row(t, "table 512x512|%s|%s|%.5f|%.5f|%.2f|%.1f",
                           precision_bits[b] == 8 ? "8-bit" : precision_bits[b] == 16 ? "16-bit" : "float",
-                          f ? "bilinear" : "nearest", st.rms, st.max, same, exp_cpu_time_per_item_ns(time_knob, &k, d->tn, 5));
+                          f ? "bilinear" : "nearest", st.rms, st.max, same, exp_cpu_time_per_item_ns(time_knob, &k, d->tn, 15));
         }
         sol_bestfit_table_free(&tb);
     }

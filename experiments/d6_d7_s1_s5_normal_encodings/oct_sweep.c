@@ -166,7 +166,7 @@ void run_oct_bench(const exp_run *exp)
     for (size_t k = 0; k < sizeof peers / sizeof *peers; ++k) {
         oct_stats s = peer_errors(peers[k], n, err);
         oct_timing c = {NULL, peers[k], dirs, tn, 0.0};
-        double ns = exp_cpu_time_per_item_ns(time_oct, &c, tn, 5);
+        double ns = exp_cpu_time_per_item_ns(time_oct, &c, tn, 15);
         exp_table_row(t, "peer: %s|-|-|-|%.6f|%.6f|%.1f", sol_normal_method_name(peers[k]), s.mean, s.max, ns);
     }
     for (int bits = 8; bits <= 16; bits += 2)
@@ -174,7 +174,7 @@ void run_oct_bench(const exp_run *exp)
             sol_oct_options o = {bits, v == 1, v == 2 ? SOL_OCT_UNORM : SOL_OCT_SNORM};
             oct_stats s = oct_errors(&o, 0, n, err);
             oct_timing c = {&o, SOL_NORMAL_OCTAHEDRAL_12, dirs, tn, 0.0};
-            double ns = exp_cpu_time_per_item_ns(time_oct, &c, tn, 5);
+            double ns = exp_cpu_time_per_item_ns(time_oct, &c, tn, 15);
             exp_table_row(t, "octahedral|%d|%s|%s|%.6f|%.6f|%.1f", bits, v == 1 ? "precise (best of 4)" : "nearest",
                           v == 2 ? "UNORM" : "SNORM", s.mean, s.max, ns);
         }
