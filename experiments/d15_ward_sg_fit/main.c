@@ -127,7 +127,7 @@ static void bench_tables(const exp_run *exp)
     int nk = exp->quick ? 4 : (int)(sizeof ks / sizeof ks[0]);
     for (int i = 0; i < nk; ++i) {
         timing_ctx c = {.ax = ax, .ay = ay, .k = ks[i]};
-        double ns = exp_time_per_item_ns(run_chain, &c, 1, 1);
+        double ns = exp_cpu_time_per_item_ns(run_chain, &c, 1, 1);
         exp_check(c.status, "fitting K=%d", ks[i]);
         const sol_sg_fit_error *e = &c.err[ks[i] - 1];
         exp_table_row(t, "%d|%.4f|%.4f|%+.4f|%.1f", ks[i], e->rel_l2, e->max_rel, e->energy, ns * 1e-6);
@@ -141,7 +141,7 @@ static void bench_tables(const exp_run *exp)
     int nn = exp->quick ? 2 : 5;
     for (int i = 0; i < nn; ++i) {
         timing_ctx c = {.ax = ax, .ay = ay, .k = 7, .opts = {.radial_samples = nodes[i][0], .angular_samples = nodes[i][1]}};
-        double ns = exp_time_per_item_ns(run_chain, &c, 1, 1);
+        double ns = exp_cpu_time_per_item_ns(run_chain, &c, 1, 1);
         exp_check(c.status, "fitting with %dx%d nodes", nodes[i][0], nodes[i][1]);
         exp_table_row(q, "%d|%d|%d|%.4f|%.4f|%.1f", nodes[i][0], nodes[i][1], nodes[i][0] * nodes[i][1],
                       c.err[6].rel_l2, c.err[6].max_rel, ns * 1e-6);
@@ -154,7 +154,7 @@ static void bench_tables(const exp_run *exp)
     static const char *ls_names[2] = {"dense normal Cholesky (default)", "dense QR"};
     for (int i = 0; i < 2; ++i) {
         timing_ctx c = {.ax = ax, .ay = ay, .k = 7, .opts = {.linear_solver = (sol_lsq_linear_solver)i}};
-        double ns = exp_time_per_item_ns(run_chain, &c, 1, 1);
+        double ns = exp_cpu_time_per_item_ns(run_chain, &c, 1, 1);
         exp_check(c.status, "fitting with %s", ls_names[i]);
         exp_table_row(ls, "%s|%.5f|%.5f|%.1f", ls_names[i], c.err[6].rel_l2, c.err[6].max_rel, ns * 1e-6);
         if (i == 0)

@@ -408,7 +408,7 @@ static void d16_timing(const exp_run *exp, const sol_sg *ndf, const environment 
             for (int j = 0; j < c.m; ++j)
                 c.light[j] = env->lobe[j % env->n];
             c.v[0] = 0.3, c.v[1] = 0.1, c.v[2] = sqrt(1 - 0.1);
-            double ns_pp = exp_time_per_item_ns(run_extraction, &c, (size_t)c.pixels, exp->quick ? 3 : 7);
+            double ns_pp = exp_cpu_time_per_item_ns(run_extraction, &c, (size_t)c.pixels, exp->quick ? 3 : 7);
             double calls = c.calls ? (double)c.calls : 1.0;
             double work_pp = (double)(c.warps + c.products) / calls;
             cost->work_exact &= c.calls > 0 && c.warps == c.calls * c.n && c.products == c.calls * c.n * c.m;

@@ -135,7 +135,7 @@ static void timing_row(exp_table *knob, const d6_data *d, const sol_bestfit_tabl
     table_timing c = {t, d->dirs, d->tn, 0};
     char name[64];
     snprintf(name, sizeof name, "table %dx%d", size, size);
-    exp_table_row(knob, "%s|%.1f|%.5f|%.5f", name, exp_time_per_item_ns(time_table, &c, d->tn, 5), st.rms, st.max);
+    exp_table_row(knob, "%s|%.1f|%.5f|%.5f", name, exp_cpu_time_per_item_ns(time_table, &c, d->tn, 5), st.rms, st.max);
 }
 
 /* One table size at every precision and filter (--bench: 16-bit nearest only, the timed one). */

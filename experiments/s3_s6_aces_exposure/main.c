@@ -186,8 +186,8 @@ static double s3_aces_fit(const exp_run *exp)
     exp_table_write(ranges, exp, "fit_error_ranges");
 
     eval_job fit = {1, 0}, ref = {0, 0};
-    double ns_fit = exp_time_per_item_ns(run_evals, &fit, 4096, exp->quick ? 3 : 9);
-    double ns_ref = exp_time_per_item_ns(run_evals, &ref, 4096, exp->quick ? 3 : 9);
+    double ns_fit = exp_cpu_time_per_item_ns(run_evals, &fit, 4096, exp->quick ? 3 : 9);
+    double ns_ref = exp_cpu_time_per_item_ns(run_evals, &ref, 4096, exp->quick ? 3 : 9);
     exp_table *cost = exp_table_new("ACES: fit vs reference, accuracy vs time", "curve,max abs error,ns per value");
     exp_table_row(cost, "ACES fit (Narkowicz)|%.4f|%.1f", one_stop, ns_fit);
     exp_table_row(cost, "RRT+ODT reference (grey)|0|%.1f", ns_ref);
