@@ -225,16 +225,24 @@ test: deps-test
 run-tests: $(TEST_BIN) $(SOL_BIN) $(ENGINE_FIXTURE)
 	$(TEST_BIN)
 
-# The build runs on every core (JOBS); the drivers run one after another, each with OpenMP.
-JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+# The build runs on every core (JOBS). The drivers run DRIVER_JOBS at a time, each with its OpenMP
+# threads, the longest first, so that one driver's serial stretches (plots, tables, image writing)
+# overlap another's parallel loops instead of leaving a core idle; -Otarget keeps each driver's
+# output together. The results cannot depend on this: each driver writes only results/<name>/ and
+# its numbers do not depend on the thread count (tests/test_determinism.c). LONGEST_FIRST is by
+# measured CPU time; drivers not in it follow in folder order.
+DRIVER_JOBS ?= 2
+LONGEST_FIRST := scenes d15_ward_sg_fit d6_d7_s1_s5_normal_encodings t8_t14_3dc_encoders d3_d5_normal_cells \
+                 d2_d14_d16_deferred_lobes s4_dfg_fit t1_t2_t4_t7_color_textures d18_taa m4_lut_grading
+RUN_ORDER = $(foreach e,$(LONGEST_FIRST),$(filter $(e),$(EXPERIMENTS))) $(filter-out $(LONGEST_FIRST),$(EXPERIMENTS))
 
 reproduce: deps-reproduce
 	@$(MAKE) --no-print-directory -j$(JOBS) all
-	@$(MAKE) --no-print-directory run-experiments
+	@$(MAKE) --no-print-directory -j$(DRIVER_JOBS) -Otarget run-experiments
 	@$(MAKE) --no-print-directory claims-table
 	@$(MAKE) --no-print-directory paper
 
-run-experiments: $(EXPERIMENTS:%=run-%)
+run-experiments: $(RUN_ORDER:%=run-%)
 
 # Fails (naming the line) if a claim of experiments/claims_list.tsv lacks its experiment or its
 # library entry point, so claim ID -> experiment -> function is one step.
@@ -286,9 +294,13 @@ compare-runs:
 	echo "compare-runs: $$a against $$b"; \
 	sh experiments/common/compare_runs.sh "$$a" "$$b"
 
+# The bench tables go to $(BUILD)/bench/<name>/ (and stdout), never into results/: results/ is
+# written only by `make reproduce`, and a driver run with --bench writes smaller versions of some of
+# its reproduce tables.
 bench: deps-reproduce
 	@$(MAKE) --no-print-directory experiments
-	@for e in $(EXPERIMENTS); do echo "## $$e"; $(BUILD)/experiments/$$e/$$e --bench || exit 1; done
+	@mkdir -p $(BUILD)/bench
+	@for e in $(EXPERIMENTS); do echo "## $$e"; $(BUILD)/experiments/$$e/$$e --bench --out $(BUILD)/bench || exit 1; done
 
 # allocator_may_return_null: tests check that impossible allocations return SOL_ERR_NO_MEMORY.
 # Criterion runs every test in a forked child and ignores the child's exit status once the test
