@@ -288,6 +288,58 @@ Test(scene, render_is_deterministic_for_any_thread_count)
     sol_scene_free(&s);
 }
 
+/* sol_render_compare: the same figures for any thread count (its sums run in a fixed order), and
+ * exactly 0 for an image against itself; a second render, which takes the SG irradiance tables
+ * and the best-fit normal table (the default G-buffer normals) the first one built (kept per
+ * process), is the same image. */
+Test(scene, compare_is_the_same_for_any_thread_count_and_renders_repeat_exactly)
+{
+    static const char *const lobes =
+        "{\"camera\":{\"position\":[0,2,-6],\"look_at\":[0,0.5,0],\"width\":40,\"height\":23},"
+        "\"materials\":[{\"name\":\"floor\",\"albedo_texture\":{\"procedural\":\"checker\",\"scale\":0.5}},"
+        "{\"name\":\"paint\",\"albedo\":[0.6,0.05,0.05],\"gloss\":0.8}],"
+        "\"objects\":[{\"type\":\"plane\",\"material\":\"floor\"},{\"type\":\"sphere\",\"center\":[0,1,0],"
+        "\"material\":\"paint\"}],"
+        "\"lights\":[{\"type\":\"sun\",\"direction\":[0.5,-1,0.8],\"intensity\":3,\"shadows\":true},"
+        "{\"type\":\"environment\",\"lobes\":[{\"axis\":[0,1,0],\"sharpness\":3.25,\"color\":[0.3,0.35,0.45]}]}]}";
+    sol_scene s;
+    sol_scene_error e;
+    cr_assert_eq(parse(lobes, &s, &e), SOL_OK, "%s", e.message);
+    sol_scene_plan p;
+    sol_scene_plan_build(&s, &p);
+    sol_render_options o = {0};
+    sol_render_result eng, ref, again;
+    omp_set_num_threads(2);
+    cr_assert_eq(sol_scene_render(&s, &p, &o, &eng, NULL), SOL_OK);
+    o.reference = 1;
+    cr_assert_eq(sol_scene_render(&s, &p, &o, &ref, NULL), SOL_OK);
+    sol_render_error e1, e2, self;
+    omp_set_num_threads(1);
+    cr_assert_eq(sol_render_compare(&eng, &ref, &e1), SOL_OK);
+    o.reference = 0;
+    cr_assert_eq(sol_scene_render(&s, &p, &o, &again, NULL), SOL_OK);
+    omp_set_num_threads(2);
+    cr_assert_eq(sol_render_compare(&eng, &ref, &e2), SOL_OK);
+    cr_expect_gt(e1.de2000_mean, 0.0);
+    cr_expect_eq(memcmp(&e1, &e2, sizeof e1), 0, "compare differs between 1 and 2 threads");
+    cr_assert_eq(sol_render_compare(&ref, &ref, &self), SOL_OK);
+    cr_expect_eq(self.rms_code, 0.0);
+    cr_expect_eq(self.de2000_mean, 0.0);
+    cr_expect_eq(self.de2000_max, 0.0);
+    size_t n = (size_t)eng.display.width * eng.display.height * 3;
+    cr_expect_eq(memcmp(eng.display.data, again.display.data, n * sizeof(float)), 0);
+    cr_expect_eq(memcmp(eng.hdr.data, again.hdr.data, n * sizeof(float)), 0);
+    cr_expect_eq(memcmp(eng.normals.data, again.normals.data, n * sizeof(float)), 0);
+    cr_expect_eq(sol_render_compare(&eng, NULL, &self), SOL_ERR_NULL_ARG);
+    ref.display.width = eng.display.width + 1;
+    cr_expect_eq(sol_render_compare(&eng, &ref, &self), SOL_ERR_INVALID_ARG);
+    ref.display.width = eng.display.width;
+    sol_render_result_free(&eng);
+    sol_render_result_free(&ref);
+    sol_render_result_free(&again);
+    sol_scene_free(&s);
+}
+
 /* ---------------- the shipped scenes (experiments/scenes/) ---------------- */
 
 /* Per shipped scene: the effects its plan runs, and the engine-vs-reference error of a 64x36

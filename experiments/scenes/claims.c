@@ -37,6 +37,15 @@ static void render(const sol_scene *s, int width, int height, int reference, uns
     exp_check(sol_scene_render(s, &plan, &o, out, stats), "rendering %s", s->name);
 }
 
+/* As render, for a shipped scene as loaded (not modified since): the render main.c already made
+ * with these options if it kept it (cache.c), else a new one. */
+static void render_shipped(const sol_scene *s, int width, int height, int reference, unsigned reference_effects,
+                           sol_render_result *out, sol_render_stats *stats)
+{
+    if (!scenes_cache_take(s->name, reference, reference_effects, out, stats))
+        render(s, width, height, reference, reference_effects, out, stats);
+}
+
 static sol_render_error compare(const sol_render_result *a, const sol_render_result *b)
 {
     sol_render_error e;
@@ -114,10 +123,14 @@ static void claim_t14(const exp_run *exp, int width, int height)
     exp_table *t = exp_table_new("T14 on scene car_hood: the sun's highlight on the hood with the normal map through "
                                  "each BC5 encoder, against the float normal map (engine path, float G-buffer normals)",
                                  "encoder,highlight pixels,Laplacian RMS codes (banding),RMS codes,normals mean deg");
+    const sol_bc5_encoder shipped = s.pipeline.normal_map_encoder;
     for (int k = 0; k < 3; ++k) {
         s.pipeline.normal_map_encoder = enc[k];
         sol_render_result *r = &rk[k];
-        render(&s, width, height, 0, fl, r, NULL);
+        if (enc[k] == shipped)
+            render_shipped(&s, width, height, 0, fl, r, NULL);
+        else
+            render(&s, width, height, 0, fl, r, NULL);
         banding(&r->display, &exact.display, mask, &lap[k], &rms[k]);
         deg[k] = compare(r, &exact).normal_mean_deg;
         exp_table_row(t, "%s|%zu|%.3f|%.3f|%.4f", names[k], count, lap[k], rms[k], deg[k]);
@@ -158,8 +171,8 @@ static void claim_t2(const exp_run *exp, int width, int height)
     const unsigned tex = BIT(SOL_FX_ALBEDO_STORAGE) | BIT(SOL_FX_ALBEDO_BC1) | BIT(SOL_FX_ALBEDO_RENORM);
     sol_render_result flt, plain, renorm;
     render(&s, width, height, 0, tex, &flt, NULL);                             /* float albedo */
-    render(&s, width, height, 0, BIT(SOL_FX_ALBEDO_RENORM), &plain, NULL);     /* 8-bit + BC1 */
-    render(&s, width, height, 0, 0, &renorm, NULL);                            /* renorm + 8-bit + BC1 */
+    render_shipped(&s, width, height, 0, BIT(SOL_FX_ALBEDO_RENORM), &plain, NULL); /* 8-bit + BC1 */
+    render_shipped(&s, width, height, 0, 0, &renorm, NULL);                        /* renorm + 8-bit + BC1 */
     sol_render_error ep = compare(&plain, &flt), er = compare(&renorm, &flt);
     exp_table *t = exp_table_new("T2 on scene dark_texture: the dark albedo texture through 8-bit storage and BC1, "
                                  "without and with range renormalisation, against the float texture (engine path)",
@@ -259,8 +272,8 @@ static void claim_m1(const exp_run *exp, int width, int height)
     load("culling", &s);
     sol_render_result on, off;
     sol_render_stats st;
-    render(&s, width, height, 0, 0, &on, &st);
-    render(&s, width, height, 0, BIT(SOL_FX_CULLING), &off, NULL);
+    render_shipped(&s, width, height, 0, 0, &on, &st);
+    render_shipped(&s, width, height, 0, BIT(SOL_FX_CULLING), &off, NULL);
     size_t n = (size_t)on.hdr.width * on.hdr.height;
     long changed = 0;
     for (size_t i = 0; i < n; ++i)
@@ -295,12 +308,16 @@ static void claim_d9_d10(const exp_run *exp, int width, int height)
         sol_scene s;
         load(scenes[k], &s);
         sol_render_result flt;
-        render(&s, width, height, 0, BIT(SOL_FX_LIGHT_BUFFER), &flt, NULL);
+        render_shipped(&s, width, height, 0, BIT(SOL_FX_LIGHT_BUFFER), &flt, NULL);
+        const sol_light_buffer shipped = s.pipeline.light_buffer;
         for (int f = 0; f < 2; ++f)
             for (int scaled = 1; scaled >= 0; --scaled) {
                 s.pipeline.light_buffer = fmts[f];
                 sol_render_result r;
-                render(&s, width, height, 0, scaled ? 0 : BIT(SOL_FX_RANGE_SCALING), &r, NULL);
+                if (fmts[f] == shipped)
+                    render_shipped(&s, width, height, 0, scaled ? 0 : BIT(SOL_FX_RANGE_SCALING), &r, NULL);
+                else
+                    render(&s, width, height, 0, scaled ? 0 : BIT(SOL_FX_RANGE_SCALING), &r, NULL);
                 sol_render_error er = compare(&r, &flt);
                 e[k][f][scaled] = er.rms_code;
                 exp_table_row(t, "%s|%s|%s|%.3f|%.0f|%.3f", scenes[k], fmt_names[f], scaled ? "yes" : "no", er.rms_code,
@@ -363,7 +380,7 @@ static void claim_m3(const exp_run *exp, int width, int height)
     const unsigned fl = BIT(SOL_FX_GBUFFER_NORMALS);
     sol_render_result conv, one, many, acc;
     render(&s, width, height, 0, fl | BIT(SOL_FX_SSAO), &conv, NULL); /* converged obscurance */
-    render(&s, width, height, 0, fl, &one, NULL);                     /* 4 samples, half res, 1 frame */
+    render_shipped(&s, width, height, 0, fl, &one, NULL);             /* 4 samples, half res, 1 frame */
     int samples = s.pipeline.ssao_samples;
     enum { FRAMES = 8 };
     s.pipeline.ssao_samples = samples * FRAMES;
@@ -420,9 +437,9 @@ static void claim_d17(const exp_run *exp, int width, int height)
     sol_scene s;
     load("aa_post", &s);
     sol_render_result ref, aa, none;
-    render(&s, width, height, 1, 0, &ref, NULL);
-    render(&s, width, height, 0, 0, &aa, NULL);
-    render(&s, width, height, 0, BIT(SOL_FX_POST_AA), &none, NULL);
+    render_shipped(&s, width, height, 1, 0, &ref, NULL);
+    render_shipped(&s, width, height, 0, 0, &aa, NULL);
+    render_shipped(&s, width, height, 0, BIT(SOL_FX_POST_AA), &none, NULL);
     /* edge pixels: where the 1-sample image is more than 16 codes off the supersampled one */
     size_t n = (size_t)ref.display.width * ref.display.height;
     unsigned char *edge = calloc(n, 1);
@@ -466,9 +483,9 @@ static void claim_d18(const exp_run *exp, int width, int height)
     sol_scene s;
     load("aa_temporal", &s);
     sol_render_result ref, moving, still, none;
-    render(&s, width, height, 1, 0, &ref, NULL); /* at the path's last position */
-    render(&s, width, height, 0, 0, &moving, NULL);
-    render(&s, width, height, 0, BIT(SOL_FX_TEMPORAL), &none, NULL); /* the last frame alone, no jitter */
+    render_shipped(&s, width, height, 1, 0, &ref, NULL); /* at the path's last position */
+    render_shipped(&s, width, height, 0, 0, &moving, NULL);
+    render_shipped(&s, width, height, 0, BIT(SOL_FX_TEMPORAL), &none, NULL); /* the last frame alone, no jitter */
     double(*saved)[3] = s.camera.frames;
     int saved_count = s.camera.frame_count;
     double step = 0;
@@ -550,7 +567,10 @@ static void claim_d16(const exp_run *exp, int width, int height)
     for (int k = 0; k < 2; ++k) {
         s.pipeline.sg_lobes = lobes[k];
         sol_render_result lobe;
-        render(&s, width, height, 0, fl, &lobe, NULL); /* principal Phong lobe of the k-lobe fit */
+        if (k == 0) /* the scene's own lobe count */
+            render_shipped(&s, width, height, 0, fl, &lobe, NULL);
+        else
+            render(&s, width, height, 0, fl, &lobe, NULL); /* principal Phong lobe of the k-lobe fit */
         moved[k] = normal_shift(&lobe, &exact, &mean[k], &mx[k]);
         rms[k] = compare(&lobe, &exact).rms_code;
         sol_render_result_free(&lobe);
@@ -582,8 +602,8 @@ static void claim_m4(const exp_run *exp, int width, int height)
     sol_scene s;
     load("graded", &s);
     sol_render_result lut, exact;
-    render(&s, width, height, 0, 0, &lut, NULL);
-    render(&s, width, height, 0, BIT(SOL_FX_LUT_GRADING), &exact, NULL);
+    render_shipped(&s, width, height, 0, 0, &lut, NULL);
+    render_shipped(&s, width, height, 0, BIT(SOL_FX_LUT_GRADING), &exact, NULL);
     sol_render_error e = compare(&lut, &exact);
     size_t n = (size_t)lut.display.width * lut.display.height;
     long over = 0, clipped = 0;
@@ -620,6 +640,32 @@ static void claim_m4(const exp_run *exp, int width, int height)
     sol_render_result_free(&lut);
     sol_render_result_free(&exact);
     sol_scene_free(&s);
+}
+
+void scenes_claims_want(void)
+{
+    const unsigned fl = BIT(SOL_FX_GBUFFER_NORMALS);
+    scenes_cache_want("car_hood", 0, fl);
+    scenes_cache_want("dark_texture", 0, BIT(SOL_FX_ALBEDO_RENORM));
+    scenes_cache_want("dark_texture", 0, 0);
+    scenes_cache_want("culling", 0, 0);
+    scenes_cache_want("culling", 0, BIT(SOL_FX_CULLING));
+    for (int k = 0; k < 2; ++k) {
+        const char *name = k ? "hdr_exterior" : "hdr_interior";
+        scenes_cache_want(name, 0, BIT(SOL_FX_LIGHT_BUFFER));
+        scenes_cache_want(name, 0, 0);
+        scenes_cache_want(name, 0, BIT(SOL_FX_RANGE_SCALING));
+    }
+    scenes_cache_want("ssao", 0, fl);
+    scenes_cache_want("aa_post", 1, 0);
+    scenes_cache_want("aa_post", 0, 0);
+    scenes_cache_want("aa_post", 0, BIT(SOL_FX_POST_AA));
+    scenes_cache_want("aa_temporal", 1, 0);
+    scenes_cache_want("aa_temporal", 0, 0);
+    scenes_cache_want("aa_temporal", 0, BIT(SOL_FX_TEMPORAL));
+    scenes_cache_want("graded", 0, 0);
+    scenes_cache_want("graded", 0, BIT(SOL_FX_LUT_GRADING));
+    scenes_cache_want("aniso_sg", 0, fl);
 }
 
 void scenes_claims(const exp_run *exp, int width, int height)

@@ -5,7 +5,8 @@
  * <scene>_plan and <scene>_attribution tables, and a summary table over all scenes; --bench prints
  * the frame times against the goal (960x540 engine path <= 5 s on 2 cores, reference <= 10x).
  * claims.c adds the claims rows measured on these scenes (T2, T14, M1, M3, M4, D9, D10, D13, D16,
- * D17, D18), each with its own table.
+ * D17, D18), each with its own table. The renders of unmodified scenes that claims.c needs again
+ * (engine, reference and attribution renders) are kept for it (cache.c) instead of made twice.
  *
  * The scenes regenerate the talk's image comparisons as measured figures: car hood banding (T14),
  * dark texture under strong light (T1/T2), light bleeding with and without a clip volume (D13),
@@ -23,11 +24,22 @@
 
 static int by_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
-static void write_png(const exp_run *exp, const char *scene, const char *file, const sol_image *img)
+/* Writes the scene's engine, reference and difference images, the three at once (one thread
+ * each: PNG compression is serial per file). */
+static void write_pngs(const exp_run *exp, const char *scene, const sol_image *img[3])
 {
-    char rel[512];
-    snprintf(rel, sizeof rel, "%s/%s", scene, file);
-    exp_check(sol_png_write(exp_path(exp, rel), img, 8), "writing %s", rel);
+    static const char *files[3] = {"engine.png", "reference.png", "difference.png"};
+    char rel[3][512], path[3][4096];
+    sol_status st[3];
+    for (int k = 0; k < 3; ++k) {
+        snprintf(rel[k], sizeof rel[k], "%s/%s", scene, files[k]);
+        snprintf(path[k], sizeof path[k], "%s", exp_path(exp, rel[k])); /* exp_path is not thread-safe */
+    }
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int k = 0; k < 3; ++k)
+        st[k] = sol_png_write(path[k], img[k], 8);
+    for (int k = 0; k < 3; ++k)
+        exp_check(st[k], "writing %s", rel[k]);
 }
 
 int main(int argc, char **argv)
@@ -58,6 +70,8 @@ int main(int argc, char **argv)
                                      "idle 2-core machine with perfect scaling, the goal is judged on it",
                                      "scene,pixels,engine time (s),engine CPU time (s),reference time (s),reference CPU time (s),"
                                      "CPU time ratio,engine time goal met,reference time goal met");
+    if (!run.bench)
+        scenes_claims_want(); /* the renders below that claims.c needs again are kept for it */
     for (int i = 0; i < count; ++i) {
         char path[1024], scene_dir[512];
         snprintf(path, sizeof path, "%s/%s", SCENES_DIR, names[i]);
@@ -90,13 +104,12 @@ int main(int argc, char **argv)
             sol_scene_free(&s);
             continue;
         }
-        write_png(exp, s.name, "engine.png", &eng.display);
-        write_png(exp, s.name, "reference.png", &ref.display);
         sol_image diff;
         exp_check(sol_image_alloc(&diff, eng.display.width, eng.display.height, 3), "difference image");
         for (size_t k = 0; k < (size_t)diff.width * diff.height * 3; ++k)
             diff.data[k] = fminf(1.0f, 8.0f * fabsf(eng.display.data[k] - ref.display.data[k]));
-        write_png(exp, s.name, "difference.png", &diff);
+        const sol_image *imgs[3] = {&eng.display, &ref.display, &diff};
+        write_pngs(exp, s.name, imgs);
         sol_image_free(&diff);
 
         char title[256], tname[256];
@@ -141,7 +154,8 @@ int main(int argc, char **argv)
                 largest = own.rms_code;
                 largest_name = sol_effect_get((sol_effect)k)->name;
             }
-            sol_render_result_free(&r);
+            if (!scenes_cache_put(s.name, 0, opt.reference_effects, &r, &st))
+                sol_render_result_free(&r);
         }
         opt.reference_effects = 0;
         snprintf(tname, sizeof tname, "%s/attribution", s.name);
@@ -161,8 +175,10 @@ int main(int argc, char **argv)
         exp_number(exp, key, "%.2f", es.cpu_seconds);
         snprintf(key, sizeof key, "scenes-%s-reference-s", s.name);
         exp_number(exp, key, "%.2f", rs.cpu_seconds);
-        sol_render_result_free(&eng);
-        sol_render_result_free(&ref);
+        if (!scenes_cache_put(s.name, 0, 0, &eng, &es))
+            sol_render_result_free(&eng);
+        if (!scenes_cache_put(s.name, 1, 0, &ref, &rs))
+            sol_render_result_free(&ref);
         sol_scene_free(&s);
     }
     exp_progress_done("scenes");
@@ -170,6 +186,7 @@ int main(int argc, char **argv)
     if (!run.bench) {
         exp_table_write(summary, exp, "summary");
         scenes_claims(exp, width, height);
+        scenes_cache_clear();
     }
     for (int i = 0; i < count; ++i)
         free(names[i]);

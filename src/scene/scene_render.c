@@ -89,7 +89,7 @@ typedef struct frame {
     sol_render_stats *stats;
     float **irradiance; /* per light, per SG lobe: IRR_TABLE values of the clamped-cosine convolution */
     struct env_light *env; /* per light: its SG lobes as shaded, and a lat-long map's tables */
-    sol_bestfit_table bestfit; /* D6: the baked best-fit table the shader uses (xyz-best-fit) */
+    const sol_bestfit_table *bestfit; /* D6: the baked best-fit table the shader uses (xyz-best-fit) */
     double light_scale;        /* D10: range scaling of the light buffer (see prepare) */
 } frame;
 
@@ -962,8 +962,8 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
         uint32_t code;
         double dec[3];
         sol_normal_method mth = (sol_normal_method)f->s->pipeline.gbuffer_normals;
-        if (f->bestfit.scale) { /* the shader's path: the baked 512^2 8-bit table, bilinear (D6) */
-            if (sol_normal_encode_bestfit_table(&f->bestfit, SOL_TABLE_BILINEAR, sf->n, &code) == SOL_OK &&
+        if (f->bestfit) { /* the shader's path: the baked 512^2 8-bit table, bilinear (D6) */
+            if (sol_normal_encode_bestfit_table(f->bestfit, SOL_TABLE_BILINEAR, sf->n, &code) == SOL_OK &&
                 sol_normal_decode(SOL_NORMAL_XYZ_NORMALIZED, code, dec) == SOL_OK)
                 memcpy(sf->n, dec, sizeof dec);
         } else if (sol_normal_encode(mth, sf->n, &code) == SOL_OK && sol_normal_decode(mth, code, dec) == SOL_OK)
@@ -1409,7 +1409,6 @@ static void free_frame(frame *f)
             free(f->env[i].irr);
         }
     free(f->env);
-    sol_bestfit_table_free(&f->bestfit);
     sol_lut3d_free(&f->lut);
 }
 
@@ -1430,6 +1429,68 @@ static sol_status fit_ndf_lobes(frame *f, double ax, double ay, sol_sg out[16], 
     }
     free(all);
     free(errs);
+    return st;
+}
+
+/* The IRR_TABLE values of lobe_irradiance for a unit SG lobe of sharpness `lambda`, into t. They
+ * depend on the sharpness only, so the tables of the first IRR_CACHE sharpnesses met are kept for
+ * the process (reachable until it ends) and copied from there: every render of a scene used to
+ * compute them again (2049 quadratures per lobe, serial). A new one is computed in parallel (each
+ * value on its own, so identical for any thread count). */
+enum { IRR_CACHE = 64 };
+static void irradiance_table(double lambda, float *t)
+{
+    static struct {
+        double lambda;
+        float *t;
+    } cache[IRR_CACHE];
+    static int count;
+    int found = 0;
+#pragma omp critical(sol_scene_irradiance)
+    {
+        for (int i = 0; i < count && !found; ++i)
+            if (cache[i].lambda == lambda) {
+                memcpy(t, cache[i].t, sizeof *t * IRR_TABLE);
+                found = 1;
+            }
+    }
+    if (found)
+        return;
+    sol_sg g = {{0, 0, 1}, lambda, 1};
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < IRR_TABLE; ++k) {
+        double c = -1 + 2.0 * k / (IRR_TABLE - 1), n[3] = {sqrt(fmax(0, 1 - c * c)), 0, c};
+        t[k] = (float)sol_sg_cosine_convolve(&g, n);
+    }
+#pragma omp critical(sol_scene_irradiance)
+    {
+        int present = 0;
+        for (int i = 0; i < count; ++i)
+            present |= cache[i].lambda == lambda;
+        float *copy = present || count == IRR_CACHE ? NULL : malloc(sizeof *copy * IRR_TABLE);
+        if (copy) { /* no memory: simply not kept */
+            memcpy(copy, t, sizeof *copy * IRR_TABLE);
+            cache[count].lambda = lambda;
+            cache[count++].t = copy;
+        }
+    }
+}
+
+/* D6's baked table (512^2, 8-bit) depends on nothing in the scene, so it is built once, by the
+ * first render that needs it, and shared read-only by every render after (it took ~0.1 s of
+ * every engine render). It stays allocated until the process ends (reachable, not a leak); a
+ * failed build leaves it unbuilt and the next render tries again. */
+static sol_status shared_bestfit(const sol_bestfit_table **out)
+{
+    static sol_bestfit_table table;
+    sol_status st = SOL_OK;
+#pragma omp critical(sol_scene_bestfit)
+    {
+        if (!table.scale)
+            st = sol_bestfit_table_build(512, 8, &table);
+    }
+    if (st == SOL_OK)
+        *out = &table;
     return st;
 }
 
@@ -1473,13 +1534,8 @@ static sol_status prepare(frame *f)
         if (!t)
             return SOL_ERR_NO_MEMORY;
         f->irradiance[li] = t;
-        for (int j = 0; j < el->lobe_count; ++j) {
-            sol_sg g = {{0, 0, 1}, el->lobes[j].sharpness, 1};
-            for (int k = 0; k < IRR_TABLE; ++k) {
-                double c = -1 + 2.0 * k / (IRR_TABLE - 1), n[3] = {sqrt(fmax(0, 1 - c * c)), 0, c};
-                t[(size_t)j * IRR_TABLE + k] = (float)sol_sg_cosine_convolve(&g, n);
-            }
-        }
+        for (int j = 0; j < el->lobe_count; ++j)
+            irradiance_table(el->lobes[j].sharpness, t + (size_t)j * IRR_TABLE);
     }
     for (int i = 0; i < s->material_count; ++i) {
         const sol_scene_material *m = &s->materials[i];
@@ -1552,7 +1608,7 @@ static sol_status prepare(frame *f)
             f->light_scale = s->pipeline.exposure;
     }
     if (!f->reference && fx(f, SOL_FX_GBUFFER_NORMALS) && s->pipeline.gbuffer_normals == SOL_NORMAL_XYZ_BEST_FIT &&
-        (st = sol_bestfit_table_build(512, 8, &f->bestfit)) != SOL_OK)
+        (st = shared_bestfit(&f->bestfit)) != SOL_OK)
         return st;
     if (s->pipeline.has_look) {
         sol_grade *g = &f->grade;
@@ -1677,34 +1733,64 @@ sol_status sol_render_compare(const sol_render_result *a, const sol_render_resul
     if (a->display.width != b->display.width || a->display.height != b->display.height)
         return SOL_ERR_INVALID_ARG;
     const long n = (long)a->display.width * a->display.height;
+    /* The rows are cut into CHUNKS fixed runs; each run is summed in pixel order and the runs are
+     * added in order afterwards, so the sums do not depend on the thread count (an OpenMP
+     * reduction's order would). */
+    enum { CHUNKS = 64 };
+    double part[CHUNKS][6];
+    long part_nn[CHUNKS];
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int k = 0; k < CHUNKS; ++k) {
+        double r_sq = 0, r_mx = 0, r_de = 0, r_demax = 0, r_ang = 0, r_angmax = 0;
+        long r_nn = 0;
+        for (long i = n * k / CHUNKS; i < n * (k + 1) / CHUNKS; ++i) {
+            const float *pa = a->display.data + 3 * i, *pb = b->display.data + 3 * i;
+            double ca[3], cb[3], la[3], lb[3];
+            int same = 1;
+            for (int c = 0; c < 3; ++c) {
+                ca[c] = pa[c];
+                cb[c] = pb[c];
+                double d = 255.0 * ca[c] - 255.0 * cb[c];
+                r_sq += d * d;
+                r_mx = fmax(r_mx, fabs(d));
+                same &= memcmp(&pa[c], &pb[c], sizeof pa[c]) == 0 && isfinite(ca[c]);
+            }
+            /* equal finite colours: the same Lab (sol_srgb_to_lab clamps to [0,1]) and
+             * sol_ciede2000(x, x) = +0 exactly (every difference term is 0 and S_L, S_C, S_H >= 1),
+             * so the conversions are skipped */
+            double e = 0;
+            if (!same) {
+                sol_srgb_to_lab(ca, la);
+                sol_srgb_to_lab(cb, lb);
+                e = sol_ciede2000(la, lb);
+            }
+            r_de += e;
+            r_demax = fmax(r_demax, e);
+            double na[3], nb[3];
+            for (int c = 0; c < 3; ++c) {
+                na[c] = a->normals.data[3 * i + c];
+                nb[c] = b->normals.data[3 * i + c];
+            }
+            if (sol_dot3(na, na) > 0 && sol_dot3(nb, nb) > 0) {
+                double g = sol_angle3(na, nb) * 180 / M_PI;
+                r_ang += g;
+                r_angmax = fmax(r_angmax, g);
+                ++r_nn;
+            }
+        }
+        part[k][0] = r_sq, part[k][1] = r_mx, part[k][2] = r_de, part[k][3] = r_demax;
+        part[k][4] = r_ang, part[k][5] = r_angmax, part_nn[k] = r_nn;
+    }
     double sq = 0, mx = 0, de = 0, demax = 0, ang = 0, angmax = 0;
     long nn = 0;
-#pragma omp parallel for reduction(+ : sq, de, ang, nn) reduction(max : mx, demax, angmax)
-    for (long i = 0; i < n; ++i) {
-        double ca[3], cb[3], la[3], lb[3];
-        for (int c = 0; c < 3; ++c) {
-            ca[c] = a->display.data[3 * i + c];
-            cb[c] = b->display.data[3 * i + c];
-            double d = 255.0 * ca[c] - 255.0 * cb[c];
-            sq += d * d;
-            mx = fmax(mx, fabs(d));
-        }
-        sol_srgb_to_lab(ca, la);
-        sol_srgb_to_lab(cb, lb);
-        double e = sol_ciede2000(la, lb);
-        de += e;
-        demax = fmax(demax, e);
-        double na[3], nb[3];
-        for (int c = 0; c < 3; ++c) {
-            na[c] = a->normals.data[3 * i + c];
-            nb[c] = b->normals.data[3 * i + c];
-        }
-        if (sol_dot3(na, na) > 0 && sol_dot3(nb, nb) > 0) {
-            double g = sol_angle3(na, nb) * 180 / M_PI;
-            ang += g;
-            angmax = fmax(angmax, g);
-            ++nn;
-        }
+    for (int k = 0; k < CHUNKS; ++k) {
+        sq += part[k][0];
+        mx = fmax(mx, part[k][1]);
+        de += part[k][2];
+        demax = fmax(demax, part[k][3]);
+        ang += part[k][4];
+        angmax = fmax(angmax, part[k][5]);
+        nn += part_nn[k];
     }
     out->rms_code = sqrt(sq / (3.0 * n));
     out->max_code = mx;
