@@ -2,6 +2,7 @@
  * (sol_scene_plan) and the two-path renderer. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdarg.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +12,30 @@
 #include <unistd.h>
 
 #include "sol_scene.h"
+
+/* Per-process scratch paths /tmp/sol_<pid>_<name>: Criterion runs each test in its own child, so
+ * two test runs at once (make test beside make sanitize) never share a file. Four rotating buffers
+ * let one call use several names. */
+static const char *scratch(const char *name)
+{
+    static char buf[4][256];
+    static int next;
+    char *b = buf[next++ & 3];
+    snprintf(b, sizeof buf[0], "/tmp/sol_%d_%s", (int)getpid(), name);
+    return b;
+}
+
+/* system() on a formatted command line. */
+static int shell(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static int shell(const char *fmt, ...)
+{
+    char cmd[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(cmd, sizeof cmd, fmt, ap);
+    va_end(ap);
+    return system(cmd);
+}
 
 static sol_status parse(const char *json, sol_scene *s, sol_scene_error *e)
 {
@@ -152,14 +177,14 @@ Test(scene, load_names_a_missing_scene_file_and_reads_a_real_one)
     sol_scene_error e;
     cr_assert_eq(sol_scene_load("/nonexistent/x.json", &s, &e), SOL_ERR_IO);
     cr_expect_str_eq(e.file, "/nonexistent/x.json");
-    FILE *f = fopen("/tmp/sol_test_scene.json", "w");
+    FILE *f = fopen(scratch("sol_test_scene.json"), "w");
     cr_assert(f);
     fputs("{\"name\":\"disk\"}", f);
     fclose(f);
-    cr_assert_eq(sol_scene_load("/tmp/sol_test_scene.json", &s, &e), SOL_OK);
+    cr_assert_eq(sol_scene_load(scratch("sol_test_scene.json"), &s, &e), SOL_OK);
     cr_expect_str_eq(s.name, "disk");
     sol_scene_free(&s);
-    remove("/tmp/sol_test_scene.json");
+    remove(scratch("sol_test_scene.json"));
 }
 
 /* ---------------- the effect graph and the renderer ---------------- */
@@ -510,63 +535,63 @@ Test(scene, broken_gltf_models_are_rejected_with_a_clear_error)
         cr_expect_eq(((unsigned char *)&s)[0], 0x5a);
     }
     /* a scene file naming a broken mesh names the field */
-    FILE *f = fopen("/tmp/sol_test_mesh_scene.json", "w");
+    FILE *f = fopen(scratch("sol_test_mesh_scene.json"), "w");
     cr_assert(f);
     fputs("{\"materials\":[{}],\"objects\":[{\"type\":\"mesh\",\"file\":\"" GLTF2 "MissingBin/BoxTextured.gltf\"}]}", f);
     fclose(f);
     sol_scene s;
     sol_scene_error e;
-    cr_expect_eq(sol_scene_load("/tmp/sol_test_mesh_scene.json", &s, &e), SOL_ERR_FORMAT);
+    cr_expect_eq(sol_scene_load(scratch("sol_test_mesh_scene.json"), &s, &e), SOL_ERR_FORMAT);
     cr_expect_str_eq(e.pointer, "/objects/0/file");
-    remove("/tmp/sol_test_mesh_scene.json");
+    remove(scratch("sol_test_mesh_scene.json"));
 }
 
 /* ---------------- the sol program ---------------- */
 
 Test(scene, cli_exit_status_and_no_output_on_bad_input)
 {
-    FILE *f = fopen("/tmp/sol_cli_bad.json", "w");
+    FILE *f = fopen(scratch("sol_cli_bad.json"), "w");
     cr_assert(f);
     fputs("{\"materials\":[{\"gloss\":-1}]}", f);
     fclose(f);
-    (void)!system("rm -rf /tmp/sol_cli_out");
-    int rc = system("build/sol render /tmp/sol_cli_bad.json --out /tmp/sol_cli_out 2>/dev/null");
+    (void)!shell("rm -rf %s", scratch("sol_cli_out"));
+    int rc = shell("build/sol render %s --out %s 2>/dev/null", scratch("sol_cli_bad.json"), scratch("sol_cli_out"));
     cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2, "render of a bad scene: status %d", rc);
     struct stat st;
-    cr_expect_neq(stat("/tmp/sol_cli_out", &st), 0, "output written for a bad scene");
-    rc = system("build/sol plan /tmp/sol_cli_bad.json 2>&1 | grep -q '/materials/0/gloss'");
+    cr_expect_neq(stat(scratch("sol_cli_out"), &st), 0, "output written for a bad scene");
+    rc = shell("build/sol plan %s 2>&1 | grep -q '/materials/0/gloss'", scratch("sol_cli_bad.json"));
     cr_expect_eq(rc, 0, "the message names the field");
     rc = system("build/sol plan experiments/scenes/wall_bleed.json --json | grep -q "
                 "'\"clip-volumes\", \"claims\": \"D13\", \"run\": true'");
     cr_expect_eq(rc, 0, "plan --json");
     rc = system("build/sol plan 2>/dev/null");
     cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2);
-    remove("/tmp/sol_cli_bad.json");
+    remove(scratch("sol_cli_bad.json"));
 }
 
 /* An unusable --out (a regular file, a missing parent) fails before rendering, which can take
  * minutes, with exit 2 and a message naming --out and the reason; nothing is created. */
 Test(scene, cli_render_unusable_out_fails_at_once)
 {
-    FILE *f = fopen("/tmp/sol_cli_outfile", "w");
+    FILE *f = fopen(scratch("sol_cli_outfile"), "w");
     cr_assert(f);
     fputs("keep", f);
     fclose(f);
-    int rc = system("build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_outfile --size 8x8 "
-                    "2>/tmp/sol_cli_outfile.err >/dev/null");
+    int rc = shell("build/sol render experiments/scenes/car_hood.json --out %s --size 8x8 2>%s >/dev/null",
+                   scratch("sol_cli_outfile"), scratch("sol_cli_outfile.err"));
     cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2, "render into a file: status %d", rc);
-    rc = system("grep -q -- '--out /tmp/sol_cli_outfile: .*Not a directory' /tmp/sol_cli_outfile.err");
+    rc = shell("grep -q -- '--out %s: .*Not a directory' %s", scratch("sol_cli_outfile"), scratch("sol_cli_outfile.err"));
     cr_expect_eq(rc, 0, "the message names --out and the reason");
-    rc = system("grep -q 'keep' /tmp/sol_cli_outfile");
+    rc = shell("grep -q 'keep' %s", scratch("sol_cli_outfile"));
     cr_expect_eq(rc, 0, "the file given as --out is untouched");
-    (void)!system("rm -rf /tmp/sol_cli_noparent");
-    rc = system("build/sol render experiments/scenes/car_hood.json --out /tmp/sol_cli_noparent/x --size 8x8 "
-                "2>/dev/null >/dev/null");
+    (void)!shell("rm -rf %s", scratch("sol_cli_noparent"));
+    rc = shell("build/sol render experiments/scenes/car_hood.json --out %s/x --size 8x8 2>/dev/null >/dev/null",
+               scratch("sol_cli_noparent"));
     cr_expect(WIFEXITED(rc) && WEXITSTATUS(rc) == 2, "render under a missing folder: status %d", rc);
     struct stat st;
-    cr_expect_neq(stat("/tmp/sol_cli_noparent", &st), 0, "nothing created");
-    remove("/tmp/sol_cli_outfile");
-    remove("/tmp/sol_cli_outfile.err");
+    cr_expect_neq(stat(scratch("sol_cli_noparent"), &st), 0, "nothing created");
+    remove(scratch("sol_cli_outfile"));
+    remove(scratch("sol_cli_outfile.err"));
 }
 
 /* A render killed mid-way (SIGTERM as soon as its --out folder exists) leaves nothing: neither

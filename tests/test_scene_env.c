@@ -7,8 +7,20 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "sol_scene.h"
+
+/* Per-process scratch paths /tmp/sol_<pid>_<name> (Criterion forks each test), so two test runs
+ * at once never share a file; four rotating buffers. */
+static const char *scratch(const char *name)
+{
+    static char buf[4][256];
+    static int next;
+    char *b = buf[next++ & 3];
+    snprintf(b, sizeof buf[0], "/tmp/sol_%d_%s", (int)getpid(), name);
+    return b;
+}
 
 /* Writes an uncompressed scanline EXR of FLOAT channels B, G, R (the file format's alphabetical
  * order) by hand, so a test can store values sol_exr_write refuses (NaN, Inf) or claim a data
@@ -131,7 +143,7 @@ static sol_status load_env_scene(const char *exr, sol_scene *s, sol_scene_error 
              "\"pipeline\":{\"light_buffer\":\"float\",\"gbuffer_normals\":\"float\",\"tonemap\":\"reinhard\","
              "\"reference_supersample\":1}}",
              exr);
-    return sol_scene_parse(json, strlen(json), "/tmp/sol_env_test.json", s, e);
+    return sol_scene_parse(json, strlen(json), scratch("sol_env_test.json"), s, e);
 }
 
 /* Bad maps are refused at load, naming the file, the field and (for values) the pixel. */
@@ -145,50 +157,50 @@ Test(scene_env, bad_maps_are_rejected_before_rendering)
     memset(&s, 0x5a, sizeof s);
     /* NaN */
     rgb[(2 * 8 + 5) * 3 + 1] = NAN;
-    write_raw_exr("/tmp/sol_env_nan.exr", 8, 4, rgb, 0, 0);
-    cr_expect_eq(load_env_scene("/tmp/sol_env_nan.exr", &s, &e), SOL_ERR_NONFINITE, "%s", e.message);
+    write_raw_exr(scratch("sol_env_nan.exr"), 8, 4, rgb, 0, 0);
+    cr_expect_eq(load_env_scene(scratch("sol_env_nan.exr"), &s, &e), SOL_ERR_NONFINITE, "%s", e.message);
     cr_expect_str_eq(e.pointer, "/lights/0/file");
     cr_expect(strstr(e.message, "sol_env_nan.exr") && strstr(e.message, "(5, 2)") && strstr(e.message, "channel G"),
               "%s", e.message);
     /* Inf */
     rgb[(2 * 8 + 5) * 3 + 1] = INFINITY;
-    write_raw_exr("/tmp/sol_env_inf.exr", 8, 4, rgb, 0, 0);
-    cr_expect_eq(load_env_scene("/tmp/sol_env_inf.exr", &s, &e), SOL_ERR_NONFINITE, "%s", e.message);
+    write_raw_exr(scratch("sol_env_inf.exr"), 8, 4, rgb, 0, 0);
+    cr_expect_eq(load_env_scene(scratch("sol_env_inf.exr"), &s, &e), SOL_ERR_NONFINITE, "%s", e.message);
     /* negative radiance */
     rgb[(2 * 8 + 5) * 3 + 1] = -0.25f;
-    write_raw_exr("/tmp/sol_env_neg.exr", 8, 4, rgb, 0, 0);
-    cr_expect_eq(load_env_scene("/tmp/sol_env_neg.exr", &s, &e), SOL_ERR_OUT_OF_RANGE, "%s", e.message);
+    write_raw_exr(scratch("sol_env_neg.exr"), 8, 4, rgb, 0, 0);
+    cr_expect_eq(load_env_scene(scratch("sol_env_neg.exr"), &s, &e), SOL_ERR_OUT_OF_RANGE, "%s", e.message);
     /* a header claiming 100000 x 100000 pixels: refused by sol_read_limits before allocation */
     rgb[(2 * 8 + 5) * 3 + 1] = 0.5f;
-    write_raw_exr("/tmp/sol_env_huge.exr", 8, 4, rgb, 100000, 100000);
-    cr_expect_eq(load_env_scene("/tmp/sol_env_huge.exr", &s, &e), SOL_ERR_LIMIT, "%s", e.message);
+    write_raw_exr(scratch("sol_env_huge.exr"), 8, 4, rgb, 100000, 100000);
+    cr_expect_eq(load_env_scene(scratch("sol_env_huge.exr"), &s, &e), SOL_ERR_LIMIT, "%s", e.message);
     cr_expect(strstr(e.message, "sol_env_huge.exr") != NULL, "%s", e.message);
     /* one channel (Y) */
     sol_image grey;
     cr_assert_eq(sol_image_alloc(&grey, 8, 4, 1), SOL_OK);
-    cr_assert_eq(sol_exr_write("/tmp/sol_env_grey.exr", &grey, 0), SOL_OK);
+    cr_assert_eq(sol_exr_write(scratch("sol_env_grey.exr"), &grey, 0), SOL_OK);
     sol_image_free(&grey);
-    cr_expect_eq(load_env_scene("/tmp/sol_env_grey.exr", &s, &e), SOL_ERR_FORMAT, "%s", e.message);
+    cr_expect_eq(load_env_scene(scratch("sol_env_grey.exr"), &s, &e), SOL_ERR_FORMAT, "%s", e.message);
     cr_expect(strstr(e.message, "1 channel") != NULL, "%s", e.message);
     /* missing, and not an EXR */
-    cr_expect_eq(load_env_scene("/tmp/sol_env_missing.exr", &s, &e), SOL_ERR_IO);
-    cr_expect(strstr(e.message, "/tmp/sol_env_missing.exr") != NULL, "%s", e.message);
-    cr_expect_eq(load_env_scene("/tmp/sol_env_test.png", &s, &e), SOL_ERR_IO);
-    FILE *f = fopen("/tmp/sol_env_sky.png", "w");
+    cr_expect_eq(load_env_scene(scratch("sol_env_missing.exr"), &s, &e), SOL_ERR_IO);
+    cr_expect(strstr(e.message, scratch("sol_env_missing.exr")) != NULL, "%s", e.message);
+    cr_expect_eq(load_env_scene(scratch("sol_env_test.png"), &s, &e), SOL_ERR_IO);
+    FILE *f = fopen(scratch("sol_env_sky.png"), "w");
     cr_assert_not_null(f);
     fputs("x", f);
     fclose(f);
-    cr_expect_eq(load_env_scene("/tmp/sol_env_sky.png", &s, &e), SOL_ERR_FORMAT);
+    cr_expect_eq(load_env_scene(scratch("sol_env_sky.png"), &s, &e), SOL_ERR_FORMAT);
     cr_expect_eq(((unsigned char *)&s)[0], 0x5a, "scene written on error");
     /* the hand-written file itself is fine once its values are */
-    write_raw_exr("/tmp/sol_env_ok.exr", 8, 4, rgb, 0, 0);
-    cr_expect_eq(load_env_scene("/tmp/sol_env_ok.exr", &s, &e), SOL_OK, "%s", e.message);
+    write_raw_exr(scratch("sol_env_ok.exr"), 8, 4, rgb, 0, 0);
+    cr_expect_eq(load_env_scene(scratch("sol_env_ok.exr"), &s, &e), SOL_OK, "%s", e.message);
     sol_scene_free(&s);
     const char *files[] = {"nan", "inf", "neg", "huge", "grey", "sky.png", "ok"};
     for (size_t i = 0; i < sizeof files / sizeof files[0]; ++i) {
         char p[64];
-        snprintf(p, sizeof p, strchr(files[i], '.') ? "/tmp/sol_env_%s" : "/tmp/sol_env_%s.exr", files[i]);
-        remove(p);
+        snprintf(p, sizeof p, strchr(files[i], '.') ? "sol_env_%s" : "sol_env_%s.exr", files[i]);
+        remove(scratch(p));
     }
 }
 
@@ -213,11 +225,11 @@ Test(scene_env, constant_environment_gives_albedo_times_radiance)
     float rgb[16 * 8 * 3];
     for (int i = 0; i < 16 * 8; ++i)
         rgb[3 * i] = 1.0f, rgb[3 * i + 1] = 0.5f, rgb[3 * i + 2] = 0.25f;
-    write_raw_exr("/tmp/sol_env_const.exr", 16, 8, rgb, 0, 0);
+    write_raw_exr(scratch("sol_env_const.exr"), 16, 8, rgb, 0, 0);
     sol_scene s;
     sol_scene_error e;
-    cr_assert_eq(load_env_scene("/tmp/sol_env_const.exr", &s, &e), SOL_OK, "%s", e.message);
-    remove("/tmp/sol_env_const.exr");
+    cr_assert_eq(load_env_scene(scratch("sol_env_const.exr"), &s, &e), SOL_OK, "%s", e.message);
+    remove(scratch("sol_env_const.exr"));
     sol_scene_plan p;
     cr_assert_eq(sol_scene_plan_build(&s, &p), SOL_OK);
     cr_expect_eq(p.run[SOL_FX_ENV_SG], 1);
