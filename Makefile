@@ -294,9 +294,13 @@ compare-runs:
 	echo "compare-runs: $$a against $$b"; \
 	sh experiments/common/compare_runs.sh "$$a" "$$b"
 
+# The bench tables go to $(BUILD)/bench/<name>/ (and stdout), never into results/: results/ is
+# written only by `make reproduce`, and a driver run with --bench writes smaller versions of some of
+# its reproduce tables.
 bench: deps-reproduce
 	@$(MAKE) --no-print-directory experiments
-	@for e in $(EXPERIMENTS); do echo "## $$e"; $(BUILD)/experiments/$$e/$$e --bench || exit 1; done
+	@mkdir -p $(BUILD)/bench
+	@for e in $(EXPERIMENTS); do echo "## $$e"; $(BUILD)/experiments/$$e/$$e --bench --out $(BUILD)/bench || exit 1; done
 
 # allocator_may_return_null: tests check that impossible allocations return SOL_ERR_NO_MEMORY.
 # Criterion runs every test in a forked child and ignores the child's exit status once the test

@@ -77,6 +77,13 @@ double exp_now_ns(void);
 /* Runs fn(ctx) `repeats` times and returns the median wall time per item in ns (fn processes
  * `items` items per call). One untimed warm-up call comes first. */
 double exp_time_per_item_ns(void (*fn)(void *ctx), void *ctx, size_t items, int repeats);
+/* Thread CPU time in ns (CLOCK_THREAD_CPUTIME_ID): a figure that does not depend on what else the
+ * machine runs, for bench tables on a shared machine. */
+double exp_thread_cpu_ns(void);
+/* As exp_time_per_item_ns, but the median thread CPU time with OpenMP limited to one thread during
+ * the calls (the library's results are identical for any thread count): core-ns per item. Name the
+ * column "core-ns ..." (a timing column for compare_runs.sh). */
+double exp_cpu_time_per_item_ns(void (*fn)(void *ctx), void *ctx, size_t items, int repeats);
 
 /* ---- progress on stderr, only when stderr is a terminal ---- */
 void exp_progress(const char *label, size_t done, size_t total);

@@ -1,6 +1,7 @@
 /* exp_timing.c - median wall-clock time per item, and terminal-only progress. */
 #include "exp_harness.h"
 
+#include <omp.h>
 #include <stdlib.h>
 #include <time.h>
 #include <unistd.h>
@@ -31,6 +32,35 @@ double exp_time_per_item_ns(void (*fn)(void *ctx), void *ctx, size_t items, int 
         fn(ctx);
         times[i] = exp_now_ns() - start;
     }
+    qsort(times, (size_t)repeats, sizeof *times, compare_doubles);
+    double median = repeats % 2 ? times[repeats / 2] : 0.5 * (times[repeats / 2 - 1] + times[repeats / 2]);
+    free(times);
+    return median / (double)(items ? items : 1);
+}
+
+double exp_thread_cpu_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
+}
+
+double exp_cpu_time_per_item_ns(void (*fn)(void *ctx), void *ctx, size_t items, int repeats)
+{
+    if (repeats < 1)
+        repeats = 1;
+    double *times = malloc(sizeof *times * (size_t)repeats);
+    if (!times)
+        exp_die("out of memory");
+    int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    fn(ctx); /* warm caches and page in buffers */
+    for (int i = 0; i < repeats; ++i) {
+        double start = exp_thread_cpu_ns();
+        fn(ctx);
+        times[i] = exp_thread_cpu_ns() - start;
+    }
+    omp_set_num_threads(threads);
     qsort(times, (size_t)repeats, sizeof *times, compare_doubles);
     double median = repeats % 2 ? times[repeats / 2] : 0.5 * (times[repeats / 2 - 1] + times[repeats / 2]);
     free(times);

@@ -124,7 +124,7 @@ static void solver_sweep(const exp_run *exp)
             job.y[i] = pow(10.0, -3.0 + 2.95 * (i + 0.5) / SOLVE_BATCH);
         if (ops[o] != SOL_TONEMAP_ACES_REF) {
             job.closed_form = 1;
-            double ns = exp_time_per_item_ns(run_solves, &job, SOLVE_BATCH, repeats);
+            double ns = exp_cpu_time_per_item_ns(run_solves, &job, SOLVE_BATCH, repeats);
             for (int i = 0; i < SOLVE_BATCH; ++i)
                 exact[i] = job.x[i];
             exp_table_row(t, "%s|closed form|-|0|%.1f", sol_tonemap_name(ops[o]), ns);
@@ -140,7 +140,7 @@ static void solver_sweep(const exp_run *exp)
             fputs("op,method,tolerance,max_rel_error,ns\n", csv); /* each gnuplot block has its header */
             for (size_t k = 0; k < sizeof tolerances / sizeof tolerances[0]; ++k) {
                 job.options = (sol_root_options){(sol_root_method)m, tolerances[k], 400};
-                double ns = exp_time_per_item_ns(run_solves, &job, SOLVE_BATCH, repeats);
+                double ns = exp_cpu_time_per_item_ns(run_solves, &job, SOLVE_BATCH, repeats);
                 double err = worst_relative_error(&job, exact);
                 const char *name = m ? "safeguarded Newton" : "bisection";
                 exp_table_row(t, "%s|%s|%.0e|%.2e|%.1f", sol_tonemap_name(ops[o]), name, tolerances[k], err, ns);

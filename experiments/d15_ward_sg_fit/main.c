@@ -74,6 +74,49 @@ static void run_chain(void *vctx)
     t->status = sol_ward_sg_fit(t->ax, t->ay, t->k, &t->opts, lobes, t->err, NULL);
 }
 
+static void run_asg(void *vctx)
+{
+    timing_ctx *t = vctx;
+    sol_asg lobe;
+    t->status = sol_ward_asg_fit(t->ax, t->ay, &t->opts, &lobe, &t->err[0], NULL);
+}
+
+/* --bench only (bench_knobs): the fit's remaining accuracy knobs at K = 7 on the reference cell, Ceres
+ * iterations per fit and the multi-start check (extra_starts), with the one-lobe anisotropic ASG
+ * (Xu et al. 2013) as the peer in the same table; time in thread CPU time (Ceres runs on one thread). */
+static void bench_knobs_table(const exp_run *exp, double ax, double ay)
+{
+    exp_table *t = exp_table_new("Ward NDF (ax 0.1, ay 0.2): SG fit knobs at K = 7 (greedy chain 1..7), error and fit "
+                                 "time (one thread); peer: one anisotropic SG (ASG)",
+                                 "fit,knob,setting,rel L2,max err,energy err,fit core-ms");
+    timing_ctx a = {.ax = ax, .ay = ay, .k = 1};
+    const int repeats = exp->quick ? 1 : 3;
+    double ns = exp_cpu_time_per_item_ns(run_asg, &a, 1, repeats);
+    exp_check(a.status, "fitting the ASG");
+    exp_table_row(t, "peer: 1 ASG lobe|-|-|%.4f|%.4f|%+.4f|%.1f", a.err[0].rel_l2, a.err[0].max_rel, a.err[0].energy,
+                  ns * 1e-6);
+    static const int iters[] = {5, 10, 25, 50, 100, 200};
+    static const int starts[] = {0, 3, 8, 16};
+    const int n_iters = exp->quick ? 3 : (int)(sizeof iters / sizeof iters[0]);
+    const int n_starts = exp->quick ? 2 : (int)(sizeof starts / sizeof starts[0]);
+    for (int i = 0; i < n_iters + n_starts; ++i) {
+        timing_ctx c = {.ax = ax, .ay = ay, .k = 7};
+        const char *knob = i < n_iters ? "Ceres iterations per fit" : "extra starts of the last fit";
+        int setting = i < n_iters ? iters[i] : starts[i - n_iters];
+        if (i < n_iters)
+            c.opts.max_iterations = setting;
+        else
+            c.opts.extra_starts = setting;
+        ns = exp_cpu_time_per_item_ns(run_chain, &c, 1, repeats);
+        exp_check(c.status, "fitting K = 7 (%s %d)", knob, setting);
+        const sol_sg_fit_error *e = &c.err[6];
+        exp_table_row(t, "7 SG lobes|%s|%d%s|%.4f|%.4f|%+.4f|%.1f", knob, setting,
+                      (i < n_iters && setting == 200) || (i >= n_iters && setting == 0) ? " (default)" : "", e->rel_l2,
+                      e->max_rel, e->energy, ns * 1e-6);
+    }
+    exp_table_write(t, exp, "bench_knobs");
+}
+
 static void bench_tables(const exp_run *exp)
 {
     const double ax = 0.1, ay = 0.2;
@@ -84,7 +127,7 @@ static void bench_tables(const exp_run *exp)
     int nk = exp->quick ? 4 : (int)(sizeof ks / sizeof ks[0]);
     for (int i = 0; i < nk; ++i) {
         timing_ctx c = {.ax = ax, .ay = ay, .k = ks[i]};
-        double ns = exp_time_per_item_ns(run_chain, &c, 1, 1);
+        double ns = exp_cpu_time_per_item_ns(run_chain, &c, 1, 1);
         exp_check(c.status, "fitting K=%d", ks[i]);
         const sol_sg_fit_error *e = &c.err[ks[i] - 1];
         exp_table_row(t, "%d|%.4f|%.4f|%+.4f|%.1f", ks[i], e->rel_l2, e->max_rel, e->energy, ns * 1e-6);
@@ -98,7 +141,7 @@ static void bench_tables(const exp_run *exp)
     int nn = exp->quick ? 2 : 5;
     for (int i = 0; i < nn; ++i) {
         timing_ctx c = {.ax = ax, .ay = ay, .k = 7, .opts = {.radial_samples = nodes[i][0], .angular_samples = nodes[i][1]}};
-        double ns = exp_time_per_item_ns(run_chain, &c, 1, 1);
+        double ns = exp_cpu_time_per_item_ns(run_chain, &c, 1, 1);
         exp_check(c.status, "fitting with %dx%d nodes", nodes[i][0], nodes[i][1]);
         exp_table_row(q, "%d|%d|%d|%.4f|%.4f|%.1f", nodes[i][0], nodes[i][1], nodes[i][0] * nodes[i][1],
                       c.err[6].rel_l2, c.err[6].max_rel, ns * 1e-6);
@@ -111,7 +154,7 @@ static void bench_tables(const exp_run *exp)
     static const char *ls_names[2] = {"dense normal Cholesky (default)", "dense QR"};
     for (int i = 0; i < 2; ++i) {
         timing_ctx c = {.ax = ax, .ay = ay, .k = 7, .opts = {.linear_solver = (sol_lsq_linear_solver)i}};
-        double ns = exp_time_per_item_ns(run_chain, &c, 1, 1);
+        double ns = exp_cpu_time_per_item_ns(run_chain, &c, 1, 1);
         exp_check(c.status, "fitting with %s", ls_names[i]);
         exp_table_row(ls, "%s|%.5f|%.5f|%.1f", ls_names[i], c.err[6].rel_l2, c.err[6].max_rel, ns * 1e-6);
         if (i == 0)
@@ -120,6 +163,8 @@ static void bench_tables(const exp_run *exp)
             exp_number(exp, "D15-chain7-qr-ms", "%.0f", ns * 1e-6);
     }
     exp_table_write(ls, exp, "linear_solver");
+    if (exp->bench)
+        bench_knobs_table(exp, ax, ay);
 }
 
 /* Roughness grid: log-spaced from 0.04 (a sharp metal) to 0.8 (past 0.71 the Ward NDF's maximum

@@ -323,7 +323,7 @@ static void filter_cost_rows(const exp_run *exp, const test_images *im, int repe
 {
     for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps) {
         filter_job job = {&im->aliased, {(sol_postaa_taps)taps, 0.0}};
-        double ns = exp_time_per_item_ns(run_filter, &job, (size_t)im->size * im->size, repeats);
+        double ns = exp_cpu_time_per_item_ns(run_filter, &job, (size_t)im->size * im->size, repeats);
         sol_image out;
         exp_check(sol_postaa_filter(&im->aliased, &job.opt, &out), "filtering");
         errors(&out, &im->reference, &im->aliased, &r->default_all[taps], &r->default_edge[taps]);
@@ -344,9 +344,9 @@ static void supersampling_cost_rows(const test_images *im, int repeats, exp_tabl
         sol_image ss;
         exp_check(sol_image_alloc(&ss, im->size, im->size, 3), "allocating");
         render_job job = {&im->s, n, &ss};
-        double ns = exp_time_per_item_ns(run_render, &job, pixels, repeats);
+        double ns = exp_cpu_time_per_item_ns(run_render, &job, pixels, repeats);
         render_job one = {&im->s, 1, &ss};
-        double ns1 = exp_time_per_item_ns(run_render, &one, pixels, repeats);
+        double ns1 = exp_cpu_time_per_item_ns(run_render, &one, pixels, repeats);
         render(&im->s, n, &ss);
         double a, e;
         errors(&ss, &im->reference, &im->aliased, &a, &e);
@@ -362,7 +362,7 @@ static void edge_error_table(const exp_run *exp, const test_images *im, filter_r
 {
     const int repeats = exp->quick ? 3 : 7;
     exp_table *cost = exp_table_new("Edge anti-aliasing: error against a 16x16 supersampled reference, and cost",
-                                    "method,RMS error (all),RMS error (edge pixels),edge error vs aliased %,ns per pixel");
+                                    "method,RMS error (all),RMS error (edge pixels),edge error vs aliased %,core-ns per pixel");
     FILE *csv = exp_open(exp, "error_vs_time.csv");
     fputs("method,ns,rms_edge\n", csv);
     exp_table_row(cost, "aliased (1 sample)|%.5f|%.5f|100.0|-", im->rms_alias_all, im->rms_alias_edge);
@@ -370,6 +370,30 @@ static void edge_error_table(const exp_run *exp, const test_images *im, filter_r
     supersampling_cost_rows(im, repeats, cost, csv);
     fclose(csv);
     exp_table_write(cost, exp, "edge_error");
+}
+
+/* --bench only (threshold_knobs): the filter's threshold, its one numeric knob, for each fetch
+ * placement: error and core-ns per pixel, with the aliased image (no filter) as the baseline. */
+static void threshold_knobs_table(const exp_run *exp, const test_images *im)
+{
+    exp_table *t = exp_table_new("Post-process AA threshold (deviation of full blur) per fetch placement: error against "
+                                 "the supersampled reference and time per pixel (one thread)",
+                                 "method,threshold,RMS error (all),RMS error (edge pixels),core-ns per pixel");
+    exp_table_row(t, "aliased (no filter)|-|%.5f|%.5f|0", im->rms_alias_all, im->rms_alias_edge);
+    static const double thresholds[] = {0.125, 0.25, 0.5, 1.0, 2.0, 4.0};
+    for (int taps = SOL_POSTAA_PINWHEEL4; taps <= SOL_POSTAA_DIRECT8; ++taps)
+        for (size_t i = 0; i < sizeof thresholds / sizeof *thresholds; ++i) {
+            filter_job job = {&im->aliased, {(sol_postaa_taps)taps, thresholds[i]}};
+            double ns = exp_cpu_time_per_item_ns(run_filter, &job, (size_t)im->size * im->size, exp->quick ? 3 : 5);
+            sol_image out;
+            exp_check(sol_postaa_filter(&im->aliased, &job.opt, &out), "filtering");
+            double a, e;
+            errors(&out, &im->reference, &im->aliased, &a, &e);
+            sol_image_free(&out);
+            exp_table_row(t, "filter, %s|%g%s|%.5f|%.5f|%.1f", taps_name((sol_postaa_taps)taps), thresholds[i],
+                          thresholds[i] == 0.5 ? " (default)" : "", a, e, ns);
+        }
+    exp_table_write(t, exp, "threshold_knobs");
 }
 
 static void plot_results(const exp_run *exp, const test_images *im)
@@ -397,7 +421,7 @@ static void plot_results(const exp_run *exp, const test_images *im)
                  k ? ", " : "", k, k, k + 5, k + 1, name);
     }
     exp_plot(exp, "error_vs_time",
-             "set datafile separator comma\nset xlabel 'ns per pixel (median)'\nset ylabel 'RMS error on edge pixels'\n"
+             "set datafile separator comma\nset xlabel 'core-ns per pixel (median, one thread)'\nset ylabel 'RMS error on edge pixels'\n"
              "set grid\nset key outside right top\nset logscale x\nset offsets graph 0.1, graph 0.1, graph 0.1, graph 0.1\n"
              "plot %s", clauses);
 }
@@ -453,6 +477,8 @@ int main(int argc, char **argv)
         threshold_sweep(&exp, &im, &r);
     }
     edge_error_table(&exp, &im, &r);
+    if (exp.bench)
+        threshold_knobs_table(&exp, &im);
     if (!exp.bench) {
         plot_results(&exp, &im);
         write_claims(&exp, &im, pinwheel_kernel_err, edge_pin, &r);

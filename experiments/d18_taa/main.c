@@ -14,6 +14,7 @@
 #include "sol_screen.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -130,7 +131,29 @@ typedef struct run_config {
     int frames, ref_n;
     double pan, specular;
     const exp_run *out; /* NULL: no files */
+    double *cpu_ns;     /* --bench: N_METHODS sums of the methods' core-ns (one thread) over the run; NULL: untimed */
 } run_config;
+
+/* --bench times library calls as thread CPU time on one thread (results are identical for any thread
+ * count), so the figure does not depend on what else the machine runs. */
+typedef struct cpu_timer {
+    int threads;
+    double start;
+} cpu_timer;
+
+static void timer_start(cpu_timer *t)
+{
+    t->threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    t->start = exp_thread_cpu_ns();
+}
+
+static double timer_stop(const cpu_timer *t)
+{
+    double ns = exp_thread_cpu_ns() - t->start;
+    omp_set_num_threads(t->threads);
+    return ns;
+}
 
 /* Per-frame images of one run, and the TAA histories (ping-pong pairs, in method order from M_TAA). */
 typedef struct sequence_buffers {
@@ -190,13 +213,18 @@ static void render_frame(const run_config *rc, const frame_scene *s, int f, sequ
 /* Each TAA variant accumulates frame f (the unjittered one from the centre samples); its output
  * is the history just written. */
 static void accumulate_taa(const sol_camera *cam, sequence_buffers *b, int f, const double motion[3],
-                           const float *outputs[N_METHODS])
+                           const float *outputs[N_METHODS], double *cpu_ns)
 {
     for (int r = 0; r < N_TAA; ++r) {
         const int unjittered = M_TAA + r == M_TAA_NO_JITTER;
         const float *cur = unjittered ? b->center : b->jittered, *dep = unjittered ? b->cdepth : b->jdepth;
+        cpu_timer tm = {0, 0.0};
+        if (cpu_ns)
+            timer_start(&tm);
         exp_check(sol_temporal_accumulate(cam, dep, cur, motion, &taa_opts[r], &b->hist[r][f % 2], &b->hist[r][(f + 1) % 2]),
                       "accumulating");
+        if (cpu_ns)
+            cpu_ns[M_TAA + r] += timer_stop(&tm);
         outputs[M_TAA + r] = b->hist[r][(f + 1) % 2].values;
     }
 }
@@ -286,9 +314,14 @@ static void run_sequence(const run_config *rc, double rms[N_METHODS][N_REGIONS])
                 motion[k] = s.eye[k] - prev_s.eye[k];
         render_frame(rc, &s, f, &b);
         sol_image aliased_img = {cam->width, cam->height, 3, b.center}, post;
+        cpu_timer tm = {0, 0.0};
+        if (rc->cpu_ns)
+            timer_start(&tm);
         exp_check(sol_postaa_filter(&aliased_img, NULL, &post), "post-process AA");
+        if (rc->cpu_ns)
+            rc->cpu_ns[M_POSTAA] += timer_stop(&tm);
         const float *outputs[N_METHODS] = {b.center, post.data};
-        accumulate_taa(cam, &b, f, motion, outputs);
+        accumulate_taa(cam, &b, f, motion, outputs, rc->cpu_ns);
         double frame_sum[N_METHODS][N_REGIONS] = {{0}};
         long frame_count[N_REGIONS] = {0};
         frame_errors(&b, n, f, outputs, frame_sum, frame_count);
@@ -321,20 +354,26 @@ enum { N_CAPS = 5, N_FILTERS = 2, N_SWEEP = N_CAPS * N_FILTERS };
 static const double SWEEP_CAPS[N_CAPS] = {2, 4, 8, 16, 32};
 static const char *filter_names[N_FILTERS] = {"bilinear", "Catmull-Rom"};
 
-/* Far-region and all-pixel RMS (second half of the run) of every (cap, filter) setting, index
- * filter * N_CAPS + cap, on the panning sequence of rc. */
-static void history_sweep(const run_config *rc, double far[N_SWEEP], double all[N_SWEEP])
+/* Far-region and all-pixel RMS (second half of the run) of each of the `count` accumulation settings
+ * on the panning sequence of rc (jittered frames). ghost (may be NULL): the RMS over the pixels the
+ * moving box covered in some but not all of the last 8 frames (run_sequence's ghost region);
+ * ns (may be NULL, --bench): core-ns per pixel of sol_temporal_accumulate, one thread. */
+static void history_sweep(const run_config *rc, const sol_temporal_options *opts, int count, double *far,
+                          double *all, double *ghost, double *ns)
 {
     const sol_camera *cam = rc->cam;
     const size_t n = (size_t)cam->width * cam->height;
     sequence_buffers b;
     buffers_alloc(&b, cam);
-    sol_history hist[N_SWEEP][2];
-    for (int i = 0; i < N_SWEEP; ++i)
+    sol_history(*hist)[2] = calloc((size_t)count, sizeof *hist);
+    double *far_sum = calloc((size_t)count, sizeof *far_sum), *all_sum = calloc((size_t)count, sizeof *all_sum),
+           *ghost_sum = calloc((size_t)count, sizeof *ghost_sum), *cpu = calloc((size_t)count, sizeof *cpu);
+    if (!hist || !far_sum || !all_sum || !ghost_sum || !cpu)
+        exp_die("out of memory");
+    for (int i = 0; i < count; ++i)
         for (int k = 0; k < 2; ++k)
             exp_check(sol_history_alloc(&hist[i][k], cam->width, cam->height, 3), "history");
-    double far_sum[N_SWEEP] = {0}, all_sum[N_SWEEP] = {0};
-    long far_count = 0, all_count = 0;
+    long far_count = 0, all_count = 0, ghost_count = 0;
     frame_scene sc, prev_s;
     for (int f = 0; f < rc->frames; ++f) {
         setup_frame(&sc, f, rc->pan, rc->specular);
@@ -343,16 +382,22 @@ static void history_sweep(const run_config *rc, double far[N_SWEEP], double all[
             for (int k = 0; k < 3; ++k)
                 motion[k] = sc.eye[k] - prev_s.eye[k];
         render_frame(rc, &sc, f, &b);
-        for (int i = 0; i < N_SWEEP; ++i) {
-            sol_temporal_options o = {.max_frames = SWEEP_CAPS[i % N_CAPS], .edge_tolerant = 1,
-                                      .filter = i / N_CAPS ? SOL_HISTORY_CATMULL_ROM : SOL_HISTORY_BILINEAR};
-            exp_check(sol_temporal_accumulate(cam, b.jdepth, b.jittered, motion, &o, &hist[i][f % 2], &hist[i][(f + 1) % 2]),
+        for (int i = 0; i < count; ++i) {
+            cpu_timer tm = {0, 0.0};
+            if (ns)
+                timer_start(&tm);
+            exp_check(sol_temporal_accumulate(cam, b.jdepth, b.jittered, motion, &opts[i], &hist[i][f % 2], &hist[i][(f + 1) % 2]),
                       "accumulating (sweep)");
+            if (ns)
+                cpu[i] += timer_stop(&tm);
         }
+        for (size_t p = 0; p < n; ++p)
+            b.moving_hist[p] = ((b.moving_hist[p] << 1) | (b.ids[p] == BOX_MOVING)) & 0xFF;
         if (f >= rc->frames / 2) {
             for (size_t p = 0; p < n; ++p) {
                 int is_far = region_of(b.ids[p]) == R_FAR;
-                for (int i = 0; i < N_SWEEP; ++i) {
+                int in_ghost = f >= 8 && b.moving_hist[p] != 0 && b.moving_hist[p] != 0xFF;
+                for (int i = 0; i < count; ++i) {
                     const float *out = hist[i][(f + 1) % 2].values;
                     double e2 = 0.0;
                     for (int c = 0; c < 3; ++c) {
@@ -361,20 +406,87 @@ static void history_sweep(const run_config *rc, double far[N_SWEEP], double all[
                     }
                     all_sum[i] += e2;
                     far_sum[i] += is_far ? e2 : 0.0;
+                    ghost_sum[i] += in_ghost ? e2 : 0.0;
                 }
                 far_count += is_far;
+                ghost_count += in_ghost;
                 all_count++;
             }
         }
         prev_s = sc;
     }
-    for (int i = 0; i < N_SWEEP; ++i) {
+    for (int i = 0; i < count; ++i) {
         far[i] = sqrt(far_sum[i] / (double)far_count);
         all[i] = sqrt(all_sum[i] / (double)all_count);
+        if (ghost)
+            ghost[i] = ghost_count ? sqrt(ghost_sum[i] / (double)ghost_count) : NAN;
+        if (ns)
+            ns[i] = cpu[i] / ((double)rc->frames * (double)n);
         sol_history_free(&hist[i][0]);
         sol_history_free(&hist[i][1]);
     }
+    free(hist);
+    free(far_sum);
+    free(all_sum);
+    free(ghost_sum);
+    free(cpu);
     buffers_free(&b);
+}
+
+/* The history sweep's settings: cap x filter, jitter + 3x3 depth test, index filter * N_CAPS + cap. */
+static void sweep_settings(sol_temporal_options opts[N_SWEEP])
+{
+    for (int i = 0; i < N_SWEEP; ++i)
+        opts[i] = (sol_temporal_options){.max_frames = SWEEP_CAPS[i % N_CAPS], .edge_tolerant = 1,
+                                         .filter = i / N_CAPS ? SOL_HISTORY_CATMULL_ROM : SOL_HISTORY_BILINEAR};
+}
+
+/* --bench: every accumulation knob of sol_temporal_options (history cap x filter, depth test, its
+ * tolerance) on the panning sequence, error against time per pixel, with the peers that need no
+ * history (aliased centre sample, D17's post-process filter) and TAA without jitter in the same
+ * table. Written only with --bench (d18_knobs). */
+enum { N_TOLS = 4, N_BENCH = N_SWEEP + 2 + N_TOLS };
+static const double BENCH_TOLS[N_TOLS] = {0.001, 0.003, 0.03, 0.1};
+
+static void bench_table(const exp_run *exp, const run_config *base)
+{
+    run_config rc = *base;
+    double cpu[N_METHODS] = {0}, rms[N_METHODS][N_REGIONS];
+    rc.cpu_ns = cpu;
+    run_sequence(&rc, rms);
+    const double pixels = (double)rc.frames * rc.cam->width * rc.cam->height;
+
+    sol_temporal_options opts[N_BENCH];
+    const char *depth_test[N_BENCH];
+    sweep_settings(opts);
+    for (int i = 0; i < N_SWEEP; ++i)
+        depth_test[i] = "3x3 range";
+    opts[N_SWEEP] = (sol_temporal_options){.max_frames = 16};
+    depth_test[N_SWEEP] = "1 pixel";
+    opts[N_SWEEP + 1] = (sol_temporal_options){.max_frames = 16, .no_depth_test = 1};
+    depth_test[N_SWEEP + 1] = "none";
+    for (int t = 0; t < N_TOLS; ++t) {
+        opts[N_SWEEP + 2 + t] = (sol_temporal_options){.max_frames = 16, .edge_tolerant = 1, .depth_tolerance = BENCH_TOLS[t]};
+        depth_test[N_SWEEP + 2 + t] = "3x3 range";
+    }
+    double far[N_BENCH], all[N_BENCH], ghost[N_BENCH], ns[N_BENCH];
+    history_sweep(&rc, opts, N_BENCH, far, all, ghost, ns);
+
+    exp_table *t = exp_table_new("TAA knobs, panning camera: RMS error vs the supersampled frame (second half of the run) "
+                                 "and time per pixel of the accumulation (one thread); peers without history first",
+                                 "method,history filter,history cap,depth test,depth tolerance,all RMS,far RMS (z>=30),"
+                                 "ghost-region RMS,core-ns per pixel");
+    exp_table_row(t, "aliased (centre sample)|-|-|-|-|%.4f|%.4f|%.4f|0", rms[M_ALIASED][R_ALL], rms[M_ALIASED][R_FAR],
+                  rms[M_ALIASED][R_GHOST]);
+    exp_table_row(t, "post-process AA (D17)|-|-|-|-|%.4f|%.4f|%.4f|%.1f", rms[M_POSTAA][R_ALL], rms[M_POSTAA][R_FAR],
+                  rms[M_POSTAA][R_GHOST], cpu[M_POSTAA] / pixels);
+    exp_table_row(t, "TAA without jitter|bilinear|16|3x3 range|0.01|%.4f|%.4f|%.4f|%.1f", rms[M_TAA_NO_JITTER][R_ALL],
+                  rms[M_TAA_NO_JITTER][R_FAR], rms[M_TAA_NO_JITTER][R_GHOST], cpu[M_TAA_NO_JITTER] / pixels);
+    for (int i = 0; i < N_BENCH; ++i)
+        exp_table_row(t, "TAA|%s|%.0f|%s|%g|%.4f|%.4f|%.4f|%.1f", filter_names[opts[i].filter == SOL_HISTORY_CATMULL_ROM],
+                      opts[i].max_frames, depth_test[i], opts[i].depth_tolerance > 0 ? opts[i].depth_tolerance : 0.01,
+                      all[i], far[i], ghost[i], ns[i]);
+    exp_table_write(t, exp, "d18_knobs");
 }
 
 static void table_rows(exp_table *t, const char *camera, double rms[N_METHODS][N_REGIONS])
@@ -388,14 +500,17 @@ int main(int argc, char **argv)
 {
     exp_run exp;
     exp_init(&exp, "d18_taa", argc, argv);
-    if (exp.bench) /* the knobs (history cap, tolerance) are not swept here: nothing to benchmark */
-        return 0;
     const sol_camera cam = {.width = exp.quick ? 96 : 160, .height = exp.quick ? 64 : 104,
                             .focal = exp.quick ? 96 : 160, .znear = 0.1, .zfar = 100};
     const int frames = exp.quick ? 12 : 24, ref_n = exp.quick ? 4 : 6;
     const double pan = 0.05;
     double still[N_METHODS][N_REGIONS], panning[N_METHODS][N_REGIONS], plain[N_METHODS][N_REGIONS];
-    run_config rc = {&cam, frames, ref_n, 0.0, 0.6, NULL};
+    run_config rc = {&cam, frames, ref_n, 0.0, 0.6, NULL, NULL};
+    if (exp.bench) { /* only the knobs' error-vs-time table, panning camera */
+        rc.pan = pan;
+        bench_table(&exp, &rc);
+        return 0;
+    }
     run_sequence(&rc, still);
     rc.pan = pan;
     rc.out = &exp;
@@ -446,7 +561,9 @@ int main(int argc, char **argv)
     double sweep_far[N_SWEEP], sweep_all[N_SWEEP];
     rc.specular = 0.6;
     rc.pan = pan;
-    history_sweep(&rc, sweep_far, sweep_all);
+    sol_temporal_options sweep_opts[N_SWEEP];
+    sweep_settings(sweep_opts);
+    history_sweep(&rc, sweep_opts, N_SWEEP, sweep_far, sweep_all, NULL, NULL);
     exp_table *sw = exp_table_new("History sweep, panning camera (jitter + 3x3 depth test): RMS error vs the supersampled "
                                   "frame, second half of the run; aliased for comparison",
                                   "history filter,history cap,far (z>=30),all,far / aliased far");

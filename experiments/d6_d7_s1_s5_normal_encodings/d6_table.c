@@ -135,7 +135,7 @@ static void timing_row(exp_table *knob, const d6_data *d, const sol_bestfit_tabl
     table_timing c = {t, d->dirs, d->tn, 0};
     char name[64];
     snprintf(name, sizeof name, "table %dx%d", size, size);
-    exp_table_row(knob, "%s|%.1f|%.5f|%.5f", name, exp_time_per_item_ns(time_table, &c, d->tn, 5), st.rms, st.max);
+    exp_table_row(knob, "%s|%.1f|%.5f|%.5f", name, exp_cpu_time_per_item_ns(time_table, &c, d->tn, 5), st.rms, st.max);
 }
 
 /* One table size at every precision and filter (--bench: 16-bit nearest only, the timed one). */
@@ -246,6 +246,57 @@ static void write_claim(const exp_run *exp, const sweep_rms *r, double exact_rms
               "claim is not measurable on a CPU");
 }
 
+/* --bench only (table_knobs): the table's stored precision and filter at 512x512 against the exact
+ * search (the peer the table replaces), error and core-ns per encode (one thread). On a CPU the
+ * texels are floats whatever the precision, so only the filter changes the time here; a GPU reads
+ * 8-bit texels with half the bandwidth of 16-bit ones. */
+typedef struct knob_timing {
+    const sol_bestfit_table *t; /* NULL: the exact search */
+    sol_table_filter filter;
+    const double *dirs;
+    size_t n;
+    uint32_t sink;
+} knob_timing;
+
+static void time_knob(void *p)
+{
+    knob_timing *c = p;
+    for (size_t i = 0; i < c->n; ++i) {
+        uint32_t code;
+        if (c->t)
+            sol_normal_encode_bestfit_table(c->t, c->filter, c->dirs + 3 * i, &code);
+        else
+            sol_normal_encode(SOL_NORMAL_XYZ_BEST_FIT, c->dirs + 3 * i, &code);
+        c->sink ^= code;
+    }
+}
+
+static void table_knobs(const exp_run *exp, d6_data *d)
+{
+    exp_table *t = exp_table_new("Best-fit table 512x512 (D6): stored precision and filter vs angular error and time per "
+                                 "encode (one thread); peer: the exact search",
+                                 "encoder,precision,filter,rms deg,max deg,same cell as search %,core-ns per normal");
+    knob_timing c = {NULL, SOL_TABLE_NEAREST, d->dirs, d->tn, 0};
+    exp_table_row(t, "peer: exact search|double|-|%.5f|%.5f|100.00|%.1f", d->exact_stats.rms, d->exact_stats.max,
+                  exp_cpu_time_per_item_ns(time_knob, &c, d->tn, 15));
+    sol_bestfit_table base;
+    exp_check(sol_bestfit_table_build(512, 0, &base), "table 512");
+    for (size_t b = 0; b < N_BITS; ++b) {
+        sol_bestfit_table tb = requantized(&base, precision_bits[b]);
+        for (int f = 0; f < 2; ++f) {
+            double same;
+            error_stats st = table_errors(&tb, (sol_table_filter)f, d->exact, d->n, d->err, &same);
+            knob_timing k = {&tb, (sol_table_filter)f, d->dirs, d->tn, 0};
+            exp_table_row(t, "table 512x512|%s|%s|%.5f|%.5f|%.2f|%.1f",
+                          precision_bits[b] == 8 ? "8-bit" : precision_bits[b] == 16 ? "16-bit" : "float",
+                          f ? "bilinear" : "nearest", st.rms, st.max, same, exp_cpu_time_per_item_ns(time_knob, &k, d->tn, 15));
+        }
+        sol_bestfit_table_free(&tb);
+    }
+    sol_bestfit_table_free(&base);
+    exp_table_write(t, exp, "table_knobs");
+}
+
 void run_d6_table(const exp_run *exp)
 {
     d6_data d;
@@ -254,6 +305,8 @@ void run_d6_table(const exp_run *exp)
         write_table_files(exp);
     sweep_rms r = {{0}, {0}, {{{0}}}};
     size_sweep(exp, &d, &r);
+    if (exp->bench)
+        table_knobs(exp, &d);
     if (!exp->bench) { /* --bench prints only the timed size sweep */
         plot_size_sweep(exp, &r, d.exact_stats.rms);
         mip_table(exp, &d);

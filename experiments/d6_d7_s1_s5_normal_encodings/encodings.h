@@ -34,4 +34,6 @@ void run_d6_table(const exp_run *exp);
 void run_d7_blending(const exp_run *exp);
 /* S5: octahedral bit sweep and L. Tyler's tables side by side (oct_sweep.c). */
 void run_oct_sweep(const exp_run *exp);
+/* --bench only: the octahedral map's bits, rounding and quantizer, error vs time with 24-bit peers. */
+void run_oct_bench(const exp_run *exp);
 #endif

@@ -36,7 +36,7 @@ static void time_batch(void *p)
 static double ns_per_normal(const encoder *e, const double *dirs, size_t n)
 {
     timing_ctx c = {e, dirs, n, 0};
-    return exp_time_per_item_ns(time_batch, &c, n, 5);
+    return exp_cpu_time_per_item_ns(time_batch, &c, n, 5);
 }
 
 static double *timing_directions(size_t n)
@@ -217,5 +217,7 @@ int main(int argc, char **argv)
     run_d6_table(&exp);
     if (!exp.bench)
         run_d7_blending(&exp);
+    else
+        run_oct_bench(&exp);
     return 0;
 }

@@ -99,3 +99,86 @@ void run_oct_sweep(const exp_run *exp)
     exp_number(exp, "S5-tyler-worst-mean-offset-percent", "%.2f", 100.0 * worst_mean_off);
     free(err);
 }
+
+/* ---- --bench: the octahedral map's knobs (bits, rounding, quantizer), error vs time ---- */
+typedef struct oct_timing {
+    const sol_oct_options *o;      /* NULL: the 24-bit peer `method` */
+    sol_normal_method method;
+    const double *dirs;
+    size_t n;
+    double sink;
+} oct_timing;
+
+static void time_oct(void *p)
+{
+    oct_timing *c = p;
+    double acc = 0.0;
+    for (size_t i = 0; i < c->n; ++i) {
+        double back[3];
+        if (c->o) {
+            uint32_t code[2];
+            sol_oct_encode(c->o, c->dirs + 3 * i, code);
+            sol_oct_decode(c->o, code, back);
+        } else {
+            uint32_t code;
+            sol_normal_encode(c->method, c->dirs + 3 * i, &code);
+            sol_normal_decode(c->method, code, back);
+        }
+        acc += back[0];
+    }
+    c->sink += acc; /* keeps the work observable */
+}
+
+/* Mean and max error of a 24-bit peer over the same uniform directions as oct_errors. */
+static oct_stats peer_errors(sol_normal_method m, size_t n, double *err)
+{
+#pragma omp parallel for schedule(static)
+    for (int64_t i = 0; i < (int64_t)n; ++i) {
+        double d[3], back[3];
+        uint32_t code;
+        set_direction(0, (uint64_t)i, d);
+        exp_check(sol_normal_encode(m, d, &code), "encode");
+        exp_check(sol_normal_decode(m, code, back), "decode");
+        err[i] = sol_angle3(d, back) * DEG;
+    }
+    oct_stats s = {0, 0};
+    for (size_t i = 0; i < n; ++i) {
+        s.mean += err[i];
+        s.max = err[i] > s.max ? err[i] : s.max;
+    }
+    s.mean /= (double)n;
+    return s;
+}
+
+void run_oct_bench(const exp_run *exp)
+{
+    const size_t n = exp->quick ? 100000 : 1000000, tn = 4096;
+    double *err = malloc(sizeof *err * n), *dirs = malloc(sizeof *dirs * 3 * tn);
+    if (!err || !dirs)
+        exp_die("out of memory");
+    for (size_t i = 0; i < tn; ++i) /* directions the error set does not use */
+        set_direction(0, 50000017 + i, dirs + 3 * i);
+    exp_table *t = exp_table_new("Octahedral map knobs (S5): bits per coordinate, rounding, quantizer; angular error over "
+                                 "uniform directions and time per normal (encode + decode, one thread); 24-bit peers "
+                                 "on the same directions",
+                                 "encoding,bits per coordinate,rounding,quantizer,mean deg,max deg,core-ns per normal");
+    static const sol_normal_method peers[] = {SOL_NORMAL_XYZ_NORMALIZED, SOL_NORMAL_XYZ_BEST_FIT, SOL_NORMAL_SPHERICAL_12};
+    for (size_t k = 0; k < sizeof peers / sizeof *peers; ++k) {
+        oct_stats s = peer_errors(peers[k], n, err);
+        oct_timing c = {NULL, peers[k], dirs, tn, 0.0};
+        double ns = exp_cpu_time_per_item_ns(time_oct, &c, tn, 15);
+        exp_table_row(t, "peer: %s|-|-|-|%.6f|%.6f|%.1f", sol_normal_method_name(peers[k]), s.mean, s.max, ns);
+    }
+    for (int bits = 8; bits <= 16; bits += 2)
+        for (int v = 0; v < 3; ++v) {
+            sol_oct_options o = {bits, v == 1, v == 2 ? SOL_OCT_UNORM : SOL_OCT_SNORM};
+            oct_stats s = oct_errors(&o, 0, n, err);
+            oct_timing c = {&o, SOL_NORMAL_OCTAHEDRAL_12, dirs, tn, 0.0};
+            double ns = exp_cpu_time_per_item_ns(time_oct, &c, tn, 15);
+            exp_table_row(t, "octahedral|%d|%s|%s|%.6f|%.6f|%.1f", bits, v == 1 ? "precise (best of 4)" : "nearest",
+                          v == 2 ? "UNORM" : "SNORM", s.mean, s.max, ns);
+        }
+    exp_table_write(t, exp, "octahedral_knobs");
+    free(dirs);
+    free(err);
+}

@@ -189,7 +189,7 @@ static void quadrature_table(const exp_run *exp)
     static const double tols[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
     for (int i = 0; i < 5; ++i) {
         quad_timing q = {0, tols[i], 0, 0};
-        double ns = exp_time_per_item_ns(run_quad, &q, 1, exp->quick ? 1 : 5);
+        double ns = exp_cpu_time_per_item_ns(run_quad, &q, 1, exp->quick ? 1 : 5);
         double err = fabs(q.value - ref.value);
         exp_table_row(t, "adaptive GK|rel tol %.0e|%.3e|%.1f", tols[i], err, ns * 1e-3);
         fprintf(f, "0 %.6g %.6g\n", ns * 1e-3, err > 1e-16 ? err : 1e-16);
@@ -197,7 +197,7 @@ static void quadrature_table(const exp_run *exp)
     static const int strata[] = {16, 64, 256, 1024};
     for (int i = 0; i < (exp->quick ? 3 : 4); ++i) {
         quad_timing q = {1, 0, strata[i], 0};
-        double ns = exp_time_per_item_ns(run_quad, &q, 1, exp->quick ? 1 : 3);
+        double ns = exp_cpu_time_per_item_ns(run_quad, &q, 1, exp->quick ? 1 : 3);
         double err = fabs(q.value - ref.value);
         exp_table_row(t, "stratified MC|%dx%d|%.3e|%.1f", strata[i], strata[i], err, ns * 1e-3);
         fprintf(f, "1 %.6g %.6g\n", ns * 1e-3, err > 1e-16 ? err : 1e-16);

@@ -605,14 +605,69 @@ static void claim_s9_normals(const exp_run *exp)
               "of per-component rounding");
 }
 
+/* ---- --bench: the storage format as a precision choice, error against the cost of a store ---- */
+typedef struct store_timing {
+    const sol_image *scene;
+    format f;
+    double scale;
+    double sink;
+} store_timing;
+
+static void time_store(void *ctx)
+{
+    store_timing *c = ctx;
+    const int n = c->scene->width * c->scene->height;
+    double acc = 0.0;
+    for (int k = 0; k < n; ++k) {
+        const float *px = c->scene->data + 3 * k;
+        float scaled[3] = {(float)(px[0] * c->scale), (float)(px[1] * c->scale), (float)(px[2] * c->scale)}, back[3];
+        store(c->f, scaled, back);
+        acc += back[0];
+    }
+    c->sink += acc; /* keeps the work observable */
+}
+
+/* Written only with --bench (format_knobs): every format and applicable range policy over the four
+ * scenes (format_summary's figures) with the bits per pixel and the core-ns per pixel of the
+ * encode + decode round trip (one thread, interior scene): the formats are each other's peers. */
+static void bench_formats(const exp_run *exp, const sol_image scenes[SCENE_COUNT])
+{
+    exp_table *t = exp_table_new("HDR storage formats and range policies (the precision choice of D9/D10/S9): display-code "
+                                 "error over the four scenes and time per pixel of encode + decode (one thread)",
+                                 "format,bits/px,range policy,worst max code error,average mean code error,"
+                                 "core-ns per pixel");
+    const sol_image *interior = &scenes[INTERIOR_WINDOW];
+    const double l_interior = log_average_luminance(interior);
+    for (int f = 0; f < FORMAT_COUNT; ++f)
+        for (int p = 0; p < POLICY_COUNT; ++p) {
+            if (!policy_applies((format)f, (policy)p))
+                continue;
+            double worst = 0.0, mean = 0.0;
+            for (int id = 0; id < SCENE_COUNT; ++id) {
+                store_error e = measure_store(&scenes[id], (format)f, (policy)p, log_average_luminance(&scenes[id]), NULL);
+                worst = fmax(worst, e.max_code);
+                mean += e.mean_code / SCENE_COUNT;
+            }
+            store_timing c = {interior, (format)f, policy_scale((policy)p, (format)f, l_interior), 0.0};
+            double ns = exp_cpu_time_per_item_ns(time_store, &c, (size_t)interior->width * (size_t)interior->height,
+                                                 exp->quick ? 3 : 5);
+            exp_table_row(t, "%s|%d|%s|%.0f|%.3f|%.1f", format_name[f], format_bits[f], policy_name[p], worst, mean, ns);
+        }
+    exp_table_write(t, exp, "format_knobs");
+}
+
 int main(int argc, char **argv)
 {
     exp_run exp;
     exp_init(&exp, "d9_d10_s9_hdr_formats", argc, argv);
-    if (exp.bench)
-        return 0; /* no accuracy knob here: formats are fixed */
     sol_image scenes[SCENE_COUNT];
     load_scenes(&exp, scenes);
+    if (exp.bench) { /* the formats are fixed; the choice among them is the precision knob */
+        bench_formats(&exp, scenes);
+        for (int id = 0; id < SCENE_COUNT; ++id)
+            sol_image_free(&scenes[id]);
+        return 0;
+    }
     format_stats st = {{{0}}, {{0}}};
     format_error_table(&exp, scenes, &st);
     format_summary_table(&exp, &st);

@@ -193,7 +193,7 @@ static double test_all_boxes(const cull_scene *sc, const sol_cbuffer *cb, int ma
                              long *visited)
 {
     test_set t = {cb, sc->bounds, sc->n_tests, max_refine, sc->occluded, 0};
-    double ns = exp_time_per_item_ns(run_tests, &t, (size_t)sc->n_tests, sc->repeats);
+    double ns = exp_cpu_time_per_item_ns(run_tests, &t, (size_t)sc->n_tests, sc->repeats);
     *culled = *wrong = 0;
     for (int i = 0; i < sc->n_tests; ++i) {
         *culled += sc->occluded[i] && !sc->visible[i];

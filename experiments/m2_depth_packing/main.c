@@ -102,7 +102,7 @@ int main(int argc, char **argv)
     for (int c = 0; c < CODE_COUNT; ++c) {
         err[c] = measure((depth_code)c, samples);
         time_job job = {(depth_code)c, 0};
-        double ns = exp_time_per_item_ns(run_round_trips, &job, 65536, exp.quick ? 3 : 9);
+        double ns = exp_cpu_time_per_item_ns(run_round_trips, &job, 65536, exp.quick ? 3 : 9);
         exp_table_row(t, "%s|%d|%.3e|%.3e|%.3e|%.3f|%.3f|%.1f", code_name[c], bits[c], step[c], err[c].max_abs,
                       err[c].rms, err[c].pct_over_half_x_step, err[c].max_abs * 1e6, ns);
     }

@@ -166,7 +166,7 @@ static void measure_sample_counts(const exp_run *exp, ssao_scene *sc, double err
     fputs("samples,full_rms,full_ns,half_rms,half_ns\n", csv);
     for (int k = 0, s = 4; s <= 64; s *= 2, ++k) {
         full_job fj = {&sc->cam, sc->depth, sc->vo, {.radius = RADIUS, .samples = s}};
-        double ns_full = exp_time_per_item_ns(run_full, &fj, sc->n, sc->repeats);
+        double ns_full = exp_cpu_time_per_item_ns(run_full, &fj, sc->n, sc->repeats);
         err_full[k] = rms_error(sc->vo, sc->ref, sc->depth, sc->n, sc->cam.zfar);
         if (k == 0 && !exp->bench) {
             save_gray(exp, "vo_4_samples.png", sc->vo, sc->cam.width, sc->cam.height, 2.0);
@@ -174,7 +174,7 @@ static void measure_sample_counts(const exp_run *exp, ssao_scene *sc, double err
         }
         half_pipeline hp = {&sc->cam, sc->half_cam, sc->depth, sc->half_depth, sc->half_vo, sc->vo,
                             {.radius = RADIUS, .samples = s}};
-        double ns_half = exp_time_per_item_ns(run_half, &hp, sc->n, sc->repeats);
+        double ns_half = exp_cpu_time_per_item_ns(run_half, &hp, sc->n, sc->repeats);
         err_half[k] = rms_error(sc->vo, sc->ref, sc->depth, sc->n, sc->cam.zfar);
         exp_table_row(t, "%d|%.5f|%.1f|%.5f|%.1f", s, err_full[k], ns_full, err_half[k], ns_half);
         fprintf(csv, "%d,%.6f,%.3f,%.6f,%.3f\n", s, err_full[k], ns_full, err_half[k], ns_half);
@@ -296,6 +296,60 @@ static void write_accumulation_table(const exp_run *exp, int frames, double err_
     exp_table_write(tt, exp, "temporal");
 }
 
+/* --bench only (temporal_knobs): the accumulation's history cap against the error after 8 and after
+ * `frames` frames, with the per-frame cost of the half-resolution 4-sample pipeline with accumulation
+ * (the same for every cap), and the full-resolution single-frame sample counts as peers. */
+typedef struct accum_job {
+    half_pipeline hp;
+    sol_history hist[2];
+    int f;
+} accum_job;
+
+static void run_accum_frame(void *ctx)
+{
+    accum_job *j = ctx;
+    const double still[3] = {0, 0, 0};
+    const sol_temporal_options topt = {.max_frames = 16};
+    half_pipeline *p = &j->hp;
+    p->opt.frame = (unsigned)j->f;
+    exp_check(sol_depth_half(p->depth, p->full->width, p->full->height, p->half_depth), "half depth");
+    exp_check(sol_vo_compute(&p->half, p->half_depth, &p->opt, p->half_vo), "half-resolution VO");
+    sol_history *next = &j->hist[(j->f + 1) % 2];
+    exp_check(sol_temporal_accumulate(&p->half, p->half_depth, p->half_vo, still, &topt, &j->hist[j->f % 2], next),
+              "accumulating");
+    exp_check(sol_bilateral_upsample(next->values, p->half_depth, p->depth, p->full->width, p->full->height, p->out),
+              "upsampling");
+    ++j->f;
+}
+
+static void temporal_knobs_table(const exp_run *exp, ssao_scene *sc, int frames, const double err_full[7],
+                                 double err_acc[CONFIGS][FRAMES_MAX + 1])
+{
+    exp_table *t = exp_table_new("VO temporal accumulation (M3): history cap against RMS error after 8 and after all "
+                                 "frames, 4 samples per frame at half resolution, and the time per full-resolution "
+                                 "pixel per frame (one thread, the same for every cap); peers: full resolution, one "
+                                 "frame, more samples",
+                                 "method,camera,history cap,RMS after 8 frames,RMS after last frame,frames,"
+                                 "core-ns per pixel per frame");
+    for (int k = 0, smp = 4; smp <= 64; smp *= 4, k += 2) {
+        full_job fj = {&sc->cam, sc->depth, sc->vo, {.radius = RADIUS, .samples = smp}};
+        double ns = exp_cpu_time_per_item_ns(run_full, &fj, sc->n, sc->repeats);
+        exp_table_row(t, "full resolution, %d samples, no accumulation|still|-|%.5f|%.5f|1|%.1f", smp, err_full[k],
+                      err_full[k], ns);
+    }
+    accum_job j = {{&sc->cam, sc->half_cam, sc->depth, sc->half_depth, sc->half_vo, sc->vo, {.radius = RADIUS, .samples = 4}},
+                   {{0}, {0}}, 0};
+    exp_check(sol_history_alloc(&j.hist[0], sc->half_cam.width, sc->half_cam.height, 1), "history");
+    exp_check(sol_history_alloc(&j.hist[1], sc->half_cam.width, sc->half_cam.height, 1), "history");
+    double ns = exp_cpu_time_per_item_ns(run_accum_frame, &j, sc->n, sc->repeats);
+    sol_history_free(&j.hist[0]);
+    sol_history_free(&j.hist[1]);
+    for (int c = 0; c < CONFIGS; ++c)
+        exp_table_row(t, "half resolution, 4 samples, accumulated|%s|%.0f|%.5f|%.5f|%d|%.1f",
+                      config_moving[c] ? "moving" : "still", config_cap[c], err_acc[c][8], err_acc[c][frames], frames, ns);
+    exp_table_write(t, exp, "temporal_knobs");
+}
+
 static void plot_error_curves(const exp_run *exp)
 {
     exp_plot(exp, "error_vs_samples",
@@ -363,7 +417,12 @@ int main(int argc, char **argv)
     scene_init(&sc, &exp);
     double err_full[7] = {0}, err_half[7] = {0};
     measure_sample_counts(&exp, &sc, err_full, err_half);
-    if (!exp.bench) { /* --bench runs only the timed part 1 */
+    if (exp.bench) { /* part 1's table, and the accumulation's cap against the same costs */
+        const int frames = exp.quick ? 16 : FRAMES_MAX;
+        double err_acc[CONFIGS][FRAMES_MAX + 1];
+        measure_accumulation(&exp, &sc, frames, err_acc);
+        temporal_knobs_table(&exp, &sc, frames, err_full, err_acc);
+    } else {
         const int frames = exp.quick ? 16 : FRAMES_MAX;
         double err_acc[CONFIGS][FRAMES_MAX + 1];
         measure_accumulation(&exp, &sc, frames, err_acc);

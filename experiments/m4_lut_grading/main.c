@@ -170,7 +170,7 @@ static void size_sweep(const exp_run *exp, int *sufficient16, double worst16[2],
         double de16[VARIANT_COUNT] = {0, 0, 0}, mean16 = 0.0, code16 = 0.0;
         size_t n_colours = (size_t)per_axis * per_axis * per_axis, n_timed = n_colours < 16384 ? n_colours : 16384;
         apply_job exact_job = {NULL, 0, &looks[l].grade, set.rgb, n_timed, 0};
-        double ns_exact = exp_time_per_item_ns(run_apply, &exact_job, exact_job.n, exp->quick ? 3 : 7);
+        double ns_exact = exp_cpu_time_per_item_ns(run_apply, &exact_job, exact_job.n, exp->quick ? 3 : 7);
         exp_table_row(t, "%s|exact|transform|0|0|0|0|0|%.1f", looks[l].name, ns_exact);
         for (int v = 0; v < VARIANT_COUNT; ++v) {
             exp_progress("m4 LUT size sweep", (size_t)(l * VARIANT_COUNT + v), LOOK_COUNT * VARIANT_COUNT);
@@ -183,7 +183,7 @@ static void size_sweep(const exp_run *exp, int *sufficient16, double worst16[2],
                 sol_lut_interp interp = v == TETRAHEDRAL ? SOL_LUT_TETRAHEDRAL : SOL_LUT_TRILINEAR;
                 lut_error e = measure(&lut, interp, &set);
                 apply_job job = {&lut, interp, NULL, set.rgb, n_timed, 0};
-                double ns = exp_time_per_item_ns(run_apply, &job, job.n, exp->quick ? 3 : 7);
+                double ns = exp_cpu_time_per_item_ns(run_apply, &job, job.n, exp->quick ? 3 : 7);
                 exp_table_row(t, "%s|%d|%s|%.0f|%.3f|%.2f|%.3f|%.4f|%.1f", looks[l].name, sizes[k], variant_name[v],
                               e.max_code, e.mean_code, e.off_by_2, e.max_de, e.mean_de, ns);
                 fprintf(csv, "%d,%d,%d,%.0f,%.5f,%.5f,%.5f,%.3f\n", l, v, sizes[k], e.max_code, e.mean_code, e.max_de,

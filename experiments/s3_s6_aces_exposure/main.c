@@ -186,8 +186,8 @@ static double s3_aces_fit(const exp_run *exp)
     exp_table_write(ranges, exp, "fit_error_ranges");
 
     eval_job fit = {1, 0}, ref = {0, 0};
-    double ns_fit = exp_time_per_item_ns(run_evals, &fit, 4096, exp->quick ? 3 : 9);
-    double ns_ref = exp_time_per_item_ns(run_evals, &ref, 4096, exp->quick ? 3 : 9);
+    double ns_fit = exp_cpu_time_per_item_ns(run_evals, &fit, 4096, exp->quick ? 3 : 9);
+    double ns_ref = exp_cpu_time_per_item_ns(run_evals, &ref, 4096, exp->quick ? 3 : 9);
     exp_table *cost = exp_table_new("ACES: fit vs reference, accuracy vs time", "curve,max abs error,ns per value");
     exp_table_row(cost, "ACES fit (Narkowicz)|%.4f|%.1f", one_stop, ns_fit);
     exp_table_row(cost, "RRT+ODT reference (grey)|0|%.1f", ns_ref);
@@ -356,6 +356,98 @@ static void s6_exposure(const exp_run *exp)
               rate);
 }
 
+/* ---- --bench: the histogram meter's bin count, EV error vs time ---- */
+static int cmp_ev(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The meter without a histogram: EV100 of every pixel sorted, the darkest 60% and brightest 10% of
+ * the pixels dropped (fractional pixels at the cuts), the rest averaged: the limit of
+ * sol_histogram_meter's default as its bins get narrow (the scene's EVs lie inside -8..24). */
+static double exact_meter_ev(const float *lum, int n, double *ev)
+{
+    for (int i = 0; i < n; ++i)
+        ev[i] = sol_ev100_from_luminance(lum[i]);
+    qsort(ev, (size_t)n, sizeof *ev, cmp_ev);
+    const double lo = 0.6 * n, hi = (1.0 - 0.1) * n;
+    double sum = 0.0, weight = 0.0;
+    for (int i = 0; i < n; ++i) {
+        double w = fmin(i + 1.0, hi) - fmax((double)i, lo); /* pixel i covers [i, i + 1) */
+        if (w > 0.0) {
+            sum += w * ev[i];
+            weight += w;
+        }
+    }
+    return sum / weight;
+}
+
+typedef struct meter_timing {
+    const float *frames;
+    int count, bins; /* bins 0: the exact sorted meter */
+    double *scratch, sink;
+} meter_timing;
+
+static void time_meter(void *ctx)
+{
+    meter_timing *c = ctx;
+    const int n = FRAME_W * FRAME_H;
+    for (int f = 0; f < c->count; ++f) {
+        const float *lum = c->frames + (size_t)f * n;
+        if (c->bins == 0) {
+            c->sink += exact_meter_ev(lum, n, c->scratch);
+        } else {
+            sol_meter_options o = {.bins = c->bins};
+            double m;
+            exp_check(sol_histogram_meter(lum, (size_t)n, &o, &m, NULL), "metering");
+            c->sink += m;
+        }
+    }
+}
+
+/* Written only with --bench (meter_knobs): the bin count of sol_histogram_meter (over EV -8..24,
+ * skipping 60%/10%) against the exact sorted meter on the S6 walk's frames, with its time per pixel
+ * beside the exact meter's (the peer: a sort instead of a histogram). */
+static void bench_meter(const exp_run *exp)
+{
+    const int frames = exp->quick ? 60 : 180, n = FRAME_W * FRAME_H;
+    float *lum = malloc(sizeof *lum * (size_t)frames * n);
+    double *scratch = malloc(sizeof *scratch * n), *exact = malloc(sizeof *exact * frames);
+    if (!lum || !scratch || !exact)
+        exp_die("out of memory");
+    for (int f = 0; f < frames; ++f) {
+        render_frame(f, frames, lum + (size_t)f * n);
+        exact[f] = exact_meter_ev(lum + (size_t)f * n, n, scratch);
+    }
+    exp_table *t = exp_table_new("Histogram metering (S6): bins over EV -8..24 vs the exact trimmed log average of the "
+                                 "walk's frames, EV error and time per pixel (one thread)",
+                                 "meter,bins,bin width EV,mean abs error EV,max abs error EV,core-ns per pixel");
+    static const int bins[] = {0, 8, 16, 32, 64, 128, 256, 1024};
+    for (size_t b = 0; b < sizeof bins / sizeof *bins; ++b) {
+        double mean = 0.0, mx = 0.0;
+        for (int f = 0; f < frames && bins[b] > 0; ++f) {
+            sol_meter_options o = {.bins = bins[b]};
+            double m;
+            exp_check(sol_histogram_meter(lum + (size_t)f * n, (size_t)n, &o, &m, NULL), "metering");
+            double e = fabs(sol_ev100_from_luminance(m) - exact[f]);
+            mean += e / frames;
+            mx = fmax(mx, e);
+        }
+        meter_timing c = {lum, frames, bins[b], scratch, 0.0};
+        double ns = exp_cpu_time_per_item_ns(time_meter, &c, (size_t)frames * n, exp->quick ? 3 : 5);
+        if (bins[b] == 0)
+            exp_table_row(t, "peer: exact (sorted EVs)|-|0|0|0|%.1f", ns);
+        else
+            exp_table_row(t, "histogram%s|%d|%.3f|%.4f|%.4f|%.1f", bins[b] == 64 ? " (default)" : "", bins[b],
+                          32.0 / bins[b], mean, mx, ns);
+    }
+    exp_table_write(t, exp, "meter_knobs");
+    free(lum);
+    free(scratch);
+    free(exact);
+}
+
 int main(int argc, char **argv)
 {
     exp_run exp;
@@ -364,5 +456,7 @@ int main(int argc, char **argv)
     (void)err;
     if (!exp.bench)
         s6_exposure(&exp);
+    else
+        bench_meter(&exp);
     return 0;
 }

@@ -201,7 +201,7 @@ static void convergence(const exp_run *exp, int check_n, int fine_samples)
             mb = fmax(mb, fabs(g.bias[i] - fine.bias[i]));
         }
         c->samples = counts[k];
-        double ns = exp_time_per_item_ns(run_quadrature, c, 16, 5);
+        double ns = exp_cpu_time_per_item_ns(run_quadrature, c, 16, 5);
         exp_table_row(t, "%d|%.2e|%.2e|%.0f", counts[k], ms, mb, ns);
         fprintf(csv, "%d,%.6e,%.3f\n", counts[k], fmax(ms, mb), ns);
         grid_free(&g);
@@ -243,7 +243,7 @@ static void lut_rows(const exp_run *exp, timing_ctx *c, const grid *ref, int lut
         error_stats e = grid_errors(ref, NULL, &lut, NULL, 0.0);
         c->fit = NULL;
         c->lut = &lut;
-        double ns = exp_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
+        double ns = exp_cpu_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
         char name[64];
         snprintf(name, sizeof name, "LUT %dx%d", lut_sizes[k], lut_sizes[k]);
         error_row(t, name, &e, ns);
@@ -276,9 +276,9 @@ static void fit_rows(const exp_run *exp, timing_ctx *c, const grid *ref, exp_tab
     f->laz_away = grid_errors(ref, sol_dfg_fit_lazarov, NULL, NULL, 0.1);
     c->lut = NULL;
     c->fit = sol_dfg_fit_polynomial;
-    f->ns_poly = exp_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
+    f->ns_poly = exp_cpu_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
     c->fit = sol_dfg_fit_lazarov;
-    f->ns_laz = exp_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
+    f->ns_laz = exp_cpu_time_per_item_ns(run_approx, c, TIMING_POINTS, 21);
     error_row(t, "Narkowicz polynomial", &f->poly, f->ns_poly);
     error_row(t, "Narkowicz-Lazarov (GGX refit)", &f->laz, f->ns_laz);
     error_row(t, "polynomial form, sol refit (least squares)", &f->own, f->ns_poly);

@@ -56,7 +56,7 @@ static void hemicube_table(const exp_run *exp)
         double a, b, e;
         exp_check(sol_hemicube_weight_sums(sizes[k], &a, &b, &e), "hemicube sums");
         size_t texels = 3u * (size_t)sizes[k] * (size_t)sizes[k]; /* front + 4 half faces */
-        double ns = exp_time_per_item_ns(run_hemicube, &c, texels, sizes[k] >= 256 ? 3 : 9);
+        double ns = exp_cpu_time_per_item_ns(run_hemicube, &c, texels, sizes[k] >= 256 ? 3 : 9);
         exp_table_row(t, "%d|%.2e|%.3e|%.2e|%.1f", sizes[k], a - 2.0 * M_PI, b / M_PI - 1.0, e - M_PI, ns);
         fprintf(csv, "%d,%.6e,%.3f\n", sizes[k], fabs(b / M_PI - 1.0), ns);
     }

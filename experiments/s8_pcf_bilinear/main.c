@@ -171,7 +171,7 @@ static void timing_table(const exp_run *exp, const double worst[SOL_PCF_METHOD_C
     exp_table *t = exp_table_new(title, "method,fetches,max abs difference to the box,ns per pixel");
     for (int m = 0; m < SOL_PCF_METHOD_COUNT; ++m) {
         c->method = (sol_pcf_method)m;
-        double ns = exp_time_per_item_ns(run_filter, c, TIMING_POINTS, 11);
+        double ns = exp_cpu_time_per_item_ns(run_filter, c, TIMING_POINTS, 11);
         exp_table_row(t, "%s|%s|%.2e|%.1f", method_name((sol_pcf_method)m), m ? "4 bilinear taps" : "16 point compares",
                       worst[m], ns);
     }

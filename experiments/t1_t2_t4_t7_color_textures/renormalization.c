@@ -219,7 +219,7 @@ static void compare_encoders(const exp_run *exp, sol_image *targets, int count)
         }
         for (int e = 0; e < ENCODERS; ++e) {
             encode_job job = {&encoders[e], encoders[e].input8 ? &in8 : target, rgba, blocks};
-            double per = exp_time_per_item_ns(run_encode, &job, n, exp->quick ? 1 : 3);
+            double per = exp_cpu_time_per_item_ns(run_encode, &job, n, exp->quick ? 1 : 3);
             ns[e] += per * (double)n / (double)texels;
             double r = stored_rms(blocks, target);
             rms[e] += r * r * (double)n / (double)texels;

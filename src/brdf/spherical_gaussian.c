@@ -2,6 +2,7 @@
  * 2013), stable for sharpness from 0 to 1e6 and beyond (claims D15, D16). */
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
 #include <string.h>
 
 #include "sol_brdf.h"
@@ -95,6 +96,18 @@ static double clamped_azimuthal(double A, double B)
  * kinks where |A| = B (t1 and pi - t1), which become breakpoints; the exponential is cut where it
  * falls below e^-52 (relative 3e-23), and the rest is split into 12 equal pieces of 24-point
  * Gauss-Legendre, enough for a Gaussian-like factor over any width. */
+/* The 24-point Gauss-Legendre rule of sol_sg_cosine_convolve, computed once (thread-safe): the
+ * function is called per lobe per pixel (D16 lobe culling, the scene renderer), and rebuilding the
+ * nodes by Newton iteration on every call cost about as much as the quadrature itself. */
+enum { CONVOLVE_ORDER = 24 };
+static double convolve_x[CONVOLVE_ORDER], convolve_w[CONVOLVE_ORDER];
+static pthread_once_t convolve_once = PTHREAD_ONCE_INIT;
+
+static void convolve_rule_init(void)
+{
+    sol_gauss_legendre(CONVOLVE_ORDER, convolve_x, convolve_w); /* order in range: cannot fail */
+}
+
 double sol_sg_cosine_convolve(const sol_sg *g, const double n[3])
 {
     double c = sol_dot3(g->axis, n);
@@ -108,7 +121,7 @@ double sol_sg_cosine_convolve(const sol_sg *g, const double n[3])
     double t_max = lambda > 26.0 ? 2.0 * asin(sqrt(26.0 / lambda)) : M_PI; /* 1 - cos t = 52 / lambda */
     double t1 = atan2(fabs(c), s);
     double kinks[2] = {t1, M_PI - t1};
-    enum { PIECES = 12, ORDER = 24 };
+    enum { PIECES = 12, ORDER = CONVOLVE_ORDER };
     double breaks[PIECES + 3];
     int nb = 0, k = 0;
     for (int i = 0; i <= PIECES; ++i) {
@@ -121,8 +134,8 @@ double sol_sg_cosine_convolve(const sol_sg *g, const double n[3])
         if (nb == 0 || b > breaks[nb - 1])
             breaks[nb++] = b;
     }
-    double x[ORDER], w[ORDER];
-    sol_gauss_legendre(ORDER, x, w); /* ORDER is in range: cannot fail */
+    pthread_once(&convolve_once, convolve_rule_init);
+    const double *x = convolve_x, *w = convolve_w;
     double sum = 0.0;
     for (int i = 0; i + 1 < nb; ++i) {
         double mid = 0.5 * (breaks[i] + breaks[i + 1]), half = 0.5 * (breaks[i + 1] - breaks[i]);

@@ -8,6 +8,14 @@
 
 /* ---- per-channel scoring ---- */
 
+/* The largest |a| whose loose interval (term_loose) holds |t|: |t| / sqrt(1 - t^2) (infinite for |t| >= 1). */
+static inline double loose_reach(double t)
+{
+    double tt = fabs(t);
+    return tt < 1.0 ? tt / sqrt((1.0 - tt) * (1.0 + tt)) : INFINITY;
+}
+
+
 void sol_nm_channel_init(sol_nm_channel *ch, const double t[16], sol_bc4_precision precision, int use_max,
                          unsigned loose, uint8_t e0_lo, uint8_t e0_hi, uint8_t e1_lo, uint8_t e1_hi)
 {
@@ -20,6 +28,11 @@ void sol_nm_channel_init(sol_nm_channel *ch, const double t[16], sol_bc4_precisi
     ch->e0_hi = e0_hi;
     ch->e1_lo = e1_lo;
     ch->e1_hi = e1_hi;
+    for (int p = 0; p < 16; ++p) {
+        ch->loose_w[p] = 1.0;
+        ch->loose_off[p] = 0.0;
+        ch->loose_reach[p] = loose_reach(t[p]);
+    }
     /* Order: smallest, largest, then by decreasing distance from the mean - the pixels most likely
      * to be far from a poor palette come first. */
     double mean = 0.0;
@@ -50,6 +63,12 @@ void sol_nm_channel_init(sol_nm_channel *ch, const double t[16], sol_bc4_precisi
     }
 }
 
+void sol_nm_channel_rim_weight(sol_nm_channel *ch, int p, double weight, double offset)
+{
+    ch->loose_w[p] = weight;
+    ch->loose_off[p] = offset;
+}
+
 static inline double term_tight(const double pal[8], double t)
 {
     double m = (pal[0] - t) * (pal[0] - t);
@@ -60,18 +79,44 @@ static inline double term_tight(const double pal[8], double t)
     return m;
 }
 
-/* Distance^2 from t to the interval between a / sqrt(2) and a: the x of a decoded normal with
- * code value a is a when x^2 + y^2 <= 1, and a / r with r in (1, sqrt 2] when z is clamped. */
-static inline double term_loose(const double pal[8], double t)
+/* Distance^2 from t to the nearest interval between a / sqrt(1 + a^2) and a over the entries a: the
+ * x of a decoded normal with code value a is a when x^2 + y^2 <= 1, and a / r with
+ * r = sqrt(a^2 + y^2) in (1, sqrt(1 + a^2)] (|y| <= 1) when z is clamped. f(a) = a / sqrt(1 + a^2) is
+ * increasing; mirrored so that t >= 0, the interval of a holds t iff t <= a <= reach = f^-1(t); an
+ * entry above reach is f(a) - t away, the least such a the closest; one below t is t - max(a, f(a))
+ * away, the largest such a the closest. So two square roots per palette at most. f is rounded towards
+ * zero by a relative 1e-15 (and distances below 0 are 0), so that rounding only lowers the term. */
+static inline double term_loose(const double pal[8], double t, double reach)
 {
-    double m = INFINITY;
+    double sgn = t < 0.0 ? -1.0 : 1.0, tt = fabs(t), above = INFINITY, below = -INFINITY;
     for (int i = 0; i < 8; ++i) {
-        double a = pal[i], b = pal[i] * (1.0 / M_SQRT2);
-        double lo = a < b ? a : b, hi = a < b ? b : a;
-        double d = t < lo ? lo - t : (t > hi ? t - hi : 0.0);
+        double a = sgn * pal[i];
+        if (a >= tt) {
+            if (a <= reach)
+                return 0.0;
+            above = a < above ? a : above;
+        } else {
+            below = a > below ? a : below;
+        }
+    }
+    double m = INFINITY;
+    if (above < INFINITY) {
+        double d = above / sqrt(1.0 + above * above) * (1.0 - 1e-15) - tt;
+        d = d > 0.0 ? d : 0.0;
+        m = d * d;
+    }
+    if (below > -INFINITY) {
+        double e = below >= 0.0 ? below : below / sqrt(1.0 + below * below) * (1.0 - 1e-15);
+        double d = tt - e;
+        d = d > 0.0 ? d : 0.0;
         m = d * d < m ? d * d : m;
     }
     return m;
+}
+
+double sol_nm_loose_term(const double pal[8], double t)
+{
+    return term_loose(pal, t, loose_reach(t));
 }
 
 /* Score with early exit: returns a value > budget as soon as the partial score exceeds it. */
@@ -81,7 +126,9 @@ static inline double score_pair(const sol_nm_channel *ch, int pair, double budge
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
         double t = ch->t[ch->order[k]];
-        double term = (ch->loose >> ch->order[k]) & 1 ? term_loose(pal, t) : term_tight(pal, t);
+        int p = ch->order[k];
+        double term = (ch->loose >> p) & 1 ? ch->loose_off[p] + ch->loose_w[p] * term_loose(pal, t, ch->loose_reach[p])
+                                           : term_tight(pal, t);
         s = ch->use_max ? (term > s ? term : s) : s + term;
         if (s > budget)
             return s;
@@ -200,6 +247,13 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
         norm_step[u] = (2.0 / 255.0) * (ch->use_max ? 1.0 : sqrt((double)u));
         inv_norm_step[u] = 1.0 / norm_step[u];
     }
+    /* the loose pixels' offsets: every score is at least `floor`; the lattice bound and the masks
+     * (tight pixels only) work against what the budget leaves above it (tb below) */
+    double floor = 0.0;
+    for (int p = 0; p < 16; ++p)
+        if ((ch->loose >> p) & 1)
+            floor = ch->use_max ? (ch->loose_off[p] > floor ? ch->loose_off[p] : floor) : floor + ch->loose_off[p];
+    floor *= 1.0 - 1e-12; /* below every score's computed sum or max of the same offsets */
     for (int six = 0; six < 2; ++six) {
         /* 8-value: e0 > e1, low anchor e1; 6-value: e0 <= e1, low anchor e0 */
         int low_lo = six ? ch->e0_lo : ch->e1_lo, low_hi = six ? ch->e0_hi : ch->e1_hi;
@@ -214,15 +268,18 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
             int hmin = high_lo > low + !six ? high_lo : low + !six;
             if (hmin > high_hi)
                 continue;
+            double tb = ch->use_max ? (floor > *budget ? -1.0 : *budget) : *budget - floor;
+            if (tb < 0.0)
+                return n; /* no pair scores within the budget (it only shrinks) */
             anchor_mask m = {{0, 0, 0, 0}};
             /* every 8-value entry is >= the low anchor: it must reach the smallest target */
             double t0 = ch->t[ch->order[0]];
-            if (!((ch->loose >> ch->order[0]) & 1) && anchor_value(low) > t0 + sqrt(*budget) + delta &&
-                (!six || (t0 + 1.0) * (t0 + 1.0) > *budget))
+            if (!((ch->loose >> ch->order[0]) & 1) && anchor_value(low) > t0 + sqrt(tb) + delta &&
+                (!six || (t0 + 1.0) * (t0 + 1.0) > tb))
                 continue;
             /* the three extreme pixels' reachable masks (a loose pixel constrains nothing) */
             mask_set_range(&m, hmin, high_hi);
-            double r = sqrt(*budget) + delta;
+            double r = sqrt(tb) + delta;
             for (int k = 0; k < 3 && (m.w[0] | m.w[1] | m.w[2] | m.w[3]); ++k) {
                 if ((ch->loose >> ch->order[k]) & 1)
                     continue;
@@ -232,8 +289,8 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
             }
             const int divisions = six ? 5 : 7;
             int next_high = 0;
-            if (*budget != skip_budget) { /* argmin: the budget shrank */
-                skip_budget = *budget;
+            if (tb != skip_budget) { /* argmin: the budget shrank */
+                skip_budget = tb;
                 root_budget = sqrt(skip_budget);
                 for (int u = 1; u <= 16; ++u)
                     skip_floor[u] = (root_budget + norm_step[u]) * (root_budget + norm_step[u]);
@@ -248,8 +305,8 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
                     int pair = six ? (low << 8 | high) : (high << 8 | low);
                     double al = anchor_value(low), spacing = (anchor_value(high) - al) / divisions;
                     int used;
-                    double lb = score_lower(ch, al, spacing, divisions, six, delta, *budget, &used);
-                    if (lb > *budget) {
+                    double lb = score_lower(ch, al, spacing, divisions, six, delta, tb, &used);
+                    if (lb > tb) {
                         /* the lattice bound's pixel distances move by at most one code (2 / 255) per
                          * step of the high anchor, so the L2 norm of the `used` pixels' distances (or
                          * their max) by at most sqrt(used) codes: skip the steps it cannot recover

@@ -70,15 +70,21 @@ static void best_pixel_index(const double a[8], const double b[8], const double 
             for (int j = 0; j < 8; ++j) {
                 if (pass == 0 && (i != i0 || j != j0))
                     continue; /* pass 0 seeds the incumbent with the per-channel nearest pair */
-                double r2 = a[i] * a[i] + b[j] * b[j], cosine;
+                double r2 = a[i] * a[i] + b[j] * b[j], dot = a[i] * n[0] + b[j] * n[1], cosine;
                 if (r2 <= 1.0) {
                     if ((da[i] + db[j]) * (1.0 - BOUND_SLACK) > best_chord2)
                         continue;
-                    cosine = a[i] * n[0] + b[j] * n[1] + sqrt(1.0 - r2) * n[2];
+                    if (n[2] <= 0.0 && dot <= best_cos)
+                        continue; /* the z term adds <= 0 (rounding is monotone) */
+                    cosine = dot + sqrt(1.0 - r2) * n[2];
                 } else {
                     if (nz2 * (1.0 - BOUND_SLACK) > best_chord2)
                         continue;
-                    cosine = (a[i] * n[0] + b[j] * n[1]) / sqrt(r2);
+                    /* cosine = dot / r with r > 1: no better than best_cos >= 0 if dot <= 0 or
+                     * dot^2 < best_cos^2 r^2 (with a margin for the rounding of the division) */
+                    if (best_cos >= 0.0 && (dot <= 0.0 || dot * dot < best_cos * best_cos * r2 * (1.0 - 1e-12)))
+                        continue;
+                    cosine = dot / sqrt(r2);
                 }
                 if (cosine > best_cos) {
                     best_cos = cosine;
@@ -138,6 +144,11 @@ static inline double angle2_lower_bound(double a, double b, const double n[3])
         c2 = (a * inv - n[0]) * (a * inv - n[0]) + (b * inv - n[1]) * (b * inv - n[1]) + n[2] * n[2];
     }
     double c = sqrt(c2) * (1.0 - 1e-6) - 1e-15; /* relative and absolute rounding of c and of dN */
+    if (c > 0.2) { /* large angles (rims, pixels pointing away): the series is loose, use dN itself;
+                    * asin's relative change is at least c's, so the lowering still covers rounding */
+        double e = 2.0 * asin(c < 2.0 ? 0.5 * c : 1.0);
+        return e * e;
+    }
     return c > 0.0 ? c * c * (1.0 + c * c / 12.0) : 0.0;
 }
 
@@ -146,7 +157,8 @@ static inline double angle2_lower_bound(double a, double b, const double n[3])
  * best_pixel), its dN^2 bounded below by angle2_lower_bound. The search rejects a candidate when
  * this reaches the incumbent and re-evaluates survivors exactly with joint_objective. */
 static double joint_objective_lower(const double a[8], const double b[8], const double n[16][3],
-                                    const int order[16], int use_max, double budget, uint64_t *work)
+                                    const int order[16], const double away_off[16], int use_max, double best,
+                                    double budget, uint64_t *work)
 {
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
@@ -155,11 +167,72 @@ static double joint_objective_lower(const double a[8], const double b[8], const 
         const double *np = n[order[k]];
         best_pixel_index(a, b, np, &i, &j);
         double e2 = angle2_lower_bound(a[i], b[j], np);
+        e2 = e2 > away_off[k] ? e2 : away_off[k]; /* the hemisphere bound theta0^2 */
+        if (use_max && e2 < budget && e2 >= best * (1.0 - 1e-5)) {
+            /* max metric, a pixel within the bounds' slack of the incumbent: its exact angle is the
+             * one joint_objective would compute (same index pair, same function), and the max of the
+             * block is at least it; so a pixel at or above the incumbent rejects the candidate
+             * exactly (it cannot be strictly better), which decides exact ties of the worst pixel */
+            double e = decoded_angle(a[i], b[j], np);
+            if (e * e >= best)
+                return budget;
+        }
         s = use_max ? (e2 > s ? e2 : s) : s + e2;
         if (s >= budget)
             return s;
     }
     return s;
+}
+
+/* ---- pixels pointing away (nz < 0) ----
+ *
+ * A decoded normal u lies on the upper hemisphere (z >= 0). Write the unit source normal as
+ * n = (rho m, -h) with m the unit rim direction of its (x, y), rho = sqrt(1 - h^2), h = -nz > 0,
+ * and u = (cos e w, sin e) with elevation e >= 0 and rim direction w. Then
+ *     cos dN = u . n = rho cos e (w . m) - h sin e <= rho cos e (w . m) = rho (u . m),
+ * and u . m = 1 - c^2 / 2 with c = |u - m| the chord from u to the rim point m. So
+ *     dN >= H(c^2) = acos(rho (1 - c^2 / 2)),
+ * the angle of the closest point of the hemisphere, theta0 = H(0) = atan2(h, rho) = asin(h) (the
+ * hemisphere bound), growing with the chord to m. acos(y)^2 is convex on (-1, 1) (its second
+ * derivative is 2 (1 - y acos(y) / sqrt(1 - y^2)) / (1 - y^2) > 0, as alpha < tan alpha for
+ * y = cos alpha in (0, 1) and trivially for y <= 0), and y is affine in c^2, so H^2 lies above its
+ * tangent at 0:
+ *     dN^2 >= theta0^2 + k c^2,  k = 2 theta0 H'(0) = theta0 rho / h (= theta0 cot theta0).
+ * The chord splits by channel like the rim pixels' loose bound, with m's components as targets:
+ * an unclamped decode (a, b, z) has c^2 >= (a - mx)^2 + (b - my)^2, a clamped one (a, b, 0) / r has
+ * x component a / r in [a / sqrt(1 + a^2), a] (see sol_nm_loose_term). So each channel's loose term
+ * of such a pixel becomes theta0^2 (half of it per channel for the sum metric, all of it for the
+ * max) + k (loose distance of mx)^2, instead of the near-zero loose distance of nx: the lists of
+ * anchor pairs of a block pointing away shrink from nearly all 65536 pairs to those whose entries
+ * can point the decoded rim direction at every m. rho = 0 (n = (0, 0, -1)) gives k = 0: the
+ * hemisphere bound (pi / 2)^2 alone. The quick bound uses the same sum per pixel, and every
+ * per-candidate bound at least theta0^2. */
+typedef struct away_info {
+    unsigned mask;       /* bit p: pixel p points away (and is loose) */
+    double m[2][16];     /* the rim targets mx, my (the pixel's nx, ny where not away) */
+    double w[16];        /* k, lowered by 1e-12 relative (rounding) */
+    double off[16];      /* theta0^2, lowered likewise (0 where not away) */
+} away_info;
+
+static void away_info_init(away_info *aw, const double n[16][3], unsigned loose)
+{
+    aw->mask = 0;
+    for (int p = 0; p < 16; ++p) {
+        aw->m[0][p] = n[p][0];
+        aw->m[1][p] = n[p][1];
+        aw->w[p] = 0.0;
+        aw->off[p] = 0.0;
+        if (!((loose >> p) & 1) || !(n[p][2] < 0.0))
+            continue;
+        double rho = hypot(n[p][0], n[p][1]), h = -n[p][2], theta0 = atan2(h, rho);
+        aw->mask |= 1u << p;
+        if (rho > 0.0) {
+            aw->m[0][p] = n[p][0] / rho;
+            aw->m[1][p] = n[p][1] / rho;
+        }
+        aw->w[p] = theta0 * rho / h * (1.0 - 1e-12);
+        aw->off[p] = theta0 * theta0 * (1.0 - 1e-12);
+    }
 }
 
 /* ---- the quick per-candidate bound ----
@@ -176,12 +249,17 @@ static double joint_objective_lower(const double a[8], const double b[8], const 
  * rough blocks alike is most pixels; the survivors go on to joint_objective_lower. */
 typedef struct channel_side {
     double v[16], m1[16], m2[16]; /* per pixel, in the search's visiting order */
+    double lt[16];                /* pixels pointing away: k (loose distance of m's component)^2, else 0 */
 } channel_side;
 
 /* Fills s for palette pal against component c (0 = x, 1 = y) of the pixels n[order[k]]. */
 static void channel_side_init(const double pal[8], const double n[16][3], const int order[16], int c,
-                              channel_side *s)
+                              const away_info *aw, channel_side *s)
 {
+    for (int k = 0; k < 16; ++k) {
+        int p = order[k];
+        s->lt[k] = (aw->mask >> p) & 1 ? aw->w[p] * sol_nm_loose_term(pal, aw->m[c][p]) : 0.0;
+    }
     for (int k = 0; k < 16; ++k) {
         double t = n[order[k]][c], d[8];
         int i0 = 0;
@@ -204,7 +282,8 @@ static void channel_side_init(const double pal[8], const double n[16][3], const 
  * the rounding allowance of angle2_lower_bound; the chord of (v_x, v_y) is computed with the decoder's
  * z = sqrt(1 - a^2 - b^2). */
 static double joint_objective_quick(const channel_side *xs, const channel_side *ys, const double n[16][3],
-                                    const int order[16], int use_max, double budget, uint64_t *work)
+                                    const int order[16], const double away_off[16], int use_max, double budget,
+                                    uint64_t *work)
 {
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
@@ -223,7 +302,8 @@ static double joint_objective_quick(const channel_side *xs, const channel_side *
         }
         lb = c2 < lb ? c2 : lb;
         double e2 = lb * (1.0 - 3e-6) - 5e-15;
-        e2 = e2 > 0.0 ? e2 : 0.0;
+        double away = (away_off[k] + xs->lt[k] + ys->lt[k]) * (1.0 - 1e-12); /* 0 unless pointing away */
+        e2 = e2 > away ? e2 : away;
         s = use_max ? (e2 > s ? e2 : s) : s + e2;
         if (s >= budget)
             return s;
@@ -320,6 +400,9 @@ typedef struct search_workspace {
     uint32_t *slots;     /* 2 * 65536 entries */
     channel_side *yside; /* the y list's channel sides (quick bound), grown on demand */
     size_t yside_cap;
+    struct y_item *ybucket; /* the y list's entries by value (y_index), grown on demand */
+    uint64_t *ymark;     /* marks of y list positions (coupling filter), grown on demand */
+    size_t ybucket_cap, ymark_cap;
     window_scratch *win; /* the adaptive window path's lists (window_search) */
 } search_workspace;
 
@@ -492,6 +575,339 @@ static int pair_in_range(int pair, uint8_t e0_lo, uint8_t e0_hi, uint8_t e1_lo, 
     return e0 >= e0_lo && e0 <= e0_hi && e1 >= e1_lo && e1 <= e1_hi;
 }
 
+/* ---- the coupling filter (rims and pixels pointing away) ----
+ *
+ * The channel bounds of a rim pixel (z ~ 0) or one pointing away are loose: they ask only that x and
+ * y EACH can come close to the target rim direction, and a long list of x pairs meets a long list of
+ * y pairs (a block of equal rim normals: tens of thousands each). What they miss is that one decode
+ * (a, b) must point in that direction with both components. So for each x pair A of the list, the
+ * search first computes, per constrained pixel p, the y values b that can still beat the incumbent
+ * together with some entry a of A, a union of at most two intervals per entry:
+ *  - a per-pixel budget T_p: the incumbent minus lower bounds of the other pixels given A (sum
+ *    metric: a tight pixel's (a - nx)^2 nearest term, a pixel pointing away its theta0^2 + k (loose
+ *    distance of mx)^2; pixels with a bit-identical normal share the rest equally, as their errors are
+ *    equal), the incumbent itself for the max metric;
+ *  - a ball |u - q| <= R around a target q on the unit sphere the decode u must reach: q = n with
+ *    R^2 = T_p (dN^2 >= chord^2) for a rim pixel, q = (m, 0) with R^2 = (T_p - theta0^2) / k for one
+ *    pointing away (the bound above);
+ *  - an unclamped decode (a, b, z) has |u - q|^2 >= (a - qx)^2 + (b - qy)^2: b within
+ *    sqrt(R^2 - (a - qx)^2) of qy (and b^2 <= 1 - a^2);
+ *  - a clamped one (a, b, 0) / r has |u - q|^2 = |w - q_xy|^2 + qz^2 with w = (a, b) / r on the unit
+ *    circle: w . q_xy >= (1 + |q_xy|^2 - R^2 + qz^2) / 2, i.e. w within an angle phi of q_xy's
+ *    direction, a cone; the line x = a meets it in one interval, found from the cone's two edges.
+ * The widest cases (phi near pi / 2, R >= 2) constrain nothing. Intervals are widened (cosine lowered
+ * by 1e-9, ends moved by 1e-9) against rounding. The y list's entries are bucketed by value (4096
+ * buckets of [-1, 1]); the pixel whose intervals cover the fewest entries picks the y pairs to visit
+ * (whole buckets: a superset), the next most selective pixels reject those with no entry in their
+ * intervals, and the survivors go through the usual per-candidate bounds in list order. Only
+ * candidates that cannot beat the incumbent are skipped, so the search visits the same improving
+ * candidates in the same order, and returns the same block, as without the filter. */
+#define Y_BUCKETS 4096
+
+static inline int y_bucket(double b)
+{
+    int k = (int)((b + 1.0) * (0.5 * Y_BUCKETS));
+    return k < 0 ? 0 : (k >= Y_BUCKETS ? Y_BUCKETS - 1 : k);
+}
+
+/* One entry of a y pair: its value and the pair's list position. */
+typedef struct y_item {
+    double v;
+    uint32_t j;
+} y_item;
+
+/* items[start[k] .. start[k + 1] - 1]: the entries in bucket k. */
+typedef struct y_index {
+    uint32_t start[Y_BUCKETS + 1];
+    const y_item *items;
+} y_index;
+
+/* Buckets the entries of the ny pairs (items: room for 8 ny). */
+static void y_index_init(y_index *ix, const sol_nm_pair *list, size_t ny, const double (*pal)[8], y_item *items)
+{
+    memset(ix->start, 0, sizeof ix->start);
+    for (size_t j = 0; j < ny; ++j)
+        for (int e = 0; e < 8; ++e)
+            ++ix->start[y_bucket(pal[list[j].pair][e]) + 1];
+    for (int k = 0; k < Y_BUCKETS; ++k)
+        ix->start[k + 1] += ix->start[k];
+    uint32_t fill[Y_BUCKETS];
+    memcpy(fill, ix->start, sizeof fill);
+    for (size_t j = 0; j < ny; ++j)
+        for (int e = 0; e < 8; ++e)
+            items[fill[y_bucket(pal[list[j].pair][e])]++] = (y_item){pal[list[j].pair][e], (uint32_t)j};
+    ix->items = items;
+}
+
+/* The b interval of the line x = a inside the cone of directions within phi of d (unit), given
+ * c = cos phi > 0 and s = sin phi: 0 if empty, else 1 with [*lo, *hi] (possibly infinite). */
+static int cone_line(double a, double dx, double dy, double c, double s, double *lo, double *hi)
+{
+    int up = dy >= c, down = -dy >= c; /* (0, 1) or (0, -1) inside the cone */
+    if (a == 0.0) {
+        *lo = down ? -INFINITY : 0.0;
+        *hi = up ? INFINITY : 0.0;
+        return up || down;
+    }
+    const double edge[2][2] = {{dx * c + dy * s, dy * c - dx * s}, {dx * c - dy * s, dy * c + dx * s}};
+    int hits = 0;
+    double h[2];
+    for (int k = 0; k < 2; ++k)
+        if (edge[k][0] * a > 0.0)
+            h[hits++] = a * edge[k][1] / edge[k][0];
+    if (hits == 2) {
+        *lo = h[0] < h[1] ? h[0] : h[1];
+        *hi = h[0] < h[1] ? h[1] : h[0];
+        return 1;
+    }
+    if (hits == 0)
+        return 0;
+    *lo = up ? h[0] : (down ? -INFINITY : h[0]);
+    *hi = up ? INFINITY : h[0];
+    return 1;
+}
+
+/* The y intervals for one pixel (target q, squared radius R2) and x palette a: returns their
+ * count (up to 16), or -1 if the pixel constrains nothing. */
+static int pixel_y_intervals(const double a[8], const double q[3], double R2, double lo[16], double hi[16])
+{
+    if (!(R2 < 4.0))
+        return -1;
+    double rq = hypot(q[0], q[1]), rc2 = R2 - q[2] * q[2];
+    int clamped = 1; /* 0: no clamped decode reaches the ball; 1: the cone; 2: every direction */
+    double c = 0.0, sn = 0.0, dx = 0.0, dy = 0.0;
+    if (rc2 < 0.0) {
+        clamped = 0;
+    } else if (rq == 0.0) {
+        clamped = 1.0 - rc2 <= 0.0 ? 2 : 0; /* w . q_xy = 0 >= (1 - rc2) / 2 */
+    } else {
+        c = (1.0 + rq * rq - rc2) / (2.0 * rq) - 1e-9;
+        if (c > 1.0)
+            clamped = 0;
+        else if (c < 1e-3)
+            return -1; /* a cone of half a plane or more */
+        else {
+            sn = sqrt((1.0 - c) * (1.0 + c));
+            dx = q[0] / rq;
+            dy = q[1] / rq;
+        }
+    }
+    int k = 0;
+    for (int e = 0; e < 8; ++e) {
+        int dup = 0;
+        for (int f = 0; f < e && !dup; ++f)
+            dup = a[f] == a[e];
+        if (dup)
+            continue;
+        double da = a[e] - q[0], rem = R2 - da * da;
+        if (rem >= 0.0) { /* unclamped */
+            double w = sqrt(rem), lim = sqrt(fmax(0.0, (1.0 - a[e]) * (1.0 + a[e])));
+            double l = fmax(q[1] - w, -lim) - 1e-9, h = fmin(q[1] + w, lim) + 1e-9;
+            if (l <= h) {
+                lo[k] = l;
+                hi[k++] = h;
+            }
+        }
+        double l, h;
+        if (clamped == 2) {
+            lo[k] = -1.0;
+            hi[k++] = 1.0;
+        } else if (clamped == 1 && cone_line(a[e], dx, dy, c, sn, &l, &h) && l <= 1.0 + 1e-9 && h >= -1.0 - 1e-9) {
+            lo[k] = fmax(l, -1.0) - 1e-9;
+            hi[k++] = fmin(h, 1.0) + 1e-9;
+        }
+    }
+    return k;
+}
+
+/* The coupling filter for one x palette. */
+typedef struct y_filter {
+    int np, pix[16], cnt[16];
+    double lo[16][16], hi[16][16];
+    uint32_t items[16]; /* entries of the y list in the pixel's buckets */
+} y_filter;
+
+static uint32_t interval_items(const y_index *ix, const double *lo, const double *hi, int cnt)
+{
+    uint32_t s = 0;
+    for (int k = 0; k < cnt; ++k)
+        s += ix->start[y_bucket(hi[k]) + 1] - ix->start[y_bucket(lo[k])];
+    return s;
+}
+
+/* Builds the filter for x palette a (its channel side xs, pixels in `order`): 1 if it filters, 0 if
+ * no pixel constrains y, -1 if no y pair can beat the budget with a. */
+static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs, const double n[16][3],
+                         const int order[16], unsigned loose, const away_info *aw, const double away_off[16],
+                         const int group[16], int use_max, double best, const y_index *ix)
+{
+    const double budget = best * (1.0 + 1e-9);
+    double lb[16], total = 0.0; /* per pixel (index p) lower bounds given a, and their sum */
+    for (int k = 0; k < 16; ++k) {
+        int p = order[k];
+        lb[p] = (aw->mask >> p) & 1 ? away_off[k] + xs->lt[k] : ((loose >> p) & 1 ? 0.0 : xs->m1[k]);
+        total += lb[p];
+    }
+    f->np = 0;
+    for (int p = 0; p < 16; ++p) {
+        if (!((loose >> p) & 1) || group[p] != p)
+            continue; /* tight pixels: the channel bounds hold them; one pixel per group of equal normals */
+        double t = budget, mult = 0.0, rest = total;
+        for (int q = 0; q < 16; ++q)
+            if (group[q] == p) {
+                mult += 1.0;
+                rest -= lb[q];
+            }
+        if (!use_max)
+            t = (budget - rest * (1.0 - 1e-9)) / mult;
+        double q3[3] = {n[p][0], n[p][1], n[p][2]}, R2 = t;
+        if ((aw->mask >> p) & 1) {
+            if (!(aw->w[p] > 0.0))
+                continue;
+            R2 = (t - aw->off[p]) / aw->w[p];
+            q3[0] = aw->m[0][p];
+            q3[1] = aw->m[1][p];
+            q3[2] = 0.0;
+        }
+        if (R2 < 0.0)
+            return -1;
+        R2 = R2 * (1.0 + 1e-9) + 1e-15;
+        int i = f->np;
+        int cnt = pixel_y_intervals(a, q3, R2, f->lo[i], f->hi[i]);
+        if (cnt < 0)
+            continue;
+        if (cnt == 0)
+            return -1;
+        f->pix[i] = p;
+        f->cnt[i] = cnt;
+        f->items[i] = interval_items(ix, f->lo[i], f->hi[i], cnt);
+        ++f->np;
+    }
+    if (f->np == 0)
+        return 0;
+    /* most selective first (insertion sort by items) */
+    for (int i = 1; i < f->np; ++i)
+        for (int j = i; j > 0 && f->items[j] < f->items[j - 1]; --j) {
+            int tp = f->pix[j], tc = f->cnt[j];
+            uint32_t ti = f->items[j];
+            double tl[16], th[16];
+            memcpy(tl, f->lo[j], sizeof tl);
+            memcpy(th, f->hi[j], sizeof th);
+            f->pix[j] = f->pix[j - 1];
+            f->cnt[j] = f->cnt[j - 1];
+            f->items[j] = f->items[j - 1];
+            memcpy(f->lo[j], f->lo[j - 1], sizeof tl);
+            memcpy(f->hi[j], f->hi[j - 1], sizeof th);
+            f->pix[j - 1] = tp;
+            f->cnt[j - 1] = tc;
+            f->items[j - 1] = ti;
+            memcpy(f->lo[j - 1], tl, sizeof tl);
+            memcpy(f->hi[j - 1], th, sizeof th);
+        }
+    return 1;
+}
+
+/* Whether palette b has an entry in the intervals of the filter's pixels 1 .. 4 (pixel 0 chose it). */
+static int y_filter_pass(const y_filter *f, const double b[8])
+{
+    for (int i = 1; i < f->np && i < 5; ++i) {
+        int hit = 0;
+        for (int e = 0; e < 8 && !hit; ++e)
+            for (int k = 0; k < f->cnt[i] && !hit; ++k)
+                hit = b[e] >= f->lo[i][k] && b[e] <= f->hi[i][k];
+        if (!hit)
+            return 0;
+    }
+    return 1;
+}
+
+/* ---- blocks of 16 equal normals at a rim or pointing away ----
+ *
+ * Every pixel then picks the same decode, so a candidate's objective is that of the best decode
+ * (a, b) in its 8 x 8 grid, and thousands of x pairs holding the best a meet thousands of y pairs
+ * holding the best b: exact ties the candidate loop would have to evaluate one by one. Instead the
+ * search finds e* = the least angle decoded_angle(a, b) over every value a of the x list and b of
+ * the y list (the lists hold every pair that can beat the incumbent): per distinct a, only the b of
+ * the y list inside the coupling filter's intervals for the per-pixel budget (the incumbent's e^2,
+ * shrinking as e* improves) can beat it, and those are evaluated exactly. Each pixel's error in any
+ * candidate is the angle of one of these decodes, so no candidate's objective is below L = the
+ * objective of 16 pixels of error e* (computed in the same floating-point order: exact). The first
+ * x pair and the first y pair of the lists holding a* and b* are the answer if their objective is
+ * L (it is unless their grid holds another decode of larger cosine but not smaller angle, a
+ * rounding-level tie; then the candidate loop runs as usual). */
+static int equal_block_solve(const double n[16][3], const sol_nm_pair *xl, size_t nx, const sol_nm_pair *yl,
+                             size_t ny, const double (*pal)[8], const y_index *yix, const away_info *aw,
+                             int use_max, double best, uint32_t *slots, int *px, int *py, double *value,
+                             uint64_t *evals)
+{
+    const int away = aw->mask & 1;
+    if (away && !(aw->w[0] > 0.0))
+        return 0; /* (0, 0, -1): the hemisphere bound decides it */
+    double q[3] = {away ? aw->m[0][0] : n[0][0], away ? aw->m[1][0] : n[0][1], away ? 0.0 : n[0][2]};
+    double e_best = INFINITY, a_star = 0.0, b_star = 0.0;
+    double t = (use_max ? best : best / 16.0) * (1.0 + 1e-9);
+    const size_t size = 2 * 65536; /* slots: a hash set of the distinct values of a */
+    memset(slots, 0, size * sizeof *slots);
+    size_t distinct = 0;
+    for (size_t i = 0; i < nx; ++i)
+        for (int e = 0; e < 8; ++e) {
+            double a = pal[xl[i].pair][e];
+            uint64_t key = value_bits(a);
+            size_t h = (size_t)mix64(0, key) & (size - 1);
+            int seen = 0;
+            for (; slots[h] && !seen; h = (h + 1) & (size - 1))
+                seen = value_bits(pal[xl[(slots[h] - 1) >> 3].pair][(slots[h] - 1) & 7]) == key;
+            if (seen)
+                continue;
+            if (++distinct > size / 2)
+                return 0;
+            slots[h] = (uint32_t)(8 * i + (size_t)e + 1);
+            double r2 = away ? (t - aw->off[0]) / aw->w[0] : t;
+            if (r2 < 0.0)
+                return 0; /* cannot happen: the incumbent meets its own budget */
+            double a8[8] = {a, a, a, a, a, a, a, a}, lo[16], hi[16];
+            int cnt = pixel_y_intervals(a8, q, r2 * (1.0 + 1e-9) + 1e-15, lo, hi);
+            if (cnt < 0)
+                return 0;
+            for (int k = 0; k < cnt; ++k) {
+                uint32_t s0 = yix->start[y_bucket(lo[k])], s1 = yix->start[y_bucket(hi[k]) + 1];
+                for (uint32_t u = s0; u < s1; ++u) {
+                    double b = yix->items[u].v;
+                    if (b < lo[k] || b > hi[k])
+                        continue;
+                    ++*evals;
+                    double ang = decoded_angle(a, b, n[0]);
+                    if (ang < e_best) {
+                        e_best = ang;
+                        a_star = a;
+                        b_star = b;
+                        t = ang * ang * (1.0 + 1e-9);
+                    }
+                }
+            }
+        }
+    if (!(e_best < INFINITY))
+        return 0;
+    int ax = -1, by = -1;
+    for (size_t i = 0; i < nx && ax < 0; ++i)
+        for (int e = 0; e < 8 && ax < 0; ++e)
+            if (value_bits(pal[xl[i].pair][e]) == value_bits(a_star))
+                ax = xl[i].pair;
+    for (size_t j = 0; j < ny && by < 0; ++j)
+        for (int e = 0; e < 8 && by < 0; ++e)
+            if (value_bits(pal[yl[j].pair][e]) == value_bits(b_star))
+                by = yl[j].pair;
+    double v = joint_objective(pal[ax], pal[by], n, use_max, INFINITY, NULL, NULL), floor = 0.0;
+    for (int p = 0; p < 16; ++p) /* the objective of 16 pixels of error e*, as joint_objective sums it */
+        floor = use_max ? (e_best * e_best > floor ? e_best * e_best : floor) : floor + e_best * e_best;
+    if (!(v <= floor) || !(v < best))
+        return 0;
+    *px = ax;
+    *py = by;
+    *value = v;
+    return 1;
+}
+
 /* What search_unit is asked: range, precision, metric, work bound. */
 typedef struct search_request {
     const sol_bc5_range *range;
@@ -554,14 +970,30 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     uint64_t work = 0; /* pixel evaluations of candidates */
     if (best > 0.0 && best > hemisphere_bound(n, use_max)) {
         unsigned loose = 0;
+        away_info aw;
+        away_info_init(&aw, n, 0);
         if (best * (1.0 + BOUND_SLACK) >= min_nz2) { /* rim pixels: loose bounds for them */
             for (int p = 0; p < 16; ++p)
                 if (n[p][2] * n[p][2] <= best * (1.0 + BOUND_SLACK))
                     loose |= 1u << p;
-            sol_nm_channel_init(&cx, tx, precision, use_max, loose, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi);
-            sol_nm_channel_init(&cy, ty, precision, use_max, loose, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi);
-            sol_nm_channel_argmin(&cx, &sx_min);
-            sol_nm_channel_argmin(&cy, &sy_min);
+            away_info_init(&aw, n, loose); /* pixels pointing away: rim targets, weights, offsets */
+            sol_nm_channel_init(&cx, aw.m[0], precision, use_max, loose, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi);
+            sol_nm_channel_init(&cy, aw.m[1], precision, use_max, loose, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi);
+            for (int p = 0; p < 16; ++p)
+                if ((aw.mask >> p) & 1) {
+                    double off = use_max ? aw.off[p] : 0.5 * aw.off[p];
+                    sol_nm_channel_rim_weight(&cx, p, aw.w[p], off);
+                    sol_nm_channel_rim_weight(&cy, p, aw.w[p], off);
+                }
+            int lx = sol_nm_channel_argmin(&cx, &sx_min), ly = sol_nm_channel_argmin(&cy, &sy_min);
+            /* third incumbent: the pairs of least loose score, which aim at the rim directions */
+            ++candidates;
+            double v = joint_objective(pal[lx], pal[ly], n, use_max, best, NULL, NULL);
+            if (v < best) {
+                best = v;
+                px = lx;
+                py = ly;
+            }
         }
         double room = best * (1.0 + BOUND_SLACK);
         size_t nx = sol_nm_channel_collect(&cx, use_max ? room : room - sy_min * (1.0 - BOUND_SLACK), ws->x);
@@ -589,6 +1021,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 order[q] = order[q - 1];
                 order[q - 1] = t;
             }
+        double away_off[16]; /* theta0^2 of the pixels pointing away, in visiting order */
+        for (int k = 0; k < 16; ++k)
+            away_off[k] = aw.off[order[k]];
         /* the y list's channel sides for the quick bound (without memory, the search runs without it) */
         int quick = 1;
         if (ny > ws->yside_cap) {
@@ -601,26 +1036,118 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             }
         }
         for (size_t j = 0; quick && j < ny; ++j)
-            channel_side_init(pal[ws->y[j].pair], n, order, 1, &ws->yside[j]);
+            channel_side_init(pal[ws->y[j].pair], n, order, 1, &aw, &ws->yside[j]);
+        /* the coupling filter: for rims and pixels pointing away, when the lists are long */
+        int filter = 0;
+        y_index yix;
+        int group[16]; /* the first pixel with a bit-identical normal */
+        if (quick && loose && nx * ny > 4096) {
+            size_t words = (ny + 63) / 64;
+            if (ws->ybucket_cap < 8 * ny) {
+                y_item *grown = realloc(ws->ybucket, 8 * ny * sizeof *grown);
+                if (grown) {
+                    ws->ybucket = grown;
+                    ws->ybucket_cap = 8 * ny;
+                }
+            }
+            if (ws->ymark_cap < words) {
+                uint64_t *grown = realloc(ws->ymark, words * sizeof *grown);
+                if (grown) {
+                    ws->ymark = grown;
+                    ws->ymark_cap = words;
+                }
+            }
+            if (ws->ybucket_cap >= 8 * ny && ws->ymark_cap >= words) {
+                filter = 1;
+                memset(ws->ymark, 0, words * sizeof *ws->ymark);
+                y_index_init(&yix, ws->y, ny, pal, ws->ybucket);
+                work += 8 * ny;
+                for (int p = 0; p < 16; ++p) {
+                    group[p] = p;
+                    for (int q = 0; q < p && group[p] == p; ++q)
+                        if (memcmp(n[q], n[p], sizeof n[p]) == 0)
+                            group[p] = q;
+                }
+            }
+        }
+        int solved = 0;
+        if (filter && (loose & 1)) {
+            int equal = 1;
+            for (int p = 1; p < 16; ++p)
+                equal &= group[p] == 0;
+            double v;
+            uint64_t evals = 0;
+            if (equal && equal_block_solve(n, ws->x, nx, ws->y, ny, pal, &yix, &aw, use_max, best, ws->slots, &px,
+                                           &py, &v, &evals)) {
+                best = v;
+                solved = 1;
+            }
+            candidates += evals;
+            work += 8 * nx + 32 * evals;
+        }
         channel_side xside;
-        for (size_t i = 0; i < nx && ny > 0 && !bounded; ++i) {
+        y_filter yf;
+        for (size_t i = 0; i < nx && ny > 0 && !bounded && !solved; ++i) {
             if (combine(ws->x[i].score, ws->y[0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                 break;
+            if (work >= rq->work_limit) {
+                bounded = 1;
+                break;
+            }
             const double *a = pal[ws->x[i].pair];
             if (quick)
-                channel_side_init(a, n, order, 0, &xside);
+                channel_side_init(a, n, order, 0, &aw, &xside);
+            int filtered = 0;
+            size_t lo_word = 0, hi_word = 0; /* the marked words of ymark */
+            if (filter) {
+                filtered = y_filter_init(&yf, a, &xside, n, order, loose, &aw, away_off, group, use_max, best, &yix);
+                work += 64;
+                if (filtered < 0)
+                    continue;
+                if (filtered && yf.items[0] < ny) { /* selective enough to pay */
+                    lo_word = (ny + 63) / 64;
+                    for (int k = 0; k < yf.cnt[0]; ++k) {
+                        uint32_t s0 = yix.start[y_bucket(yf.lo[0][k])], s1 = yix.start[y_bucket(yf.hi[0][k]) + 1];
+                        for (uint32_t t = s0; t < s1; ++t) {
+                            if (yix.items[t].v < yf.lo[0][k] || yix.items[t].v > yf.hi[0][k])
+                                continue;
+                            uint32_t j = yix.items[t].j;
+                            ws->ymark[j >> 6] |= UINT64_C(1) << (j & 63);
+                            lo_word = j >> 6 < lo_word ? j >> 6 : lo_word;
+                            hi_word = (j >> 6) + 1 > hi_word ? (j >> 6) + 1 : hi_word;
+                        }
+                        work += s1 - s0;
+                    }
+                } else {
+                    filtered = 0;
+                }
+            }
             for (size_t j = 0; j < ny; ++j) {
+                if (filtered) { /* the next marked position */
+                    size_t w = j >> 6;
+                    uint64_t bits = w < hi_word ? ws->ymark[w] & (~UINT64_C(0) << (j & 63)) : 0;
+                    while (!bits && ++w < hi_word)
+                        bits = ws->ymark[w];
+                    if (!bits)
+                        break;
+                    j = 64 * w + (size_t)__builtin_ctzll(bits);
+                }
                 if (combine(ws->x[i].score, ws->y[j].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                     break;
                 if (work >= rq->work_limit) {
                     bounded = 1;
                     break;
                 }
+                if (filtered) {
+                    work += 4;
+                    if (!y_filter_pass(&yf, pal[ws->y[j].pair]))
+                        continue;
+                }
                 ++candidates;
                 double margin = best * (1.0 + BOUND_SLACK);
-                if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, use_max, margin, &work) >= margin)
+                if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, away_off, use_max, margin, &work) >= margin)
                     continue;
-                if (joint_objective_lower(a, pal[ws->y[j].pair], n, order, use_max, margin, &work) >= margin)
+                if (joint_objective_lower(a, pal[ws->y[j].pair], n, order, away_off, use_max, best, margin, &work) >= margin)
                     continue;
                 work += 512;
                 double v = joint_objective(a, pal[ws->y[j].pair], n, use_max, best, NULL, NULL);
@@ -630,6 +1157,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     py = ws->y[j].pair;
                 }
             }
+            if (filtered)
+                for (size_t w = lo_word; w < hi_word; ++w)
+                    ws->ymark[w] = 0;
         }
     }
     out->x.e0 = (uint8_t)(px >> 8);
@@ -830,13 +1360,16 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                 order[q - 1] = t;
             }
         memset(w->ready, 0, (size_t)ny); /* y sides are computed when first needed */
+        away_info aw; /* no pixel points away here (every nz > 0): no away terms */
+        away_info_init(&aw, n, 0u);
+        const double away_off[16] = {0};
         channel_side xside;
         for (int i = 0; i < nx && ny > 0 && !bounded; ++i) {
             const window_entry *ex = &w->list[0][i];
             if (combine(ex->score, w->list[1][0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                 break;
             const double *a = pal[ex->pair];
-            channel_side_init(a, n, order, 0, &xside);
+            channel_side_init(a, n, order, 0, &aw, &xside);
             for (int j = 0; j < ny; ++j) {
                 const window_entry *ey = &w->list[1][j];
                 if (combine(ex->score, ey->score, use_max) * (1.0 - BOUND_SLACK) >= best)
@@ -850,11 +1383,11 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                 ++candidates;
                 const double *b = pal[ey->pair];
                 if (!w->ready[j]) {
-                    channel_side_init(b, n, order, 1, &w->yside[j]);
+                    channel_side_init(b, n, order, 1, &aw, &w->yside[j]);
                     w->ready[j] = 1;
                 }
                 double margin = best * (1.0 + BOUND_SLACK);
-                if (joint_objective_quick(&xside, &w->yside[j], n, order, use_max, margin, &work) >= margin)
+                if (joint_objective_quick(&xside, &w->yside[j], n, order, away_off, use_max, margin, &work) >= margin)
                     continue;
                 double v = INFINITY;
                 if (joint_objective_checked(a, b, n, order, use_max, margin, best, &work, &v, cx, cy) >= margin)
@@ -891,6 +1424,9 @@ static sol_status workspace_alloc(search_workspace *ws)
     ws->slots = malloc(2 * 65536 * sizeof *ws->slots);
     ws->yside = NULL;
     ws->yside_cap = 0;
+    ws->ybucket = NULL;
+    ws->ymark = NULL;
+    ws->ybucket_cap = ws->ymark_cap = 0;
     ws->win = malloc(sizeof *ws->win);
     if (!ws->x || !ws->y || !ws->slots || !ws->win) {
         free(ws->x);
@@ -908,6 +1444,8 @@ static void workspace_free(search_workspace *ws)
     free(ws->y);
     free(ws->slots);
     free(ws->yside);
+    free(ws->ybucket);
+    free(ws->ymark);
     free(ws->win);
 }
 

@@ -16,8 +16,9 @@ typedef struct sol_nm_pair {
 
 /* Per-channel scoring of anchor pairs against 16 target components t (decoded units).
  * term_p = min_k (pal_k - t_p)^2 (tight) or, for the pixels whose bit is set in `loose`, the squared distance of t_p to the
- * nearest interval [pal_k / sqrt 2, pal_k] (x of a decoded normal whose z was clamped to 0 lies
- * there). score = sum_p term_p, or max_p term_p when `use_max`. */
+ * nearest interval [pal_k / sqrt(1 + pal_k^2), pal_k] (x of a decoded normal whose z was clamped to
+ * 0 lies there: pal_k / r with 1 < r = sqrt(pal_k^2 + b^2) <= sqrt(1 + pal_k^2)), times a per-pixel
+ * weight plus an offset (1 and 0 unless set). score = sum_p term_p, or max_p term_p when `use_max`. */
 typedef struct sol_nm_channel {
     double t[16];
     int order[16]; /* pixels visited extremes first, so early exits come early */
@@ -26,10 +27,18 @@ typedef struct sol_nm_channel {
     int use_max;
     uint16_t loose; /* bit p: pixel p takes the loose term */
     uint8_t e0_lo, e0_hi, e1_lo, e1_hi;
+    /* loose pixels: term_p = loose_off[p] + loose_w[p] * (loose distance)^2 (init: 0 and 1; set by
+     * sol_nm_channel_rim_weight for pixels pointing away, see bc5.c) */
+    double loose_w[16], loose_off[16];
+    double loose_reach[16]; /* |t| / sqrt(1 - t^2): the largest |entry| whose loose interval holds t */
 } sol_nm_channel;
 
 void sol_nm_channel_init(sol_nm_channel *ch, const double t[16], sol_bc4_precision precision, int use_max,
                          unsigned loose, uint8_t e0_lo, uint8_t e0_hi, uint8_t e1_lo, uint8_t e1_hi);
+/* The loose distance^2 of t to palette pal alone (the unweighted loose term above). */
+double sol_nm_loose_term(const double pal[8], double t);
+/* Gives loose pixel p the term offset + weight * (loose distance)^2 (weight, offset >= 0). */
+void sol_nm_channel_rim_weight(sol_nm_channel *ch, int p, double weight, double offset);
 /* The pair of least score in the ranges (first in e0-major order on ties); *score receives it. */
 int sol_nm_channel_argmin(const sol_nm_channel *ch, double *score);
 /* Every pair in the ranges with score <= budget, in e0-major order; returns the count.

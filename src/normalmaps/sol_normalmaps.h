@@ -183,10 +183,15 @@ sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_optio
  * block has hundreds per channel: anchors whose palettes hold the same values near the targets)
  * are recognised as one class and evaluated once, which does not change the result.
  * Degenerate blocks are decided at once: flat or all-equal blocks (ties merged), normals pointing
- * straight away (0, 0, -1) (the incumbent meets the hemisphere bound asin(-z)). Cost: about 0.1-200 ms
- * per block on smooth to rough maps; the work bound (work_limit) caps the rest - near-ties
- * the bounds cannot separate, e.g. a block of varied normals all pointing away (z < 0), where
- * info->bounded reports that the result is the best found, not a proven optimum.
+ * straight away (0, 0, -1) (the incumbent meets the hemisphere bound asin(-z)). Pixels pointing away
+ * (z < 0) are bounded through their rim direction m (dN^2 >= theta0^2 + theta0 cot(theta0) |u - m|^2,
+ * theta0 = asin(-z)), rims and pixels pointing away couple x and y through a filter of the y pairs
+ * per x pair, and 16 equal normals at a rim or pointing away are solved at the level of decoded
+ * values (ties: the first x and y pairs of the search lists holding the best decode). Cost: about
+ * 0.1-200 ms per block on smooth to rough maps, 1-100 ms for varied or equal normals pointing away or
+ * at rims; the work bound (work_limit) caps the rest - near-ties the bounds cannot separate (e.g.
+ * smooth blocks pointing away or along a rim, measured in issue 13), where info->bounded reports that
+ * the result is the best found, not a proven optimum.
  * SOL_ERR_INVALID_ARG if a range has lo > hi. */
 sol_status sol_bc5_search_block(const double normals[16][3], const sol_bc5_range *range,
                                 const sol_bc5_options *options, sol_bc5_block *out, sol_bc5_info *info);
