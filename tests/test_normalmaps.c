@@ -149,13 +149,20 @@ static int bc4_brute_pair(const double t[16], sol_bc4_precision precision, doubl
 /* bc4_common.c's branch and bound against the literal brute force and the previous exact search
  * (anchor_bounds.c's masks): the same pair, the same score bit for bit, over random blocks of every
  * spread and degenerate ones (flat, two values, the extremes -1/+1 the 6-value mode holds, values
- * on the code grid, on the 16-bit grid), for the three decoder precisions. */
+ * on the code grid - wide and narrow -, on the 16-bit grid, narrower than one code, narrow around
+ * 0), for the three decoder precisions. */
 Test(normalmaps, bc4_common_search_equals_brute_force_pair_for_pair, .timeout = 120)
 {
-    for (int trial = 0; trial < 72; ++trial) {
+    for (int trial = 0; trial < 96; ++trial) {
         double t[16];
-        int kind = trial % 12;
+        int kind = trial % 16;
         double c = 2.0 * uniform() - 1.0, w = kind == 0 ? 0.01 : kind == 1 ? 0.08 : kind == 2 ? 0.5 : 2.0;
+        if (kind == 12 || kind == 13)
+            w = kind == 12 ? 0.002 : 0.0003; /* narrower than a code (smooth 16-bit maps) */
+        if (kind == 14)
+            c = 0.0, w = 0.001; /* around 0: between two 16-bit values, many exactly tied pairs */
+        if (kind == 15)
+            w = 0.015;
         for (int p = 0; p < 16; ++p) {
             double v = c + w * (uniform() - 0.5);
             if (kind == 4)
@@ -164,8 +171,8 @@ Test(normalmaps, bc4_common_search_equals_brute_force_pair_for_pair, .timeout = 
                 v = p & 1 ? c : c + 0.3; /* two values */
             if (kind == 6)
                 v = p % 3 == 0 ? -1.0 : (p % 3 == 1 ? 1.0 : c); /* extremes and one value: 6-value mode */
-            if (kind == 7)
-                v = round((v + 1.0) * 127.5) / 127.5 - 1.0; /* on the 8-bit code grid */
+            if (kind == 7 || kind == 15) /* on the 8-bit code grid (15: narrow, two or three codes) */
+                v = round((v + 1.0) * 127.5) / 127.5 - 1.0;
             if (kind == 8)
                 v = 2.0 * round((v + 1.0) * 32767.5) / 65535.0 - 1.0; /* on the 16-bit grid */
             if (kind == 9)
@@ -176,7 +183,7 @@ Test(normalmaps, bc4_common_search_equals_brute_force_pair_for_pair, .timeout = 
                 v = p == 0 ? -1.0 : c + 0.02 * (uniform() - 0.5); /* one outlier at the extreme */
             t[p] = fmin(1.0, fmax(-1.0, v));
         }
-        sol_bc4_precision prec = (sol_bc4_precision)(trial / 12 % 3);
+        sol_bc4_precision prec = (sol_bc4_precision)(trial / 16 % 3);
         double s_new, s_ref, s_old;
         int p_new = sol_nm_bc4_common(t, prec, &s_new), p_ref = bc4_brute_pair(t, prec, &s_ref);
         sol_nm_channel ch;
@@ -187,6 +194,35 @@ Test(normalmaps, bc4_common_search_equals_brute_force_pair_for_pair, .timeout = 
         cr_assert(s_new == s_ref, "trial %d: %.17g vs %.17g", trial, s_new, s_ref);
         cr_assert(p_old == p_new && s_old == s_new, "trial %d: previous search %d", trial, p_old);
     }
+}
+
+/* Blocks of the benchmark maps (two-valued 8-bit-source blocks and a smooth 16-bit one) on which many
+ * pairs tie exactly: the search returns the least tied pair, as the brute force does (the search
+ * before issue 13's rework returned a larger tied pair on these three). */
+Test(normalmaps, bc4_common_ties_go_to_the_least_pair_on_map_blocks)
+{
+    static const double blocks[3][16] = {
+        {0x1.00fbf21712a0cp-8, 0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8, 0x1.00fbf21712a0cp-8,
+         0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8, 0x1.00fbf21712a0cp-8, 0x1.00f3d9da07fffp-8,
+         0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8, 0x1.00fbf21712a0cp-8, 0x1.00f3d9da07fffp-8, 0x1.00f3d9da07fffp-8,
+         0x1.00f3d9da07fffp-8},
+        {0x1.b08b7c443c5d6p-4, 0x1.b08b7c443c5d6p-4, 0x1.b19b81cfe1182p-4, 0x1.b19b81cfe1182p-4, 0x1.b08b7c443c5d6p-4,
+         0x1.b08b7c443c5d6p-4, 0x1.b19b81cfe1182p-4, 0x1.b19b81cfe1182p-4, 0x1.b08b7c443c5d6p-4, 0x1.b08b7c443c5d6p-4,
+         0x1.b19b81cfe1182p-4, 0x1.b19b81cfe1182p-4, 0x1.b08b7c443c5d6p-4, 0x1.b08b7c443c5d6p-4, 0x1.b19b81cfe1182p-4,
+         0x1.b19b81cfe1182p-4},
+        {0x1.7737099387eb4p-1, 0x1.773bc5d9f00c9p-1, 0x1.77400462fe1dfp-1, 0x1.7743b377f7c0ap-1, 0x1.774a3c24beb97p-1,
+         0x1.774b1d6cb2088p-1, 0x1.774b7fe76898fp-1, 0x1.7747833004042p-1, 0x1.7757c38008445p-1, 0x1.7754cc1655717p-1,
+         0x1.774f5e36f1b34p-1, 0x1.774b6c3161078p-1, 0x1.775f78527c3f1p-1, 0x1.7758afa867178p-1, 0x1.775343e0da832p-1,
+         0x1.77498637ef806p-1},
+    };
+    for (int b = 0; b < 3; ++b)
+        for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec) {
+            double s_new, s_ref;
+            int p_new = sol_nm_bc4_common(blocks[b], (sol_bc4_precision)prec, &s_new);
+            int p_ref = bc4_brute_pair(blocks[b], (sol_bc4_precision)prec, &s_ref);
+            cr_assert_eq(p_new, p_ref, "block %d, precision %d: pair %04x vs brute force %04x", b, prec, p_new, p_ref);
+            cr_assert(s_new == s_ref, "block %d, precision %d: %.17g vs %.17g", b, prec, s_new, s_ref);
+        }
 }
 
 /* The common BC5 encoder is the per-channel exact search of x and y, indices by nearest value. */

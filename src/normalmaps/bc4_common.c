@@ -27,8 +27,20 @@
  * Before the search, per mode, the same two facts give the region that can still reach the
  * incumbent (mode_region): L <= l_max, H >= h_min, H - L <= span_max.
  *
- * Search: the incumbent is the fast encoder's pair (sol_nm_bc4_fast) refined by a least-squares
- * refit of its anchors (refine), scored exactly. Boxes are split in halves of the longer side,
+ * When at most one lattice entry fits in the window, a single entry e serves all 16 targets and the
+ * score is exactly q[1] + 16 (e - mean)^2, so the bound adds 16 dist(mean, I_k)^2 (nearest interval):
+ * this prunes the pairs of narrow blocks whose one entry misses the targets' mean. A box all of whose
+ * pairs have at most one entry in the window is not split further: the pairs that can reach the
+ * incumbent are those with an entry within R = sqrt((best - q[1]) / 16) (+ slack) of the mean,
+ * listed directly per low anchor and weight as intervals of the high anchor (one_entry_scan) - the
+ * interval bound cannot see this until its boxes are single pairs (blocks of an 8-bit source hold
+ * two or three values, and hundreds of pairs put one entry on the same 16-bit value).
+ * Search: the incumbent is the best of the fast encoder's pair (sol_nm_bc4_fast) refined by a
+ * least-squares refit of its anchors (refine) and, for blocks narrower than a few codes, palettes of
+ * span 1-4 codes centred on the targets (narrow_seeds: the fast pair has span 0 there, and the refit
+ * of a span-0 palette is singular), improved by steps to the best neighbouring pair (descend), all
+ * scored exactly. On a smooth 16-bit map (blocks 0.2 codes wide) this is the optimum, and the
+ * region below then holds a few dozen pairs instead of most of the 65536. Boxes are split in halves of the longer side,
  * the child of smaller bound visited first; a box is dropped when LB > best, or when LB >= best
  * and its smallest pair index is above the incumbent's (no pair inside can win the tie rule).
  * Boxes of at most SMALL_BOX pairs are scored pair by pair with the reference order and early
@@ -39,14 +51,24 @@
 
 #include <math.h>
 
+/* The two hot functions (box_bound, try_pair) are also compiled for AVX2 and picked at run time
+ * (GCC target_clones on x86-64): the same operations in wider lanes - no FMA contraction (C11 mode),
+ * sums in the same order - so the results are bit-identical to the baseline build. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define HOT_CLONES __attribute__((noinline, target_clones("avx2", "default")))
+#else
+#define HOT_CLONES __attribute__((noinline))
+#endif
+
 typedef struct common_ctx {
     const double *t;
-    int order[16];
+    double to[16]; /* the targets in the reference order */
     const double (*pal)[8];
     double delta;
     double best;
     int best_pair;
-    double tmin, tmax;
+    double tmin, tmax, mean;
+    double window_best, wlo, whi; /* update_window */
     /* quantisation bound: q[m] = least sum of squares of the targets to m free points (m = 1..8),
      * rows of the dynamic programme computed on demand (q_rows of them so far) */
     double sorted[16], prefix[17], prefix2[17];
@@ -84,89 +106,144 @@ static double quantisation_bound(common_ctx *c, int m)
     return c->q[m];
 }
 
+static inline int make_pair(int six, int l, int h)
+{
+    return six ? (l << 8 | h) : (h << 8 | l);
+}
+
 static inline double anchor(int c)
 {
     return 2.0 * c / 255.0 - 1.0;
 }
 
-/* Exact score of a pair in the reference order, with early exit once above budget. */
+/* Exact score of a pair in the reference order, with early exit once above budget (checked after
+ * every 4 targets). The per-target minimum is exact whatever the order it is taken in, and the 16
+ * terms are added one by one in the reference order, so the sum is bit-identical to the brute
+ * force's. Written target-parallel so that the compiler vectorises it. */
 static inline double exact_score(const common_ctx *c, int pair, double budget)
 {
     const double *pal = c->pal[pair];
     double s = 0.0;
-    for (int k = 0; k < 16; ++k) {
-        double t = c->t[c->order[k]], d[8];
-        for (int i = 0; i < 8; ++i)
-            d[i] = (pal[i] - t) * (pal[i] - t);
-        /* a min tree (the same value as a running min: min is exact) */
-        double m01 = d[0] < d[1] ? d[0] : d[1], m23 = d[2] < d[3] ? d[2] : d[3];
-        double m45 = d[4] < d[5] ? d[4] : d[5], m67 = d[6] < d[7] ? d[6] : d[7];
-        double ma = m01 < m23 ? m01 : m23, mb = m45 < m67 ? m45 : m67;
-        double m = ma < mb ? ma : mb;
-        s += m;
+    for (int k0 = 0; k0 < 16; k0 += 4) {
+        double m[4];
+        for (int k = 0; k < 4; ++k) {
+            double d = pal[0] - c->to[k0 + k];
+            m[k] = d * d;
+        }
+        for (int i = 1; i < 8; ++i)
+            for (int k = 0; k < 4; ++k) {
+                double d = pal[i] - c->to[k0 + k];
+                d *= d;
+                m[k] = d < m[k] ? d : m[k];
+            }
+        s += m[0];
+        s += m[1];
+        s += m[2];
+        s += m[3];
         if (s > budget)
             return s;
     }
     return s;
 }
 
-/* Lower bound of the score of every pair of the box (see the top of the file); stops once above budget. */
-static __attribute__((noinline)) double box_bound(common_ctx *c, int six, int l1, int l2, int h1, int h2, double budget)
+/* Bound on the rounding error of the computed mean of the 16 targets (|t| <= 1: 15 additions of
+ * at most 16 in magnitude, then an exact division by 16), for the one-entry bound below. */
+#define MEAN_ERR 4e-15
+
+/* The window [tmin - r, tmax + r] of the entries the targets use, r = sqrt(best) (with slack), for
+ * the incumbent's current score (recomputed when it changes). */
+static inline void update_window(common_ctx *c)
 {
-    double lo[8], hi[8];
-    double al1 = anchor(l1), al2 = anchor(l2), ah1 = anchor(h1), ah2 = anchor(h2), d = c->delta;
-    int n = 0;
-    lo[n] = al1;
-    hi[n++] = al2;
-    lo[n] = ah1;
-    hi[n++] = ah2;
+    if (c->window_best == c->best)
+        return;
+    double r = sqrt(c->best) * (1.0 + 1e-9) + 1e-12;
+    c->wlo = c->tmin - r;
+    c->whi = c->tmax + r;
+    c->window_best = c->best;
+}
+
+/* At most how many entries of a pair of the box (low anchors up to l2, high anchors from h1) lie in
+ * the window (8 when the box allows entries closer than 2 delta). */
+static inline int box_used(common_ctx *c, int six, int l2, int h1)
+{
     const int den = six ? 5 : 7;
-    for (int j = 1; j < den; ++j) {
-        double w = (double)j / den;
-        lo[n] = (1.0 - w) * al1 + w * ah1 - d;
-        hi[n++] = (1.0 - w) * al2 + w * ah2 + d;
-    }
-    if (six) {
-        lo[n] = hi[n] = -1.0;
-        ++n;
-        lo[n] = hi[n] = 1.0;
-        ++n;
-    }
+    update_window(c);
+    const double gap = (anchor(h1) - anchor(l2)) / den - 2.0 * c->delta;
+    if (!(gap > 0.0))
+        return 8;
+    double fit = floor((c->whi - c->wlo) / gap) + 1.0;
+    int used = fit < (double)(den + 1) ? (int)fit : den + 1;
+    if (six)
+        used += (c->wlo <= -1.0) + (c->whi >= 1.0);
+    return used;
+}
+
+/* Lower bound of the score of every pair of the box (see the top of the file); stops once above budget. */
+static HOT_CLONES double box_bound(common_ctx *c, int six, int l1, int l2, int h1, int h2, double budget)
+{
+    const int den = six ? 5 : 7;
+    const double al1 = anchor(l1), al2 = anchor(l2), ah1 = anchor(h1), ah2 = anchor(h2), d = c->delta;
     /* the used entries lie within r = sqrt(best) of a target, so in a window of width W; entries are
      * at least step - 2 delta apart, so at most floor(W / (step - 2 delta)) + 1 of them are there */
-    double r = sqrt(c->best) * (1.0 + 1e-9) + 1e-12, wlo = c->tmin - r, whi = c->tmax + r;
-    double gap = (ah1 - al2) / den - 2.0 * d;
-    if (gap > 0.0) {
-        double fit = floor((whi - wlo) / gap) + 1.0;
-        int used = fit < (double)(den + 1) ? (int)fit : den + 1;
-        if (six)
-            used += (wlo <= -1.0) + (whi >= 1.0);
-        if (used < 8) {
-            double qb = quantisation_bound(c, used) * (1.0 - 1e-9) - c->q_slack;
-            if (qb > budget)
-                return qb;
-        }
+    const int used = box_used(c, six, l2, h1);
+    if (used > 1 && used < 8) {
+        double qb = quantisation_bound(c, used) * (1.0 - 1e-9) - c->q_slack;
+        if (qb > budget)
+            return qb;
     }
-    /* interval by interval over the 16 targets (independent lanes: the compiler vectorises it) */
-    double m[16];
-    for (int p = 0; p < 16; ++p)
-        m[p] = INFINITY;
-    for (int i = 0; i < n; ++i) {
-        const double l = lo[i], h = hi[i];
-        for (int p = 0; p < 16; ++p) {
-            /* dist^2 = max(lo - t, 0)^2 + max(t - hi, 0)^2 (one of them is 0), branch-free with
-             * max(x, 0) = (x + |x|) / 2 (exact) */
-            double a = l - c->sorted[p], b = c->sorted[p] - h;
-            double pa = a + fabs(a), pb = b + fabs(b);
-            double e2 = 0.25 * (pa * pa + pb * pb);
-            m[p] = m[p] < e2 ? m[p] : e2;
-        }
+    /* the entries' intervals: the anchors (with a 1e-12 margin for their rounding), the interpolants
+     * of weight w = j / den, each widened by delta (the 6-value mode's fixed entries -1, +1 below) */
+    double lo[8], hi[8];
+    lo[0] = al1 - 1e-12;
+    hi[0] = al2 + 1e-12;
+    lo[1] = ah1 - 1e-12;
+    hi[1] = ah2 + 1e-12;
+    for (int j = 1; j < den; ++j) {
+        double w = (double)j / den;
+        lo[j + 1] = (1.0 - w) * al1 + w * ah1 - d;
+        hi[j + 1] = (1.0 - w) * al2 + w * ah2 + d;
     }
+    if (used == 1) { /* one entry e serves all 16 targets: score = q[1] + 16 (e - mean)^2 */
+        double dm = INFINITY;
+        for (int i = 0; i <= den; ++i) {
+            double e = lo[i] > c->mean ? lo[i] - c->mean : (hi[i] < c->mean ? c->mean - hi[i] : 0.0);
+            dm = e < dm ? e : dm;
+        }
+        if (six) /* the fixed entries */
+            dm = fmin(dm, fmin(fabs(c->mean + 1.0), fabs(c->mean - 1.0)));
+        dm = dm > MEAN_ERR ? dm - MEAN_ERR : 0.0;
+        double qb = (quantisation_bound(c, 1) + 16.0 * dm * dm) * (1.0 - 1e-9) - c->q_slack;
+        if (qb > budget)
+            return qb;
+    }
+    if (six) {
+        lo[6] = hi[6] = -1.0;
+        lo[7] = hi[7] = 1.0;
+    }
+    /* interval by interval, four targets at a time (independent lanes, 8 intervals in either mode:
+     * the compiler vectorises it), the outer sorted targets first (the likeliest to be far from a
+     * poor palette), stopping once above budget (a partial sum is a bound too) */
+    static const int chunk_order[4] = {0, 12, 4, 8};
     double s = 0.0;
-    for (int p = 0; p < 16; ++p)
-        s += m[p];
-    (void)budget;
-    return s;
+    for (int q = 0; q < 4; ++q) {
+        const double *tp = c->sorted + chunk_order[q];
+        double m[4] = {INFINITY, INFINITY, INFINITY, INFINITY};
+        for (int i = 0; i < 8; ++i) {
+            const double l = lo[i], h = hi[i];
+            for (int p = 0; p < 4; ++p) {
+                /* dist^2 = max(lo - t, 0)^2 + max(t - hi, 0)^2 (one of them is 0), branch-free with
+                 * max(x, 0) = (x + |x|) / 2 (exact) */
+                double a = l - tp[p], b = tp[p] - h;
+                double pa = a + fabs(a), pb = b + fabs(b);
+                double e2 = 0.25 * (pa * pa + pb * pb);
+                m[p] = m[p] < e2 ? m[p] : e2;
+            }
+        }
+        s += (m[0] + m[1]) + (m[2] + m[3]);
+        if (s * (1.0 - 1e-12) > budget)
+            break;
+    }
+    return s * (1.0 - 1e-12);
 }
 
 typedef struct box {
@@ -257,7 +334,7 @@ static int mode_region(common_ctx *c, int six, region *g)
     return g->l_max >= 0 && g->h_min <= 255;
 }
 
-static void try_pair(common_ctx *c, int pair)
+static HOT_CLONES void try_pair(common_ctx *c, int pair)
 {
     double v = exact_score(c, pair, c->best);
     if (v < c->best || (v == c->best && pair < c->best_pair)) {
@@ -269,6 +346,51 @@ static void try_pair(common_ctx *c, int pair)
 /* Boxes of at most this many pairs are scored pair by pair (exact scores exit early; cheaper than
  * splitting further, measured on the benchmark maps). */
 #define SMALL_BOX 16
+
+/* A box whose pairs have at most one entry in the window (box_used == 1): such a pair reaches the
+ * incumbent only if its one serving entry e has q[1] + 16 (e - mean)^2 <= best, i.e. lies within
+ * R of the mean. Its pairs are listed directly instead of split further (the interval bound cannot
+ * see this until the boxes are single pairs): for each low anchor L, the row when A(L) is within
+ * R, the high anchors H with A(H) within R, and for each interpolant weight w the H whose exact
+ * entry (1 - w) A(L) + w A(H) is within R + delta (an interval of H). Returns 0 (nothing done) when
+ * a 6-value fixed entry is within R: then every pair qualifies.
+ * A row (or column) whose anchor A is within R needs only its least pair: every pair of it scores at
+ * most S = sum_p (A - t_p)^2 (A is one of its entries); if S <= best, each of its pairs scores <= best,
+ * so its one entry in the window serves every target, and that entry is A (A is in the window):
+ * every pair scores exactly S, the same terms added in the same order; if S > best, a pair scoring
+ * <= best would be served by its one window entry, A, and score S: none does. The least pair of a
+ * row of low anchor L is the least H in either mode (8-value H << 8 | L, 6-value L << 8 | H), of a
+ * column the least L. */
+static int one_entry_scan(common_ctx *c, int six, const box *b)
+{
+    const int den = six ? 5 : 7, gap = six ? 0 : 1;
+    double slack = c->best * (1.0 + 2e-9) + 2.0 * c->q_slack - quantisation_bound(c, 1) * (1.0 - 1e-9);
+    const double r = sqrt((slack > 0.0 ? slack : 0.0) / 16.0) * (1.0 + 1e-9) + MEAN_ERR + 1e-12, m = c->mean;
+    if (six && (fabs(m + 1.0) <= r || fabs(m - 1.0) <= r))
+        return 0;
+    const int a_lo = code_ceil(m - r), a_hi = code_floor(m + r); /* anchors within r */
+    for (int h = a_lo > b->h1 ? a_lo : b->h1; h <= a_hi && h <= b->h2; ++h) /* the high anchor: a column */
+        if (b->l1 + gap <= h)
+            try_pair(c, make_pair(six, b->l1, h)); /* its least pair (see below) */
+    for (int l = b->l1; l <= b->l2; ++l) {
+        const int h_lo = b->h1 > l + gap ? b->h1 : l + gap;
+        const double al = anchor(l);
+        if (l >= a_lo && l <= a_hi) { /* the low anchor itself: a row, its least pair */
+            if (h_lo <= b->h2)
+                try_pair(c, make_pair(six, l, h_lo));
+            continue;
+        }
+        for (int j = 1; j < den; ++j) { /* interpolant of weight w = j / den */
+            double w = (double)j / den, reach = r + c->delta;
+            int h1 = code_ceil(al + (m - reach - al) / w), h2 = code_floor(al + (m + reach - al) / w);
+            h1 = h1 > h_lo ? h1 : h_lo;
+            h2 = h2 < b->h2 ? h2 : b->h2;
+            for (int h = h1; h <= h2; ++h)
+                try_pair(c, make_pair(six, l, h));
+        }
+    }
+    return 1;
+}
 
 static void search_mode(common_ctx *c, int six)
 {
@@ -294,6 +416,8 @@ static void search_mode(common_ctx *c, int six)
                         try_pair(c, h << 8 | l);
             continue;
         }
+        if (box_used(c, six, b.l2, b.h1) == 1 && one_entry_scan(c, six, &b))
+            continue;
         box kid[2];
         int nk = 0;
         if (b.l2 - b.l1 >= b.h2 - b.h1) {
@@ -361,6 +485,47 @@ static void refine(common_ctx *c, int six, int l, int h)
         l = nl;
         h = nh;
     }
+}
+
+/* Incumbent: from a pair of a mode, steps to the best of its 8 neighbours (L +- 1, H +- 1) while
+ * that improves the score (a local minimum of the pair grid). */
+static void descend(common_ctx *c, int six, int l, int h)
+{
+    for (int round = 0; round < 64; ++round) {
+        int nl = l, nh = h;
+        for (int dl = -1; dl <= 1; ++dl)
+            for (int dh = -1; dh <= 1; ++dh) {
+                int a = l + dl, b = h + dh;
+                if ((dl | dh) == 0 || a < 0 || b > 255 || b < a + !six)
+                    continue;
+                int before = c->best_pair;
+                try_pair(c, make_pair(six, a, b));
+                if (c->best_pair != before) {
+                    nl = a;
+                    nh = b;
+                }
+            }
+        if (nl == l && nh == h)
+            return;
+        l = nl;
+        h = nh;
+    }
+}
+
+/* Incumbent seeds for narrow blocks: per mode, palettes of small span S (codes) whose lattice is
+ * centred on the targets' range (the fast encoder's pair has span 0 there, and its refit fails). */
+static void narrow_seeds(common_ctx *c)
+{
+    double centre = 0.5 * (c->tmin + c->tmax), range = (c->tmax - c->tmin) * 127.5;
+    int smax = (int)range + 2;
+    smax = smax > 4 ? 4 : smax;
+    for (int six = 0; six < 2; ++six)
+        for (int s = 1; s <= smax; ++s) {
+            int l0 = (int)floor((centre + 1.0) * 127.5 - 0.5 * s);
+            for (int l = l0; l <= l0 + 1; ++l)
+                if (l >= 0 && l + s <= 255)
+                    try_pair(c, make_pair(six, l, l + s));
+        }
 }
 
 /* ---- flat blocks (all 16 targets equal) ----
@@ -433,7 +598,7 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     common_ctx c;
     c.t = t;
     for (int k = 0; k < 16; ++k)
-        c.order[k] = ch.order[k];
+        c.to[k] = t[ch.order[k]];
     c.pal = ch.palettes;
     for (int p = 0; p < 16; ++p) { /* insertion sort */
         int q = p;
@@ -442,6 +607,7 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
         c.sorted[q] = t[p];
     }
     c.tmin = c.sorted[0];
+    c.window_best = -1.0;
     c.tmax = c.sorted[15];
     /* prefix sums of the targets about their mean (less cancellation in the group costs); q_slack
      * covers what is left of the rounding */
@@ -449,6 +615,7 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     for (int p = 0; p < 16; ++p)
         mean += c.sorted[p];
     mean /= 16.0;
+    c.mean = mean;
     c.prefix[0] = c.prefix2[0] = 0.0;
     for (int p = 0; p < 16; ++p) {
         double v = c.sorted[p] - mean;
@@ -467,6 +634,11 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
         refine(&c, 0, fast.e1, fast.e0);
     else
         refine(&c, 1, fast.e0, fast.e1);
+    narrow_seeds(&c);
+    {
+        int e0 = c.best_pair >> 8, e1 = c.best_pair & 255, six = e0 <= e1;
+        descend(&c, six, six ? e0 : e1, six ? e1 : e0);
+    }
     int flat = 1;
     for (int p = 1; p < 16; ++p)
         flat &= c.sorted[p] == c.sorted[0];
