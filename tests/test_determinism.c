@@ -76,15 +76,25 @@ static void normal_map(sol_image *img)
         }
 }
 
-static void bc5_run(void *out, sol_bc5_encoder enc)
+static void bc5_run_base(void *out, sol_bc5_encoder enc, sol_bc5_base base)
 {
     sol_image img;
     normal_map(&img);
-    sol_bc5_options o = {.encoder = enc, .window = 2};
+    sol_bc5_options o = {.encoder = enc, .window = 2, .base = base};
     sol_bc5_image_stats st;
     cr_assert_eq(sol_bc5_encode_image(&img, &o, out, &st), SOL_OK);
     memcpy((unsigned char *)out + 256, &st, sizeof st);
     sol_image_free(&img);
+}
+
+static void bc5_run(void *out, sol_bc5_encoder enc)
+{
+    bc5_run_base(out, enc, SOL_BC5_BASE_COMMON);
+}
+
+static void bc5_adaptive_fast_base(void *out)
+{
+    bc5_run_base(out, SOL_BC5_ADAPTIVE, SOL_BC5_BASE_FAST);
 }
 
 static void bc5_common(void *out)
@@ -101,6 +111,7 @@ Test(determinism, bc5_encoders)
 {
     same_for_1_and_2_threads(bc5_common, 256 + sizeof(sol_bc5_image_stats), "BC5 common");
     same_for_1_and_2_threads(bc5_adaptive, 256 + sizeof(sol_bc5_image_stats), "BC5 adaptive");
+    same_for_1_and_2_threads(bc5_adaptive_fast_base, 256 + sizeof(sol_bc5_image_stats), "BC5 adaptive, fast base");
 }
 
 static void bc1(void *out)

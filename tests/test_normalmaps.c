@@ -347,6 +347,40 @@ Test(normalmaps, joint_search_is_exact_at_the_rim)
     cr_assert_eq(info.error, bc5_brute_force(n, &r, &o));
 }
 
+/* T13: the adaptive encoder's window search is exact within its window, around either base
+ * encoder's anchors (common: sol's least-squares pairs; fast: the usual alpha-block pairs): its error
+ * equals the literal brute force over the +-window box, for both metrics and every decoder
+ * precision, smooth and rough blocks, and blocks near the rim (which take search_unit's loose bounds). */
+Test(normalmaps, adaptive_window_equals_brute_force_over_the_window_T13)
+{
+    for (int trial = 0; trial < 16; ++trial) {
+        double n[16][3];
+        random_block(n, trial % 8 == 7 ? 1.52 : 0.9, trial % 4 == 0 ? 0.02 : 0.3);
+        sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE,
+                             .precision = (sol_bc4_precision)(trial % 3),
+                             .metric = trial % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED,
+                             .base = trial % 4 < 2 ? SOL_BC5_BASE_COMMON : SOL_BC5_BASE_FAST,
+                             .window = trial % 5 == 0 ? 3 : 2};
+        sol_bc5_options ob = o;
+        ob.encoder = o.base == SOL_BC5_BASE_FAST ? SOL_BC5_FAST : SOL_BC5_COMMON;
+        sol_bc5_block base, found;
+        sol_bc5_info ib, info;
+        cr_assert_eq(sol_bc5_encode_block(n, &ob, &base, &ib), SOL_OK);
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &found, &info), SOL_OK);
+        int w = o.window;
+        sol_bc5_range r = {clamp_code(base.x.e0 - w), clamp_code(base.x.e0 + w), clamp_code(base.x.e1 - w),
+                           clamp_code(base.x.e1 + w), clamp_code(base.y.e0 - w), clamp_code(base.y.e0 + w),
+                           clamp_code(base.y.e1 - w), clamp_code(base.y.e1 + w)};
+        double ref = bc5_brute_force(n, &r, &o);
+        cr_assert_eq(info.searched, 1, "trial %d", trial);
+        cr_assert_eq(info.error, ref, "trial %d: window %.17g, brute force %.17g", trial, info.error, ref);
+        cr_assert(info.error <= ib.error, "trial %d", trial);
+        cr_assert(found.x.e0 >= r.x0_lo && found.x.e0 <= r.x0_hi && found.x.e1 >= r.x1_lo && found.x.e1 <= r.x1_hi &&
+                  found.y.e0 >= r.y0_lo && found.y.e0 <= r.y0_hi && found.y.e1 >= r.y1_lo && found.y.e1 <= r.y1_hi,
+                  "trial %d", trial);
+    }
+}
+
 /* The degenerate families of issue 13 (normals pointing away, z = 0 rims, blocks with both), with
  * random parameters: pixels pointing away take the rim-direction bound (bc5.c), rims the loose one. */
 static void degenerate_block(int family, double n[16][3])
@@ -487,6 +521,8 @@ Test(normalmaps, hard_cases_flat_axis_outlier_and_bad_input)
     sol_bc5_options bad = {.metric = (sol_bc5_metric)7};
     cr_assert_eq(sol_bc5_encode_block(n, &bad, &untouched, NULL), SOL_ERR_INVALID_ARG);
     bad = (sol_bc5_options){.threshold_deg = -1.0};
+    cr_assert_eq(sol_bc5_encode_block(n, &bad, &untouched, NULL), SOL_ERR_INVALID_ARG);
+    bad = (sol_bc5_options){.encoder = SOL_BC5_ADAPTIVE, .base = (sol_bc5_base)2};
     cr_assert_eq(sol_bc5_encode_block(n, &bad, &untouched, NULL), SOL_ERR_INVALID_ARG);
     sol_bc5_range empty = {5, 4, 0, 255, 0, 255, 0, 255};
     cr_assert_eq(sol_bc5_search_block(n, &empty, NULL, &untouched, NULL), SOL_ERR_INVALID_ARG);

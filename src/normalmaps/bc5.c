@@ -314,7 +314,8 @@ static double joint_objective_quick(const channel_side *xs, const channel_side *
 static sol_status check_options(const sol_bc5_options *o)
 {
     if ((unsigned)o->precision >= SOL_BC4_PRECISION_COUNT || (unsigned)o->metric > SOL_BC5_MAX ||
-        (unsigned)o->encoder > SOL_BC5_FAST || !isfinite(o->threshold_deg) || o->threshold_deg < 0.0)
+        (unsigned)o->encoder > SOL_BC5_FAST || !isfinite(o->threshold_deg) || o->threshold_deg < 0.0 ||
+        (unsigned)o->base > SOL_BC5_BASE_FAST)
         return SOL_ERR_INVALID_ARG;
     return SOL_OK;
 }
@@ -393,6 +394,7 @@ sol_status sol_bc5_choose_indices(sol_bc5_block *block, const double normals[16]
 
 /* Scratch of one thread, reused across its blocks: the lists of anchor pairs of each channel and
  * a hash table (list positions + 1) for merging equivalent pairs. */
+typedef struct window_scratch window_scratch;
 typedef struct search_workspace {
     sol_nm_pair *x, *y;
     uint32_t *slots;     /* 2 * 65536 entries */
@@ -401,6 +403,7 @@ typedef struct search_workspace {
     struct y_item *ybucket; /* the y list's entries by value (y_index), grown on demand */
     uint64_t *ymark;     /* marks of y list positions (coupling filter), grown on demand */
     size_t ybucket_cap, ymark_cap;
+    window_scratch *win; /* the adaptive window path's lists (window_search) */
 } search_workspace;
 
 static int compare_pairs(const void *pa, const void *pb)
@@ -1172,6 +1175,248 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     }
 }
 
+/* ---- the adaptive encoder's window search (T13) ----
+ *
+ * The same branch and bound as search_unit, specialised to a window of at most WINDOW_PATH_MAX codes
+ * around each anchor (the talk's +-4: 81 anchor pairs per channel): each pair's per-pixel nearest
+ * entries (its channel side: score, quick-bound terms) are computed once, in one pass, for the
+ * pairs whose score leaves room under the incumbent; no full-range scoring, hashing or merging. The
+ * incumbent is the base block's anchors with joint indices. It needs every pixel's tight bound
+ * (nz_p^2 above the incumbent, so no decode with z clamped can win, see search_unit 2.); blocks with
+ * rim or downward pixels, and wider windows, go to search_unit. Exact within the window: the
+ * result's error equals the literal brute force's minimum over the window. Ties: the first
+ * minimiser in the order incumbent, then x pairs by increasing (score, code), y pairs likewise. */
+enum { WINDOW_PATH_MAX = 8, WINDOW_PAIRS = (2 * WINDOW_PATH_MAX + 1) * (2 * WINDOW_PATH_MAX + 1) };
+
+typedef sol_nm_pair window_entry; /* a pair and its channel score */
+
+struct window_scratch {
+    window_entry list[2][WINDOW_PAIRS];
+    channel_side yside[WINDOW_PAIRS];    /* the sorted y list's channel sides, */
+    unsigned char ready[WINDOW_PAIRS];   /* each computed when first needed */
+};
+
+/* Sorts by increasing (score, pair): insertion sort, the lists are short (<= WINDOW_PAIRS). */
+static void sort_window_entries(window_entry *list, int count)
+{
+    for (int k = 1; k < count; ++k) {
+        window_entry e = list[k];
+        int q = k;
+        for (; q > 0 && (list[q - 1].score > e.score || (list[q - 1].score == e.score && list[q - 1].pair > e.pair));
+             --q)
+            list[q] = list[q - 1];
+        list[q] = e;
+    }
+}
+
+/* Scores the window pairs of channel c (sum or max over pixels of the nearest entry's squared
+ * distance: the tight per-channel bound) into list, in e0-major order, and returns the count; a
+ * pair whose two extreme pixels (least and largest component) alone exceed budget is left out
+ * (most pairs of smooth blocks). The full score: one pass over entries, all 16 pixels at a time
+ * (a loop the compiler vectorises). */
+static int window_channel(const double n[16][3], int c, const double (*pal)[8], int use_max, int e0_lo, int e0_hi,
+                          int e1_lo, int e1_hi, double budget, window_entry *list)
+{
+    int count = 0, lo = 0, hi = 0;
+    double t[16];
+    for (int p = 0; p < 16; ++p) {
+        t[p] = n[p][c];
+        lo = t[p] < t[lo] ? p : lo;
+        hi = t[p] > t[hi] ? p : hi;
+    }
+    for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
+        for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
+            const double *a = pal[e0 << 8 | e1];
+            double dlo = INFINITY, dhi = INFINITY;
+            for (int i = 0; i < 8; ++i) {
+                double u = (a[i] - t[lo]) * (a[i] - t[lo]), v = (a[i] - t[hi]) * (a[i] - t[hi]);
+                dlo = u < dlo ? u : dlo;
+                dhi = v < dhi ? v : dhi;
+            }
+            if ((lo == hi ? dlo : combine(dlo, dhi, use_max)) > budget)
+                continue;
+            double m[16];
+            for (int p = 0; p < 16; ++p)
+                m[p] = (a[0] - t[p]) * (a[0] - t[p]);
+            for (int i = 1; i < 8; ++i)
+                for (int p = 0; p < 16; ++p) {
+                    double d = (a[i] - t[p]) * (a[i] - t[p]);
+                    m[p] = d < m[p] ? d : m[p];
+                }
+            double score = 0.0;
+            for (int p = 0; p < 16; ++p)
+                score = use_max ? (m[p] > score ? m[p] : score) : score + m[p];
+            list[count] = (window_entry){score, (uint16_t)(e0 << 8 | e1)};
+            ++count;
+        }
+    return count;
+}
+
+/* Keeps the entries of score <= budget (in order); returns the count. */
+static int window_filter(window_entry *list, int count, double budget)
+{
+    int kept = 0;
+    for (int k = 0; k < count; ++k)
+        if (list[k].score <= budget)
+            list[kept++] = list[k];
+    return kept;
+}
+
+/* joint_objective_lower and then, if the candidate survives it, joint_objective, with each pixel's
+ * jointly best index pair found once (the same pairs, sums and early exits as the two calls in turn):
+ * returns the lower bound (>= margin: rejected, *v untouched), else writes the exact objective
+ * (stopped once it reaches budget, as joint_objective) to *v and the index pairs to ix, iy. */
+static double joint_objective_checked(const double a[8], const double b[8], const double n[16][3],
+                                      const int order[16], int use_max, double margin, double budget,
+                                      uint64_t *work, double *v, uint8_t ix[16], uint8_t iy[16])
+{
+    double s = 0.0;
+    for (int k = 0; k < 16; ++k) {
+        *work += 32;
+        int i, j, p = order[k];
+        best_pixel_index(a, b, n[p], &i, &j);
+        ix[p] = (uint8_t)i;
+        iy[p] = (uint8_t)j;
+        double e2 = angle2_lower_bound(a[i], b[j], n[p]);
+        s = use_max ? (e2 > s ? e2 : s) : s + e2;
+        if (s >= margin)
+            return s;
+    }
+    *work += 512;
+    double e = 0.0;
+    for (int p = 0; p < 16; ++p) {
+        double d = decoded_angle(a[ix[p]], b[iy[p]], n[p]);
+        e = use_max ? (d * d > e ? d * d : e) : e + d * d;
+        if (e >= budget)
+            break;
+    }
+    *v = e;
+    return s;
+}
+
+/* Returns 0 (and leaves everything untouched) when the block needs search_unit (see above). */
+static int window_search(const double n[16][3], const sol_bc5_range *r, int base_x, int base_y,
+                         const search_request *rq, search_workspace *ws, sol_bc5_block *out, sol_bc5_info *info)
+{
+    if (r->x0_hi - r->x0_lo > 2 * WINDOW_PATH_MAX || r->x1_hi - r->x1_lo > 2 * WINDOW_PATH_MAX ||
+        r->y0_hi - r->y0_lo > 2 * WINDOW_PATH_MAX || r->y1_hi - r->y1_lo > 2 * WINDOW_PATH_MAX)
+        return 0;
+    const int use_max = rq->use_max;
+    const double(*pal)[8] = sol_nm_palettes(rq->precision);
+    int px = base_x, py = base_y;
+    uint8_t ix[16], iy[16], cx[16], cy[16]; /* the best's indices, a candidate's */
+    double pixel_err[16], best = 0.0;
+    for (int p = 0; p < 16; ++p) { /* joint_objective's sum, keeping each pixel's error */
+        int i, j;
+        double e = best_pixel(pal[px], pal[py], n[p], &i, &j);
+        ix[p] = (uint8_t)i;
+        iy[p] = (uint8_t)j;
+        pixel_err[p] = e;
+        best = use_max ? (e * e > best ? e * e : best) : best + e * e;
+    }
+    for (int p = 0; p < 16; ++p)
+        if (!(n[p][2] > 0.0) || n[p][2] * n[p][2] <= best * (1.0 + BOUND_SLACK))
+            return 0; /* a rim or downward pixel: the loose bounds of search_unit */
+    uint64_t candidates = 1, work = 0;
+    int bounded = 0;
+    if (best > 0.0) {
+        window_scratch *w = ws->win;
+        double least_x = INFINITY, least_y = INFINITY, room = best * (1.0 + BOUND_SLACK);
+        int nx = window_channel(n, 0, pal, use_max, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi, room, w->list[0]);
+        int ny = window_channel(n, 1, pal, use_max, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi, room, w->list[1]);
+        for (int k = 0; k < nx; ++k)
+            least_x = w->list[0][k].score < least_x ? w->list[0][k].score : least_x;
+        for (int k = 0; k < ny; ++k)
+            least_y = w->list[1][k].score < least_y ? w->list[1][k].score : least_y;
+        /* a pair can only pair up under the incumbent if its score leaves room for the other channel's least */
+        nx = window_filter(w->list[0], nx, use_max ? room : room - least_y * (1.0 - BOUND_SLACK));
+        ny = window_filter(w->list[1], ny, use_max ? room : room - least_x * (1.0 - BOUND_SLACK));
+        sort_window_entries(w->list[0], nx);
+        sort_window_entries(w->list[1], ny);
+        double tx[16], ty[16], span = 0.0;
+        for (int p = 0; p < 16; ++p) {
+            tx[p] = n[p][0];
+            ty[p] = n[p][1];
+            span = fmax(span, fmax(fabs(tx[p] - tx[0]), fabs(ty[p] - ty[0])));
+        }
+        /* Exactly tied pairs (nearly flat blocks, whose targets span a few codes: anchors spanning the
+         * same values near them): one per class, as search_unit. Elsewhere hashing costs more than
+         * the ties it saves; the result is the same either way. */
+        if (nx > 1 && ny > 1 && nx * ny > 256 && span <= 8.0 / 255.0) {
+            channel_key kx, ky;
+            channel_key_init(&kx, tx, 0, room);
+            channel_key_init(&ky, ty, 0, room);
+            nx = (int)merge_equivalent(w->list[0], (size_t)nx, &kx, pal, ws->slots);
+            ny = (int)merge_equivalent(w->list[1], (size_t)ny, &ky, pal, ws->slots);
+        }
+        /* visit pixels worst-first (by the incumbent's per-pixel error) when rejecting candidates */
+        int order[16];
+        for (int p = 0; p < 16; ++p)
+            order[p] = p;
+        for (int p = 1; p < 16; ++p)
+            for (int q = p; q > 0 && pixel_err[order[q - 1]] < pixel_err[order[q]]; --q) {
+                int t = order[q];
+                order[q] = order[q - 1];
+                order[q - 1] = t;
+            }
+        memset(w->ready, 0, (size_t)ny); /* y sides are computed when first needed */
+        away_info aw; /* no pixel points away here (every nz > 0): no away terms */
+        away_info_init(&aw, n, 0u);
+        const double away_off[16] = {0};
+        channel_side xside;
+        for (int i = 0; i < nx && ny > 0 && !bounded; ++i) {
+            const window_entry *ex = &w->list[0][i];
+            if (combine(ex->score, w->list[1][0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
+                break;
+            const double *a = pal[ex->pair];
+            channel_side_init(a, n, order, 0, &aw, &xside);
+            for (int j = 0; j < ny; ++j) {
+                const window_entry *ey = &w->list[1][j];
+                if (combine(ex->score, ey->score, use_max) * (1.0 - BOUND_SLACK) >= best)
+                    break;
+                if (ex->pair == base_x && ey->pair == base_y)
+                    continue; /* the incumbent */
+                if (work >= rq->work_limit) {
+                    bounded = 1;
+                    break;
+                }
+                ++candidates;
+                const double *b = pal[ey->pair];
+                if (!w->ready[j]) {
+                    channel_side_init(b, n, order, 1, &aw, &w->yside[j]);
+                    w->ready[j] = 1;
+                }
+                double margin = best * (1.0 + BOUND_SLACK);
+                if (joint_objective_quick(&xside, &w->yside[j], n, order, away_off, use_max, margin, &work) >= margin)
+                    continue;
+                double v = INFINITY;
+                if (joint_objective_checked(a, b, n, order, use_max, margin, best, &work, &v, cx, cy) >= margin)
+                    continue;
+                if (v < best) { /* complete (below the budget): the exact objective and its indices */
+                    best = v;
+                    px = ex->pair;
+                    py = ey->pair;
+                    memcpy(ix, cx, sizeof ix);
+                    memcpy(iy, cy, sizeof iy);
+                }
+            }
+        }
+    }
+    out->x.e0 = (uint8_t)(px >> 8);
+    out->x.e1 = (uint8_t)(px & 255);
+    out->y.e0 = (uint8_t)(py >> 8);
+    out->y.e1 = (uint8_t)(py & 255);
+    memcpy(out->x.index, ix, sizeof ix);
+    memcpy(out->y.index, iy, sizeof iy);
+    if (info) {
+        info->error = metric_value(best, use_max ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED);
+        info->searched = 1;
+        info->candidates = candidates;
+        info->bounded = bounded;
+    }
+    return 1;
+}
+
 static sol_status workspace_alloc(search_workspace *ws)
 {
     ws->x = malloc(65536 * sizeof *ws->x);
@@ -1182,10 +1427,12 @@ static sol_status workspace_alloc(search_workspace *ws)
     ws->ybucket = NULL;
     ws->ymark = NULL;
     ws->ybucket_cap = ws->ymark_cap = 0;
-    if (!ws->x || !ws->y || !ws->slots) {
+    ws->win = malloc(sizeof *ws->win);
+    if (!ws->x || !ws->y || !ws->slots || !ws->win) {
         free(ws->x);
         free(ws->y);
         free(ws->slots);
+        free(ws->win);
         return SOL_ERR_NO_MEMORY;
     }
     return SOL_OK;
@@ -1199,6 +1446,7 @@ static void workspace_free(search_workspace *ws)
     free(ws->yside);
     free(ws->ybucket);
     free(ws->ymark);
+    free(ws->win);
 }
 
 static const sol_bc5_range full_range = {0, 255, 0, 255, 0, 255, 0, 255};
@@ -1249,6 +1497,18 @@ static void encode_common(const double n[16][3], sol_bc4_precision precision, so
     }
 }
 
+/* The usual fast encoder: two independent one-pass alpha blocks (bc4_fast.c). */
+static void encode_fast(const double n[16][3], sol_bc5_block *out)
+{
+    double tx[16], ty[16];
+    for (int p = 0; p < 16; ++p) {
+        tx[p] = n[p][0];
+        ty[p] = n[p][1];
+    }
+    sol_nm_bc4_fast(tx, &out->x);
+    sol_nm_bc4_fast(ty, &out->y);
+}
+
 static double own_index_objective(const sol_bc5_block *b, const double n[16][3], sol_bc4_precision precision,
                                   int use_max)
 {
@@ -1273,13 +1533,7 @@ static void encode_unit(const double n[16][3], const sol_bc5_options *o, search_
 {
     int use_max = o->metric == SOL_BC5_MAX;
     if (o->encoder == SOL_BC5_FAST) {
-        double tx[16], ty[16];
-        for (int p = 0; p < 16; ++p) {
-            tx[p] = n[p][0];
-            ty[p] = n[p][1];
-        }
-        sol_nm_bc4_fast(tx, &out->x);
-        sol_nm_bc4_fast(ty, &out->y);
+        encode_fast(n, out);
         if (info) {
             info->error = metric_value(own_index_objective(out, n, o->precision, use_max), o->metric);
             info->searched = 0;
@@ -1294,7 +1548,10 @@ static void encode_unit(const double n[16][3], const sol_bc5_options *o, search_
         return;
     }
     sol_bc5_block common;
-    encode_common(n, o->precision, &common);
+    if (o->encoder == SOL_BC5_ADAPTIVE && o->base == SOL_BC5_BASE_FAST)
+        encode_fast(n, &common);
+    else
+        encode_common(n, o->precision, &common);
     double err = own_index_objective(&common, n, o->precision, use_max);
     /* adaptive: RMS (or max) angle in degrees against the threshold (T13) */
     double level = (use_max ? sqrt(err) : sqrt(err / 16.0)) * (180.0 / M_PI);
@@ -1313,7 +1570,8 @@ static void encode_unit(const double n[16][3], const sol_bc5_options *o, search_
                        clamp_code(common.x.e1 + w), clamp_code(common.y.e0 - w), clamp_code(common.y.e0 + w),
                        clamp_code(common.y.e1 - w), clamp_code(common.y.e1 + w)};
     search_request rq = {&r, o->precision, use_max, work_limit(o)};
-    search_unit(n, &rq, ws, out, info);
+    if (!window_search(n, &r, common.x.e0 << 8 | common.x.e1, common.y.e0 << 8 | common.y.e1, &rq, ws, out, info))
+        search_unit(n, &rq, ws, out, info);
 }
 
 sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_options *options, sol_bc5_block *out,

@@ -97,20 +97,32 @@ typedef enum sol_bc5_metric {
 typedef enum sol_bc5_encoder {
     SOL_BC5_COMMON = 0, /* x and y as two independent least-squares BC4 blocks (T10 "usual") */
     SOL_BC5_OPTIMAL,    /* joint anchors and indices minimising the block's angular error (T10/T11) */
-    SOL_BC5_ADAPTIVE,   /* common, then if above the threshold a window search around it (T13) */
+    SOL_BC5_ADAPTIVE,   /* base (common or fast), then if above the threshold a window search around it (T13) */
     SOL_BC5_FAST        /* x and y as two sol_bc4_encode_block_fast blocks (libsquish-style usual) */
 } sol_bc5_encoder;
+
+/* The adaptive encoder's first step (the talk's "compress the block with a usual 3Dc compression
+ * approach"): the encoder whose block is measured against the threshold and whose anchors centre the
+ * window. */
+typedef enum sol_bc5_base {
+    SOL_BC5_BASE_COMMON = 0, /* sol's exact least-squares common encoder (SOL_BC5_COMMON) */
+    SOL_BC5_BASE_FAST        /* the usual one-pass alpha-block encoder (SOL_BC5_FAST): the talk's step 1 */
+} sol_bc5_base;
 
 typedef struct sol_bc5_options {
     sol_bc5_encoder encoder;
     sol_bc4_precision precision; /* the decoder the error is measured for */
     sol_bc5_metric metric;       /* optimal and adaptive minimise this */
-    /* Adaptive: each of the four anchors is searched within +-window codes of the common anchor
-     * (clamped to 0..255). 0 = default 4 (the talk's [v-4/255, v+4/255]); negative = 0, i.e. only the
-     * common anchors, with joint index choice; 255 or more = every code (no int overflow). */
+    /* Adaptive: each of the four anchors is searched within +-window codes of the base encoder's
+     * anchor (clamped to 0..255), exactly (the error equals the brute force over that box). 0 = default
+     * 4 (the talk's [v-4/255, v+4/255]); negative = 0, i.e. only the base anchors, with joint index
+     * choice; 255 or more = every code (no int overflow). Windows up to 8 take a dedicated path (about
+     * 15-150 us of one core per searched block on the 1024^2 benchmark maps, the most on nearly flat
+     * blocks from 8-bit sources); wider ones, and blocks with normals at or near the rim (z^2 not
+     * above the block's error), the optimal encoder's search restricted to it. */
     int window;
-    /* Adaptive: search only blocks whose common RMS angular error (sqrt(mean dN^2), or max dN for
-     * SOL_BC5_MAX) exceeds this many degrees. 0 = search every block. */
+    /* Adaptive: search only blocks whose base RMS angular error (sqrt(mean dN^2), or max dN for
+     * SOL_BC5_MAX, of the base encoder's block) exceeds this many degrees. 0 = search every block. */
     double threshold_deg;
     /* Optimal and adaptive: work bound per block, in work units: one pixel of one candidate through
      * the quick bound counts 1, through the joint index-pair bound 32, an exact evaluation of a
@@ -119,6 +131,8 @@ typedef struct sol_bc5_options {
      * proven optimal). 0 = SOL_BC5_DEFAULT_WORK_LIMIT (2^26), about 0.5-1 s of one core; the hardest
      * blocks of the benchmark maps need about a third of it (2.4 x 10^7). */
     uint64_t work_limit;
+    /* Adaptive: the first step's encoder (see sol_bc5_base). 0 = SOL_BC5_BASE_COMMON. */
+    sol_bc5_base base;
 } sol_bc5_options;
 
 #define SOL_BC5_DEFAULT_WORK_LIMIT (UINT64_C(1) << 26)
