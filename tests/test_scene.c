@@ -13,17 +13,7 @@
 
 #include "sol_scene.h"
 
-/* Per-process scratch paths /tmp/sol_<pid>_<name>: Criterion runs each test in its own child, so
- * two test runs at once (make test beside make sanitize) never share a file. Four rotating buffers
- * let one call use several names. */
-static const char *scratch(const char *name)
-{
-    static char buf[4][256];
-    static int next;
-    char *b = buf[next++ & 3];
-    snprintf(b, sizeof buf[0], "/tmp/sol_%d_%s", (int)getpid(), name);
-    return b;
-}
+#include "scratch.h"
 
 /* system() on a formatted command line. */
 static int shell(const char *fmt, ...) __attribute__((format(printf, 1, 2)));

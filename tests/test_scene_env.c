@@ -11,16 +11,7 @@
 
 #include "sol_scene.h"
 
-/* Per-process scratch paths /tmp/sol_<pid>_<name> (Criterion forks each test), so two test runs
- * at once never share a file; four rotating buffers. */
-static const char *scratch(const char *name)
-{
-    static char buf[4][256];
-    static int next;
-    char *b = buf[next++ & 3];
-    snprintf(b, sizeof buf[0], "/tmp/sol_%d_%s", (int)getpid(), name);
-    return b;
-}
+#include "scratch.h"
 
 /* Writes an uncompressed scanline EXR of FLOAT channels B, G, R (the file format's alphabetical
  * order) by hand, so a test can store values sol_exr_write refuses (NaN, Inf) or claim a data

@@ -34,6 +34,18 @@ static void set_direction(int cube, uint64_t i, double d[3])
     }
 }
 
+/* Mean and max of err[0..n); the sum in index order, so the same for any thread count. */
+static oct_stats oct_stats_of(const double *err, size_t n)
+{
+    oct_stats s = {0, 0};
+    for (size_t i = 0; i < n; ++i) {
+        s.mean += err[i];
+        s.max = err[i] > s.max ? err[i] : s.max;
+    }
+    s.mean /= (double)n;
+    return s;
+}
+
 /* Mean and max error (degrees) of one octahedral variant over n directions of a set; the sum is
  * taken in index order, so the mean is the same for any thread count. */
 static oct_stats oct_errors(const sol_oct_options *o, int cube, size_t n, double *err)
@@ -47,13 +59,7 @@ static oct_stats oct_errors(const sol_oct_options *o, int cube, size_t n, double
         exp_check(sol_oct_decode(o, code, back), "octahedral decode");
         err[i] = sol_angle3(d, back) * DEG;
     }
-    oct_stats s = {0, 0};
-    for (size_t i = 0; i < n; ++i) {
-        s.mean += err[i];
-        s.max = err[i] > s.max ? err[i] : s.max;
-    }
-    s.mean /= (double)n;
-    return s;
+    return oct_stats_of(err, n);
 }
 
 void run_oct_sweep(const exp_run *exp)
@@ -141,13 +147,7 @@ static oct_stats peer_errors(sol_normal_method m, size_t n, double *err)
         exp_check(sol_normal_decode(m, code, back), "decode");
         err[i] = sol_angle3(d, back) * DEG;
     }
-    oct_stats s = {0, 0};
-    for (size_t i = 0; i < n; ++i) {
-        s.mean += err[i];
-        s.max = err[i] > s.max ? err[i] : s.max;
-    }
-    s.mean /= (double)n;
-    return s;
+    return oct_stats_of(err, n);
 }
 
 void run_oct_bench(const exp_run *exp)

@@ -442,6 +442,20 @@ static void search_mode(common_ctx *c, int six)
     }
 }
 
+/* Scores the pair (L = a, H = b) of a mode if it is a valid pair of that mode; when it becomes the
+ * incumbent, (*nl, *nh) move to it (the incumbent searches below walk this way). */
+static void try_move(common_ctx *c, int six, int a, int b, int *nl, int *nh)
+{
+    if (a < 0 || b > 255 || b < a + !six)
+        return;
+    int before = c->best_pair;
+    try_pair(c, make_pair(six, a, b));
+    if (c->best_pair != before) {
+        *nl = a;
+        *nh = b;
+    }
+}
+
 /* A better incumbent for the bounds: from a pair of a mode, a least-squares refit of the two anchors
  * to the targets' lattice positions (the classic alpha-block refinement), rounded both ways, a few
  * times. Only an incumbent: the search below proves or improves it. */
@@ -469,17 +483,8 @@ static void refine(common_ctx *c, int six, int l, int h)
         double fl = (sat * sbb - sbt * sab) / det, fh = (sbt * saa - sat * sab) / det;
         int l0 = code_floor(fl), h0 = code_floor(fh), nl = l, nh = h;
         for (int dl = 0; dl < 2; ++dl)
-            for (int dh = 0; dh < 2; ++dh) {
-                int a = l0 + dl, b = h0 + dh;
-                if (a < 0 || b > 255 || b < a + !six)
-                    continue;
-                int pair = six ? (a << 8 | b) : (b << 8 | a), before = c->best_pair;
-                try_pair(c, pair);
-                if (c->best_pair != before) {
-                    nl = a;
-                    nh = b;
-                }
-            }
+            for (int dh = 0; dh < 2; ++dh)
+                try_move(c, six, l0 + dl, h0 + dh, &nl, &nh);
         if (nl == l && nh == h)
             return;
         l = nl;
@@ -494,17 +499,9 @@ static void descend(common_ctx *c, int six, int l, int h)
     for (int round = 0; round < 64; ++round) {
         int nl = l, nh = h;
         for (int dl = -1; dl <= 1; ++dl)
-            for (int dh = -1; dh <= 1; ++dh) {
-                int a = l + dl, b = h + dh;
-                if ((dl | dh) == 0 || a < 0 || b > 255 || b < a + !six)
-                    continue;
-                int before = c->best_pair;
-                try_pair(c, make_pair(six, a, b));
-                if (c->best_pair != before) {
-                    nl = a;
-                    nh = b;
-                }
-            }
+            for (int dh = -1; dh <= 1; ++dh)
+                if (dl | dh)
+                    try_move(c, six, l + dl, h + dh, &nl, &nh);
         if (nl == l && nh == h)
             return;
         l = nl;

@@ -916,6 +916,18 @@ typedef struct search_request {
     uint64_t work_limit;
 } search_request;
 
+/* order[0..16) (a permutation) sorted by decreasing err, stable: the pixels most likely to reject a
+ * candidate are visited first. Insertion sort: 16 items. */
+static void order_worst_first(const double err[16], int order[16])
+{
+    for (int p = 1; p < 16; ++p)
+        for (int q = p; q > 0 && err[order[q - 1]] < err[order[q]]; --q) {
+            int t = order[q];
+            order[q] = order[q - 1];
+            order[q - 1] = t;
+        }
+}
+
 /* Branch and bound over (x pair, y pair) inside the range, for unit normals n.
  * 1. Incumbent: the better (first on ties) of the per-channel least-squares pairs (the common
  *    anchors) and the full-span 6-value pairs (0, 255) whose entries -1 and +1 reach the rim, both
@@ -1015,12 +1027,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             pixel_err[p] = best_pixel(pal[px], pal[py], n[p], &i, &j);
             order[p] = p;
         }
-        for (int p = 1; p < 16; ++p)
-            for (int q = p; q > 0 && pixel_err[order[q - 1]] < pixel_err[order[q]]; --q) {
-                int t = order[q];
-                order[q] = order[q - 1];
-                order[q - 1] = t;
-            }
+        order_worst_first(pixel_err, order);
         double away_off[16]; /* theta0^2 of the pixels pointing away, in visiting order */
         for (int k = 0; k < 16; ++k)
             away_off[k] = aw.off[order[k]];
@@ -1353,12 +1360,7 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
         int order[16];
         for (int p = 0; p < 16; ++p)
             order[p] = p;
-        for (int p = 1; p < 16; ++p)
-            for (int q = p; q > 0 && pixel_err[order[q - 1]] < pixel_err[order[q]]; --q) {
-                int t = order[q];
-                order[q] = order[q - 1];
-                order[q - 1] = t;
-            }
+        order_worst_first(pixel_err, order);
         memset(w->ready, 0, (size_t)ny); /* y sides are computed when first needed */
         away_info aw; /* no pixel points away here (every nz > 0): no away terms */
         away_info_init(&aw, n, 0u);
