@@ -1,7 +1,7 @@
 set key noenhanced  # exp_plot: titles are plain names
 set datafile columnheaders  # exp_plot: each CSV block starts with a header line
 set datafile separator comma
-set xlabel 'ns per pixel (median)'
+set xlabel 'core-ns per pixel (median, one thread)'
 set ylabel 'RMS error on edge pixels'
 set grid
 set key outside right top
