@@ -29,29 +29,21 @@ enum { PROBES = 127 }; /* s = 3, 5, ..., 255 (the appendix's nStep = 1.5, 2.5, .
  * errors): the minimum value by a vectorized reduction (exact in any order: the errors are finite
  * and non-negative), then the first probe holding it. The same index as the scan
  * `if (err[k] < err[best]) best = k`, without its load-compare chain through `best`. */
-static inline int first_min_double(const double *err)
-{
-    double m = err[0];
-    SOL_SIMD_MIN_M
-    for (int k = 1; k < PROBES; ++k)
-        m = err[k] < m ? err[k] : m;
-    int best = 0;
-    while (best < PROBES - 1 && err[best] != m) /* bounded: no NaN reaches here, but never overrun */
-        ++best;
-    return best;
-}
-
-static inline int first_min_float(const float *err)
-{
-    float m = err[0];
-    SOL_SIMD_MIN_M
-    for (int k = 1; k < PROBES; ++k)
-        m = err[k] < m ? err[k] : m;
-    int best = 0;
-    while (best < PROBES - 1 && err[best] != m) /* bounded: no NaN reaches here, but never overrun */
-        ++best;
-    return best;
-}
+#define SOL_DEFINE_FIRST_MIN(name, type)                                                           \
+    static inline int name(const type *err)                                                        \
+    {                                                                                              \
+        type m = err[0];                                                                           \
+        SOL_SIMD_MIN_M                                                                             \
+        for (int k = 1; k < PROBES; ++k)                                                           \
+            m = err[k] < m ? err[k] : m;                                                           \
+        int best = 0;                                                                              \
+        while (best < PROBES - 1 && err[best] != m) /* no NaN reaches here, but never overrun */ \
+            ++best;                                                                                \
+        return best;                                                                               \
+    }
+/* one body for the double and float searches */
+SOL_DEFINE_FIRST_MIN(first_min_double, double)
+SOL_DEFINE_FIRST_MIN(first_min_float, float)
 
 /* Appendix A's FindMinimumQuantizationError in double precision. Probes sit at t = s / 255 for
  * odd s = 3..255 (the appendix's nStep = 1.5 .. 127.5 over 127.5): exactly the levels where the
