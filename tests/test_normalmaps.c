@@ -225,6 +225,79 @@ Test(normalmaps, bc4_common_ties_go_to_the_least_pair_on_map_blocks)
         }
 }
 
+/* Brute force for a flat block (16 equal targets t): every pair's 16 terms are the same m = min_k
+ * (pal_k - t)^2, added in order as the literal brute force adds them; least score, then least pair. */
+static int bc4_brute_flat(double t, sol_bc4_precision precision, double *score)
+{
+    const double(*pal)[8] = sol_nm_palettes(precision);
+    double best = INFINITY;
+    int best_pair = -1;
+    for (int pair = 0; pair < 65536; ++pair) {
+        double m = INFINITY, s = 0.0;
+        for (int i = 0; i < 8; ++i)
+            m = fmin(m, (pal[pair][i] - t) * (pal[pair][i] - t));
+        for (int k = 0; k < 16; ++k)
+            s += m;
+        if (s < best) {
+            best = s;
+            best_pair = pair;
+        }
+    }
+    *score = best;
+    return best_pair;
+}
+
+/* Flat blocks, decided by bc4_common.c's walk over the entry values: on every anchor code c, for
+ * every precision, the score is 0 and the pair is the least one holding A(c) = 2 c / 255 - 1: (0, c)
+ * (a 6-value pair; no smaller pair (0, e1 < c) holds it: its entries -1, A(e1) and the interpolants
+ * between them are all below A(c), and its fixed +1 is A(c) only for c = 255), except c = 255, whose
+ * +1 the least pair (0, 0) already holds. Also just off each code (an 8-bit source's renormalised
+ * value, a hair nearer 0) and halfway between codes, against the brute force. */
+Test(normalmaps, bc4_common_flat_blocks_on_every_code_equal_brute_force, .timeout = 120)
+{
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec)
+        for (int c = 0; c < 256; ++c) {
+            double t[16], a = 2.0 * c / 255.0 - 1.0, s, s_ref;
+            for (int p = 0; p < 16; ++p)
+                t[p] = a;
+            int pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s);
+            cr_assert(pair == (c == 255 ? 0 : c) && s == 0.0, "code %d, precision %d: pair %04x, score %g", c, prec,
+                      pair, s);
+            const double shifted[2] = {a * (1.0 - 3e-6), c < 255 ? a + 1.0 / 255.0 : a - 1.0 / 255.0};
+            for (int v = 0; v < 2; ++v) {
+                for (int p = 0; p < 16; ++p)
+                    t[p] = shifted[v];
+                pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s);
+                int ref = bc4_brute_flat(shifted[v], (sol_bc4_precision)prec, &s_ref);
+                cr_assert(pair == ref && s == s_ref, "code %d (%d), precision %d: pair %04x vs brute force %04x", c, v,
+                          prec, pair, ref);
+            }
+        }
+}
+
+/* Blocks of two to six distinct values near the codes (what 8-bit sources give: a code renormalised
+ * by slightly different lengths, neighbouring codes), every value held by several pixels: the walk
+ * over the entry values (or the box search after it) returns the brute force's pair and score. */
+Test(normalmaps, bc4_common_few_valued_blocks_equal_brute_force, .timeout = 120)
+{
+    for (int trial = 0; trial < 36; ++trial) {
+        int nv = 2 + trial % 5, c = (int)(256.0 * uniform());
+        double vals[6], t[16];
+        for (int i = 0; i < nv; ++i) {
+            int code = c + (trial % 3 == 2 ? (int)(4.0 * uniform()) - 2 : 0);
+            code = code < 0 ? 0 : code > 255 ? 255 : code;
+            vals[i] = (2.0 * code / 255.0 - 1.0) / (1.0 + 1e-5 * (int)(8.0 * uniform()));
+        }
+        for (int p = 0; p < 16; ++p)
+            t[p] = vals[trial % 2 ? p % nv : (p * nv) / 16];
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        double s, s_ref;
+        int pair = sol_nm_bc4_common(t, prec, &s), ref = bc4_brute_pair(t, prec, &s_ref);
+        cr_assert(pair == ref && s == s_ref, "trial %d (precision %d): pair %04x vs brute force %04x, %.17g vs %.17g",
+                  trial, prec, pair, ref, s, s_ref);
+    }
+}
+
 /* The common BC5 encoder is the per-channel exact search of x and y, indices by nearest value. */
 Test(normalmaps, common_encoder_is_two_exact_channel_searches)
 {
