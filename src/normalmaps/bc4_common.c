@@ -75,6 +75,7 @@ typedef struct common_ctx {
     double dp[9][16];
     double q[9], q_slack;
     int q_rows;
+    double gcost[16][16]; /* group_cost(i, j) for i >= 1, tabulated with row 2 */
 } common_ctx;
 
 /* Sum of squares of sorted[i..j] about their mean. */
@@ -96,7 +97,9 @@ static double quantisation_bound(common_ctx *c, int m)
                 b = group_cost(c, 0, j);
             else
                 for (int i = r - 1; i <= j; ++i) {
-                    double v = c->dp[r - 1][i - 1] + group_cost(c, i, j);
+                    if (r == 2)
+                        c->gcost[i][j] = group_cost(c, i, j);
+                    double v = c->dp[r - 1][i - 1] + c->gcost[i][j];
                     b = v < b ? v : b;
                 }
             c->dp[r][j] = r - 1 > j ? 0.0 : b;
@@ -509,6 +512,30 @@ static void descend(common_ctx *c, int six, int l, int h)
     }
 }
 
+/* Incumbent seeds: the usual fast encoder's two candidates (bc4_fast.c: anchors at the block's
+ * extreme codes, 8-value (max, min), 6-value (min, max) of the codes the fixed entries do not serve),
+ * both scored exactly at this precision (the fast encoder keeps one by its 8-bit error and computes
+ * indices this search does not need). */
+static void extreme_seeds(common_ctx *c)
+{
+    int lo = 255, hi = 0, lo6 = 255, hi6 = 0;
+    for (int p = 0; p < 16; ++p) {
+        double v = (c->t[p] + 1.0) * 127.5;
+        int k = v <= 0.0 ? 0 : (v >= 255.0 ? 255 : (int)lrint(v));
+        lo = k < lo ? k : lo;
+        hi = k > hi ? k : hi;
+        if (k != 0 && k != 255) {
+            lo6 = k < lo6 ? k : lo6;
+            hi6 = k > hi6 ? k : hi6;
+        }
+    }
+    if (lo6 > hi6)
+        lo6 = hi6 = lo;
+    if (hi > lo)
+        try_pair(c, hi << 8 | lo);
+    try_pair(c, lo6 << 8 | hi6);
+}
+
 /* Incumbent seeds for narrow blocks: per mode, palettes of small span S (codes) whose lattice is
  * centred on the targets' range (the fast encoder's pair has span 0 there, and its refit fails). */
 static void narrow_seeds(common_ctx *c)
@@ -672,13 +699,13 @@ static int narrow_walk(common_ctx *c, const sol_nm_entry_index *ix, const walk_p
 
 int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score)
 {
-    sol_nm_channel ch; /* for the reference pixel order */
-    sol_nm_channel_init(&ch, t, precision, 0, 0, 0, 255, 0, 255);
+    int order[16];
+    sol_nm_reference_order(t, order);
     common_ctx c;
     c.t = t;
     for (int k = 0; k < 16; ++k)
-        c.to[k] = t[ch.order[k]];
-    c.pal = ch.palettes;
+        c.to[k] = t[order[k]];
+    c.pal = sol_nm_palettes(precision);
     for (int p = 0; p < 16; ++p) { /* insertion sort */
         int q = p;
         for (; q > 0 && c.sorted[q - 1] > t[p]; --q)
@@ -721,16 +748,18 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
             walk_pair = c.best_pair;
         }
     }
-    sol_bc4_block fast;
-    sol_nm_bc4_fast(t, &fast);
-    c.best_pair = fast.e0 << 8 | fast.e1;
-    c.best = exact_score(&c, c.best_pair, INFINITY);
+    c.best = INFINITY;
+    c.best_pair = 65536;
+    extreme_seeds(&c);
+    {
+        int e0 = c.best_pair >> 8, e1 = c.best_pair & 255;
+        if (e0 > e1)
+            refine(&c, 0, e1, e0);
+        else
+            refine(&c, 1, e0, e1);
+    }
     if (walk_pair >= 0 && walk_pair < 65536)
         try_pair(&c, walk_pair);
-    if (fast.e0 > fast.e1)
-        refine(&c, 0, fast.e1, fast.e0);
-    else
-        refine(&c, 1, fast.e0, fast.e1);
     narrow_seeds(&c);
     {
         int e0 = c.best_pair >> 8, e1 = c.best_pair & 255, six = e0 <= e1;

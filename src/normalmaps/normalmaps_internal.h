@@ -35,6 +35,9 @@ typedef struct sol_nm_channel {
 
 void sol_nm_channel_init(sol_nm_channel *ch, const double t[16], sol_bc4_precision precision, int use_max,
                          unsigned loose, uint8_t e0_lo, uint8_t e0_hi, uint8_t e1_lo, uint8_t e1_hi);
+/* The reference pixel order of sol_nm_channel_init (ch->order): smallest, largest, then by decreasing
+ * |t - mean| (ties: lower pixel first). */
+void sol_nm_reference_order(const double t[16], int order[16]);
 /* The loose distance^2 of t to palette pal alone (the unweighted loose term above). */
 double sol_nm_loose_term(const double pal[8], double t);
 /* Gives loose pixel p the term offset + weight * (loose distance)^2 (weight, offset >= 0). */
