@@ -35,8 +35,8 @@
  * listed directly per low anchor and weight as intervals of the high anchor (one_entry_scan) - the
  * interval bound cannot see this until its boxes are single pairs (blocks of an 8-bit source hold
  * two or three values, and hundreds of pairs put one entry on the same 16-bit value).
- * Search: the incumbent is the best of the fast encoder's pair (sol_nm_bc4_fast) refined by a
- * least-squares refit of its anchors (refine) and, for blocks narrower than a few codes, palettes of
+ * Search: the incumbent is the best of the fast encoder's two candidate pairs (extreme_seeds) refined
+ * by a least-squares refit of its anchors (refine) and, for blocks narrower than a few codes, palettes of
  * span 1-4 codes centred on the targets (narrow_seeds: the fast pair has span 0 there, and the refit
  * of a span-0 palette is singular), improved by steps to the best neighbouring pair (descend), all
  * scored exactly. On a smooth 16-bit map (blocks 0.2 codes wide) this is the optimum, and the
@@ -44,7 +44,8 @@
  * the child of smaller bound visited first; a box is dropped when LB > best, or when LB >= best
  * and its smallest pair index is above the incumbent's (no pair inside can win the tie rule).
  * Boxes of at most SMALL_BOX pairs are scored pair by pair with the reference order and early
- * exit. Flat blocks (16 equal targets) list their few candidate pairs directly (flat_search). The bounds are lowered by a relative 1e-9 and delta is raised by 1e-12, far above the
+ * exit. Blocks of few distinct values (flat blocks, 8-bit sources) are searched by a walk over the
+ * palette entry values instead (narrow_walk, below), which decides tied anchors by a rule. The bounds are lowered by a relative 1e-9 and delta is raised by 1e-12, far above the
  * rounding of these sums, so no bound exceeds the computed score of a pair it covers: the result is
  * the exhaustive search's, pair for pair (tests compare with the literal brute force). */
 #include "normalmaps_internal.h"
@@ -690,7 +691,7 @@ static int narrow_walk(common_ctx *c, const sol_nm_entry_index *ix, const walk_p
 /* ... and the most pairs it may list (measured on the benchmark maps: about what the box search
  * costs); flat blocks walk before any incumbent is known, up to FLAT_MAX_WORK pairs. */
 #ifndef WALK_MAX_WORK
-#define WALK_MAX_WORK 2048
+#define WALK_MAX_WORK 1024
 #endif
 #define FLAT_MAX_WORK 4096
 #ifndef WALK_FIRST_VALUES
