@@ -75,6 +75,10 @@ int sol_nm_nearest_index(const double pal[8], double t);
 /* The fast BC4 encoder (bc4_fast.c) on targets in decoded units [-1, 1]. */
 void sol_nm_bc4_fast(const double t[16], sol_bc4_block *out);
 
+/* Nonzero: the BC5 searches use their scalar forms even where the AVX2 forms could run (bc5.c; the
+ * results are bit-identical either way, the tests compare them). Zero (the default) otherwise. */
+extern int sol_nm_simd_disable;
+
 /* Validates and normalises 16 source normals. */
 sol_status sol_nm_unit_normals(const double in[16][3], double out[16][3]);
 
