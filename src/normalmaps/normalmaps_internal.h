@@ -49,6 +49,14 @@ size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pa
  * score as sol_nm_channel_argmin on the full range with use_max = 0 and no loose pixels (least
  * score, then least e0 << 8 | e1), by branch and bound over boxes of anchor codes. */
 int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score);
+/* Lower bounds (bc4_span_bound.c), for SOL_NM_SPAN_LANES steps at once, of sum_p min_j (e_j - t_p)^2
+ * over every palette whose lattice entries e_j lie within delta of a lattice phi + step Z (any
+ * phase phi; the ends and fixed entries ignored): the least circular sum of squares of the targets
+ * modulo step, less the rounding. sorted: the 16 targets in ascending order; out[k] = 0 when
+ * step[k] <= 0. */
+#define SOL_NM_SPAN_LANES 4
+void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_LANES], double delta,
+                        double out[SOL_NM_SPAN_LANES]);
 /* The BC4 encoders' input check and mapping: UNORM values in [0, 1] to targets t = 2 v - 1 in the
  * decoded units; SOL_ERR_NONFINITE or SOL_ERR_OUT_OF_RANGE (t partly written) otherwise. */
 sol_status sol_nm_bc4_targets(const double values[16], double t[16]);
