@@ -35,6 +35,9 @@
  * listed directly per low anchor and weight as intervals of the high anchor (one_entry_scan) - the
  * interval bound cannot see this until its boxes are single pairs (blocks of an 8-bit source hold
  * two or three values, and hundreds of pairs put one entry on the same 16-bit value).
+ * Wide blocks (at least WIDE_CODES codes) are searched by span instead (span_search: every pair of a
+ * span shares one lattice step, so its score is bounded by the targets' fit to that lattice at any
+ * phase, bc4_span_bound.c), from the extremes' codes refitted (wide_seeds).
  * Search: the incumbent is the best of the fast encoder's pair (sol_nm_bc4_fast) refined by a
  * least-squares refit of its anchors (refine) and, for blocks narrower than a few codes, palettes of
  * span 1-4 codes centred on the targets (narrow_seeds: the fast pair has span 0 there, and the refit
@@ -72,31 +75,35 @@ typedef struct common_ctx {
     /* quantisation bound: q[m] = least sum of squares of the targets to m free points (m = 1..8),
      * rows of the dynamic programme computed on demand (q_rows of them so far) */
     double sorted[16], prefix[17], prefix2[17];
-    double dp[9][16];
+    double dp[9][16], cost[16][16]; /* cost[j][i]: group sorted[i..j] */
     double q[9], q_slack;
     int q_rows;
 } common_ctx;
 
-/* Sum of squares of sorted[i..j] about their mean. */
-static inline double group_cost(const common_ctx *c, int i, int j)
-{
-    double n = j - i + 1, s = c->prefix[j + 1] - c->prefix[i], s2 = c->prefix2[j + 1] - c->prefix2[i];
-    double v = s2 - s * s / n;
-    return v > 0.0 ? v : 0.0;
-}
-
-/* q[m]: 1-D optimal m-point quantisation of the 16 targets (contiguous groups of the sorted values). */
+/* q[m]: 1-D optimal m-point quantisation of the 16 targets (contiguous groups of the sorted values):
+ * the group costs (sums of squares of sorted[i..j] about their mean) once, then the rows of the
+ * dynamic programme on demand. */
 static double quantisation_bound(common_ctx *c, int m)
 {
+    static const double inv_n[17] = {0.0,       1.0,        1.0 / 2,  1.0 / 3,  1.0 / 4,  1.0 / 5,
+                                     1.0 / 6,   1.0 / 7,    1.0 / 8,  1.0 / 9,  1.0 / 10, 1.0 / 11,
+                                     1.0 / 12,  1.0 / 13,   1.0 / 14, 1.0 / 15, 1.0 / 16};
+    if (c->q_rows == 0)
+        for (int j = 0; j < 16; ++j)
+            for (int i = 0; i <= j; ++i) {
+                double s = c->prefix[j + 1] - c->prefix[i], s2 = c->prefix2[j + 1] - c->prefix2[i];
+                double v = s2 - s * s * inv_n[j - i + 1];
+                c->cost[j][i] = v > 0.0 ? v : 0.0;
+            }
     while (c->q_rows < m) {
         int r = ++c->q_rows;
         for (int j = 0; j < 16; ++j) {
             double b = INFINITY;
             if (r == 1)
-                b = group_cost(c, 0, j);
+                b = c->cost[j][0];
             else
                 for (int i = r - 1; i <= j; ++i) {
-                    double v = c->dp[r - 1][i - 1] + group_cost(c, i, j);
+                    double v = c->dp[r - 1][i - 1] + c->cost[j][i];
                     b = v < b ? v : b;
                 }
             c->dp[r][j] = r - 1 > j ? 0.0 : b;
@@ -665,20 +672,67 @@ static int flat_search(common_ctx *c)
     return 1;
 }
 
+/* Incumbent seeds for wide blocks: the anchors at the extremes' codes in either mode (the fast
+ * encoder's two candidates, scored exactly rather than by their indices against 8-bit palettes),
+ * then the refit of the better. Only an incumbent: the result does not depend on it. */
+static void wide_seeds(common_ctx *c)
+{
+    int lo = code_floor(c->tmin + 1.0 / 255.0), hi = code_floor(c->tmax + 1.0 / 255.0); /* nearest codes */
+    lo = lo < 0 ? 0 : lo;
+    hi = hi < lo + 1 ? lo + 1 : hi;
+    c->best = INFINITY;
+    c->best_pair = 0;
+    try_pair(c, make_pair(0, lo, hi));
+    try_pair(c, make_pair(1, lo, hi));
+    int six = (c->best_pair >> 8) <= (c->best_pair & 255);
+    refine(c, six, lo, hi);
+}
+
 /* Blocks at least this many codes wide use span_search (see there; measured on the benchmark maps). */
 #ifndef WIDE_CODES
 #define WIDE_CODES 3.0
 #endif
 
+/* The reference pixel order of sol_nm_channel_init (anchor_bounds.c; the brute force adds the terms
+ * in it): the first smallest target, the first largest, then the others by decreasing distance from
+ * their mean (summed in index order), the first index on ties - a stable sort, without the rest of
+ * the channel set-up the search does not use. */
+static void reference_order(const double t[16], int order[16])
+{
+    double mean = 0.0, key[16];
+    for (int p = 0; p < 16; ++p)
+        mean += t[p];
+    mean /= 16.0;
+    int lo = 0, hi = 0;
+    for (int p = 1; p < 16; ++p) {
+        lo = t[p] < t[lo] ? p : lo;
+        hi = t[p] > t[hi] ? p : hi;
+    }
+    int n = 0;
+    order[n++] = lo;
+    if (hi != lo)
+        order[n++] = hi;
+    const int first = n;
+    for (int p = 0; p < 16; ++p) {
+        key[p] = fabs(t[p] - mean);
+        if (p == lo || p == hi)
+            continue;
+        int q = n++;
+        for (; q > first && key[order[q - 1]] < key[p]; --q)
+            order[q] = order[q - 1];
+        order[q] = p;
+    }
+}
+
 int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score)
 {
-    sol_nm_channel ch; /* for the reference pixel order */
-    sol_nm_channel_init(&ch, t, precision, 0, 0, 0, 255, 0, 255);
+    int order[16];
+    reference_order(t, order);
     common_ctx c;
     c.t = t;
     for (int k = 0; k < 16; ++k)
-        c.to[k] = t[ch.order[k]];
-    c.pal = ch.palettes;
+        c.to[k] = t[order[k]];
+    c.pal = sol_nm_palettes(precision);
     for (int p = 0; p < 16; ++p) { /* insertion sort */
         int q = p;
         for (; q > 0 && c.sorted[q - 1] > t[p]; --q)
@@ -705,15 +759,20 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     c.q_rows = 0;
     c.delta = (precision == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : precision == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) +
               1e-12;
-    sol_bc4_block fast;
-    sol_nm_bc4_fast(t, &fast);
-    c.best_pair = fast.e0 << 8 | fast.e1;
-    c.best = exact_score(&c, c.best_pair, INFINITY);
-    if (fast.e0 > fast.e1)
-        refine(&c, 0, fast.e1, fast.e0);
-    else
-        refine(&c, 1, fast.e0, fast.e1);
-    narrow_seeds(&c);
+    const int wide = (c.tmax - c.tmin) * 127.5 >= WIDE_CODES;
+    if (wide) {
+        wide_seeds(&c);
+    } else {
+        sol_bc4_block fast;
+        sol_nm_bc4_fast(t, &fast);
+        c.best_pair = fast.e0 << 8 | fast.e1;
+        c.best = exact_score(&c, c.best_pair, INFINITY);
+        if (fast.e0 > fast.e1)
+            refine(&c, 0, fast.e1, fast.e0);
+        else
+            refine(&c, 1, fast.e0, fast.e1);
+        narrow_seeds(&c);
+    }
     {
         int e0 = c.best_pair >> 8, e1 = c.best_pair & 255, six = e0 <= e1;
         descend(&c, six, six ? e0 : e1, six ? e1 : e0);
@@ -722,7 +781,7 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     for (int p = 1; p < 16; ++p)
         flat &= c.sorted[p] == c.sorted[0];
     if (!flat || !flat_search(&c)) {
-        if ((c.tmax - c.tmin) * 127.5 >= WIDE_CODES) {
+        if (wide) {
             span_search(&c, 0);
             span_search(&c, 1);
         } else {
