@@ -225,6 +225,64 @@ Test(normalmaps, bc4_common_ties_go_to_the_least_pair_on_map_blocks)
         }
 }
 
+/* bc4_span_bound.c's lattice bound is below the score of every pair of its span, taken over the
+ * lattice entries only (8-value: all eight; 6-value: the six without the fixed -1, +1), for random
+ * blocks narrow to full-range, on and off the code grid, the three decoder precisions, and spans
+ * 0-255 (a lane of step 0 gives 0). The search built on it is compared with the brute force above. */
+Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
+{
+    for (int trial = 0; trial < 24; ++trial) {
+        double t[16], sorted[16];
+        double c = 2.0 * uniform() - 1.0, w = trial % 4 == 0 ? 0.05 : trial % 4 == 1 ? 0.3 : trial % 4 == 2 ? 0.8 : 2.0;
+        for (int p = 0; p < 16; ++p) {
+            double v = c + w * (uniform() - 0.5);
+            if (trial % 3 == 2)
+                v = round((v + 1.0) * 127.5) / 127.5 - 1.0; /* on the code grid */
+            t[p] = sorted[p] = fmin(1.0, fmax(-1.0, v));
+        }
+        for (int p = 1; p < 16; ++p)
+            for (int q = p; q > 0 && sorted[q - 1] > sorted[q]; --q) {
+                double x = sorted[q];
+                sorted[q] = sorted[q - 1];
+                sorted[q - 1] = x;
+            }
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        double delta = (prec == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : prec == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) +
+                       1e-12;
+        for (int six = 0; six < 2; ++six) {
+            int den = six ? 5 : 7, entries = six ? 6 : 8;
+            for (int d0 = 0; d0 < 256; d0 += SOL_NM_SPAN_LANES) {
+                double step[SOL_NM_SPAN_LANES], lb[SOL_NM_SPAN_LANES];
+                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k)
+                    step[k] = (2.0 * (d0 + k) / 255.0) / den;
+                sol_nm_span_bounds(sorted, step, delta, lb);
+                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k) {
+                    int d = d0 + k;
+                    if (d == 0)
+                        cr_assert(lb[k] == 0.0, "span 0: %g", lb[k]);
+                    if (!six && d == 0)
+                        continue;
+                    double least = INFINITY;
+                    for (int l = 0; l + d < 256; ++l) {
+                        const double *e = pal[six ? (l << 8 | (l + d)) : ((l + d) << 8 | l)];
+                        double s = 0.0;
+                        for (int p = 0; p < 16; ++p) {
+                            double m = INFINITY;
+                            for (int i = 0; i < entries; ++i)
+                                m = fmin(m, (e[i] - t[p]) * (e[i] - t[p]));
+                            s += m;
+                        }
+                        least = fmin(least, s);
+                    }
+                    cr_assert(lb[k] <= least, "trial %d, mode %d, span %d: bound %.17g above the span's least score %.17g",
+                              trial, six, d, lb[k], least);
+                }
+            }
+        }
+    }
+}
+
 /* Brute force for a flat block (16 equal targets t): every pair's 16 terms are the same m = min_k
  * (pal_k - t)^2, added in order as the literal brute force adds them; least score, then least pair. */
 static int bc4_brute_flat(double t, sol_bc4_precision precision, double *score)

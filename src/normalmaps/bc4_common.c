@@ -35,6 +35,9 @@
  * listed directly per low anchor and weight as intervals of the high anchor (one_entry_scan) - the
  * interval bound cannot see this until its boxes are single pairs (blocks of an 8-bit source hold
  * two or three values, and hundreds of pairs put one entry on the same 16-bit value).
+ * Wide blocks (at least WIDE_CODES codes) are searched by span instead (span_search: every pair of a
+ * span shares one lattice step, so its score is bounded by the targets' fit to that lattice at any
+ * phase, bc4_span_bound.c).
  * Search: the incumbent is the best of the fast encoder's two candidate pairs (extreme_seeds) refined
  * by a least-squares refit of its anchors (refine) and, for blocks narrower than a few codes, palettes of
  * span 1-4 codes centred on the targets (narrow_seeds: the fast pair has span 0 there, and the refit
@@ -446,6 +449,83 @@ static void search_mode(common_ctx *c, int six)
     }
 }
 
+/* Span search: the same pairs as search_mode, by span. Every pair of span d = H - L is bounded by
+ * the larger of two lower bounds that hold whatever L is:
+ * - the lattice bound (sol_nm_span_bounds): the targets against an infinite lattice of the span's
+ *   step, any phase;
+ * - the ends bound: the entries lie in [A(L) - delta, A(H) + delta], an interval of width
+ *   D = A(d) + 1 + 2 delta, so of the disjoint pairs of sorted targets (t_i, t_15-i) at least
+ *   (t_15-i - t_i - D) is left outside, and the two terms sum to at least half its square.
+ * The spans of the region whose bound reaches the incumbent are visited least bound first; in each,
+ * the low anchors of the region are scored exactly (early exit) in ascending order, so ties go to the
+ * least pair as in the reference. Used for wide blocks, whose region is long in the span direction
+ * and whose few surviving spans hold a few pairs each (on the benchmark maps 5-10% of the region's
+ * pairs), where the boxes' per-target intervals, blind to the phase all entries share, had to be
+ * split to single pairs. The 6-value mode uses it only when the fixed entries -1, +1 are out of
+ * reach of every target (no pair scoring <= best uses them); otherwise the box search. */
+static double ends_bound(const common_ctx *c, double width)
+{
+    double s = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        double e = c->sorted[15 - i] - c->sorted[i] - width;
+        if (!(e > 0.0))
+            break; /* the pairs narrow inward */
+        s += 0.5 * e * e;
+    }
+    return s * (1.0 - 1e-9);
+}
+
+static void span_search(common_ctx *c, int six)
+{
+    region g;
+    if (!mode_region(c, six, &g))
+        return;
+    if (six) {
+        double r = sqrt(c->best) * (1.0 + 1e-9) + 1e-12;
+        if (c->tmin - r <= -1.0 || c->tmax + r >= 1.0) {
+            search_mode(c, six);
+            return;
+        }
+    }
+    const int den = six ? 5 : 7;
+    int d_lo = g.h_min - g.l_max, d_hi = g.span_max;
+    d_lo = d_lo > g.gap ? d_lo : g.gap;
+    int spans[256], n = 0, cand[256], nc = 0;
+    double lb[256], ends[256];
+    for (int d = d_lo; d <= d_hi; ++d) { /* the ends bound first (cheap), then the lattice bound */
+        double e = ends_bound(c, anchor(d) + 1.0 + 2.0 * c->delta + 1e-12);
+        if (e <= c->best) {
+            ends[nc] = e;
+            cand[nc++] = d;
+        }
+    }
+    for (int i = 0; i < nc; i += SOL_NM_SPAN_LANES) {
+        double step[SOL_NM_SPAN_LANES], lat[SOL_NM_SPAN_LANES];
+        for (int k = 0; k < SOL_NM_SPAN_LANES; ++k)
+            step[k] = i + k < nc ? (anchor(cand[i + k]) + 1.0) / den : 0.0;
+        sol_nm_span_bounds(c->sorted, step, c->delta, lat);
+        for (int k = 0; k < SOL_NM_SPAN_LANES && i + k < nc; ++k) {
+            double l = lat[k] > ends[i + k] ? lat[k] : ends[i + k];
+            if (l > c->best)
+                continue;
+            int q = n++; /* insertion by bound, then span */
+            for (; q > 0 && lb[q - 1] > l; --q) {
+                lb[q] = lb[q - 1];
+                spans[q] = spans[q - 1];
+            }
+            lb[q] = l;
+            spans[q] = cand[i + k];
+        }
+    }
+    for (int i = 0; i < n && lb[i] <= c->best; ++i) {
+        int d = spans[i], l1 = g.h_min - d, l2 = 255 - d;
+        l1 = l1 > 0 ? l1 : 0;
+        l2 = l2 < g.l_max ? l2 : g.l_max;
+        for (int l = l1; l <= l2; ++l)
+            try_pair(c, make_pair(six, l, l + d));
+    }
+}
+
 /* Scores the pair (L = a, H = b) of a mode if it is a valid pair of that mode; when it becomes the
  * incumbent, (*nl, *nh) move to it (the incumbent searches below walk this way). */
 static void try_move(common_ctx *c, int six, int a, int b, int *nl, int *nh)
@@ -698,6 +778,11 @@ static int narrow_walk(common_ctx *c, const sol_nm_entry_index *ix, const walk_p
 #define WALK_FIRST_VALUES 4
 #endif
 
+/* Blocks at least this many codes wide use span_search (see there; measured on the benchmark maps). */
+#ifndef WIDE_CODES
+#define WIDE_CODES 3.0
+#endif
+
 int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score)
 {
     int order[16];
@@ -781,8 +866,13 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
             return c.best_pair;
         }
     }
-    search_mode(&c, 0);
-    search_mode(&c, 1);
+    if ((c.tmax - c.tmin) * 127.5 >= WIDE_CODES) {
+        span_search(&c, 0);
+        span_search(&c, 1);
+    } else {
+        search_mode(&c, 0);
+        search_mode(&c, 1);
+    }
     *score = c.best;
     return c.best_pair;
 }

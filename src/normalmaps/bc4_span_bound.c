@@ -1,0 +1,92 @@
+/* bc4_span_bound.c - a lower bound of the BC4 least-squares score of every pair of one span, for the
+ * exact common search on wide blocks (bc4_common.c's span_search).
+ *
+ * For a mode and a span d = H - L (codes), the lattice entries of the palette are
+ *     e_j = A(L) + j s,  s = (A(H) - A(L)) / den = 2 d / (255 den),  j = 0..den,
+ * each rounded by the decoder by at most delta (the rounding is the same for every L - the decoder
+ * interpolates integers and 257 L or L is an integer - but the bound does not need that). So every
+ * pair of span d, whatever its L, has its lattice entries on the infinite lattice phi + s Z for some
+ * phase phi, and the term of target t is at least (c(t - phi) - delta)_+^2 with c the distance to
+ * the nearest multiple of s (circular distance modulo s). Hence, for every pair of span d,
+ *     S >= sum_p (c_p - delta)_+^2 >= B - 2 delta sum_p c_p >= B - 8 delta sqrt(B)   (Cauchy-Schwarz)
+ * with B = min over phi of sum_p c(t_p - phi)^2: the least circular sum of squares of the 16 phases
+ * u_p = t_p mod s. Sorted, the optimal phi splits the circle at phi + s/2, so B is the least, over
+ * the 16 cut points, of the sum of squares about the mean of the unwrapped sequence (u_c, ..,
+ * u_15, u_0 + s, .., u_{c-1} + s), each from running sums in O(1).
+ * The bound ignores that a palette holds only den + 1 lattice entries (the ends) and the 6-value
+ * mode's fixed entries -1 and +1: the caller handles those (the ends by a separate bound, the fixed
+ * entries by using the bound only when they are out of every useful target's reach).
+ * Why it pays: on wide blocks (rough terrain, ridges) the targets fit a lattice of few spans only -
+ * measured on the benchmark maps, 4-9 of the 50-60 spans the region allows survive, against the
+ * optimum's score. */
+#include "normalmaps_internal.h"
+
+#include <math.h>
+
+/* Compiled for AVX2 as well and picked at run time (as bc4_common.c's hot functions): the four
+ * spans are independent lanes, the same operations in either build. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define SPAN_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define SPAN_CLONES
+#endif
+
+/* Batcher's odd-even merge sort of 16 values: 63 compare-exchanges, branch-free, the same for every
+ * lane (checked on all 2^16 zero-one inputs, which is enough for a comparator network). */
+static const unsigned char network[63][2] = {
+    {0, 1},   {2, 3},   {0, 2},   {1, 3},   {1, 2},   {4, 5},   {6, 7},   {4, 6},   {5, 7},   {5, 6},   {0, 4},
+    {2, 6},   {2, 4},   {1, 5},   {3, 7},   {3, 5},   {1, 2},   {3, 4},   {5, 6},   {8, 9},   {10, 11}, {8, 10},
+    {9, 11},  {9, 10},  {12, 13}, {14, 15}, {12, 14}, {13, 15}, {13, 14}, {8, 12},  {10, 14}, {10, 12}, {9, 13},
+    {11, 15}, {11, 13}, {9, 10},  {11, 12}, {13, 14}, {0, 8},   {4, 12},  {4, 8},   {2, 10},  {6, 14},  {6, 10},
+    {2, 4},   {6, 8},   {10, 12}, {1, 9},   {5, 13},  {5, 9},   {3, 11},  {7, 15},  {7, 11},  {3, 5},   {7, 9},
+    {11, 13}, {1, 2},   {3, 4},   {5, 6},   {7, 8},   {9, 10},  {11, 12}, {13, 14}};
+
+typedef double v4d __attribute__((vector_size(4 * sizeof(double))));
+typedef long long v4l __attribute__((vector_size(4 * sizeof(long long))));
+
+/* mask ? a : b, lane by lane (a macro: a function passing 32-byte vectors warns about its ABI) */
+#define select4(mask, a, b) ((v4d)(((v4l)(a) & (mask)) | ((v4l)(b) & ~(mask))))
+
+SPAN_CLONES void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_LANES], double delta,
+                                    double out[SOL_NM_SPAN_LANES])
+{
+    const v4d zero = {0.0, 0.0, 0.0, 0.0}, one = zero + 1.0, magic = zero + 0x1.8p52;
+    v4d st = {step[0], step[1], step[2], step[3]};
+    const v4l has = st > zero;
+    st = select4(has, st, one); /* a lane without a step: any value, answered 0 below */
+    const v4d inv = one / st;
+    v4d u[16];
+    for (int p = 0; p < 16; ++p) {
+        /* any representative works (only t mod s matters): v - s round(v / s) (round to nearest by
+         * the 1.5 2^52 addition; v / s < 2^51), then one correction step each way keeps it in [0, s) */
+        const v4d v = zero + (sorted[p] - sorted[0]);
+        v4d m = (v * inv + magic) - magic, r = v - st * m;
+        r = select4(r < zero, r + st, r);
+        r = select4(r >= st, r - st, r);
+        u[p] = r;
+    }
+    for (int c = 0; c < 63; ++c) {
+        v4d x = u[network[c][0]], y = u[network[c][1]];
+        v4l lt = x < y;
+        u[network[c][0]] = select4(lt, x, y);
+        u[network[c][1]] = select4(lt, y, x);
+    }
+    v4d sum = zero, sum2 = zero;
+    for (int p = 0; p < 16; ++p) {
+        sum += u[p];
+        sum2 += u[p] * u[p];
+    }
+    v4d b = sum2 - sum * sum / 16.0;
+    for (int c = 0; c < 15; ++c) { /* cut after u_c: u_c moves up by one period */
+        sum += st;
+        sum2 += st * (2.0 * u[c] + st);
+        v4d var = sum2 - sum * sum / 16.0;
+        b = select4(var < b, var, b);
+    }
+    /* rounding of the running sums (values below 2 s, 16 of them, a few dozen operations) */
+    b -= 1e-13 * 64.0 * st * st;
+    for (int k = 0; k < 4; ++k) {
+        double v = b[k], lb = v > 0.0 ? v - 8.0 * delta * sqrt(v) : 0.0;
+        out[k] = has[k] && lb > 0.0 ? lb * (1.0 - 1e-9) : 0.0;
+    }
+}
