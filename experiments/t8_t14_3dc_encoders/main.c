@@ -713,7 +713,8 @@ static void t13_window_sweep(const exp_run *exp, t13_crops *c, double *at4, doub
                                  "window,common base: blocks at optimum %,error left %,core-ns per block,"
                                  "fast base: blocks at optimum %,error left %,core-ns per block");
     FILE *dat = exp_open(exp, "t13_window.dat");
-    fprintf(dat, "# window, blocks at optimum %%, error left %%, core-ns per block (common base), the same (fast base)\n");
+    fprintf(dat, "# window, blocks at optimum %%, error left %%, core-ns per block (common base), blocks at optimum %% (fast "
+                 "base), error left %% (fast base), core-ns per block (fast base)\n"); /* one name per column */
     const int windows[] = {-1, 1, 2, 3, 4, 6, 8, 12, 16};
     for (size_t w = 0; w < sizeof windows / sizeof windows[0]; ++w) {
         int at, atf;
@@ -887,6 +888,8 @@ static void t13(const exp_run *exp, const maps *m)
     const int cb = T13_BASE, ob = 1 - T13_BASE;
     uint64_t better, worse;
     t13_pixels_vs_fast(&c, ov.threshold[cb], (sol_bc5_base)cb, &better, &worse);
+    /* the usual encoder as shipped (libsquish, 8-bit input) on the same crops, timed as the fast one */
+    double squish_ns = encoder_ns_per_block(&c, E_SQUISH, 5);
     t13_crops_free(&c);
     double better_pct = better + worse ? 100.0 * (double)better / (double)(better + worse) : 0.0;
     double adaptive_ns = ov.ns[cb];
@@ -909,6 +912,8 @@ static void t13(const exp_run *exp, const maps *m)
     exp_number(exp, "T13-other-base-threshold-error-left-pct", "%.3f", ov.left[ob]);
     /* timings (keys end in -ns: a rerun may change them) */
     exp_number(exp, "T13-fast-ns", "%.0f", ov.fast_ns);
+    exp_number(exp, "T13-squish-ns", "%.0f", squish_ns);
+    exp_number(exp, "T13-fast-over-squish-timing", "%.2f", ov.fast_ns / squish_ns);
     exp_number(exp, "T13-common-ns", "%.0f", ov.common_ns);
     exp_number(exp, "T13-adaptive-ns", "%.0f", adaptive_ns);
     exp_number(exp, "T13-overhead-common-ns", "%.0f", adaptive_ns - ov.common_ns);
@@ -1062,6 +1067,15 @@ static int bench_wanted(const char *list, const char *name)
     return 0;
 }
 
+/* cell = t[a] / t[b] printed with fmt, or "-" if encoder a or b did not run. */
+static void bench_ratio(char cell[32], const int ran[], const double t[], int a, int b, const char *fmt)
+{
+    if (ran[a] && ran[b])
+        snprintf(cell, 32, fmt, t[a] / t[b]);
+    else
+        snprintf(cell, 32, "-");
+}
+
 static void bench_set(const exp_run *exp)
 {
     const int size = exp->quick ? 128 : 1024, threads = omp_get_max_threads();
@@ -1076,11 +1090,17 @@ static void bench_set(const exp_run *exp)
                                  "map,source bits,encoder,mean deg,max deg,wall time (s; 1 thread),CPU time (s),idle-cores time (s),"
                                  "threads,slowest block CPU time (s),bounded blocks,speed vs 3 h (x)");
     exp_table *ratios = exp_table_new("make bench: time ratios against the goals of issue 13",
-                                      "map,source bits,time: fast / libsquish,time: common / libsquish,time: adaptive / fast,"
+                                      "map,source bits,time: fast / libsquish,time per core: fast / libsquish,"
+                                      "time per core: fast / libsquish without its input conversion,"
+                                      "time: common / libsquish,time: adaptive / fast,"
                                       "time: adaptive / common,optimal idle-cores time (s; goal <= 60),time: optimal / nvtt highest,"
                                       "time: adaptive fast base / fast");
     /* T8_BENCH_MAPS / T8_BENCH_ENCODERS (comma lists of the names above, e.g. "terrain" and
-     * "optimal") restrict the run while developing; the ratios need every encoder */
+     * "optimal") restrict the run while developing; a ratio whose encoders did not run is "-".
+     * "time per core" compares CPU times (sol on one thread against the single-threaded peer), the
+     * other ratios the idle-cores times. A peer's time includes the conversion of the float map to
+     * the 8-bit RGBA it takes (to_rgba8, as sol's includes reading and normalising the floats); the
+     * "without" column subtracts that conversion's CPU time, measured alone. */
     const char *only_maps = getenv("T8_BENCH_MAPS"), *only_encs = getenv("T8_BENCH_ENCODERS");
     for (int k = 0; k < 4; ++k)
         for (int bits = 16; bits >= 8; bits -= 8) {
@@ -1088,20 +1108,20 @@ static void bench_set(const exp_run *exp)
                 continue;
             sol_image src;
             input_quantize(&maps_[k].exact, bits, &src);
-            double wall[N_BENCH_ENC], est[N_BENCH_ENC];
-            int all = 1;
+            double wall[N_BENCH_ENC], est[N_BENCH_ENC], cpu_s[N_BENCH_ENC];
+            int ran[N_BENCH_ENC] = {0};
             for (int j = 0; j < N_BENCH_ENC; ++j) {
                 const encoder *e = &ENCODERS[encs[j]];
-                if (!bench_wanted(only_encs, bench_names[j])) {
-                    all = 0;
+                if (!bench_wanted(only_encs, bench_names[j]))
                     continue;
-                }
+                ran[j] = 1;
                 uint8_t *blocks = alloc_blocks(&src);
                 sol_bc5_image_stats st;
                 double t0 = exp_now_ns(), cpu = encoder_cpu_s(e, &src, blocks, &st);
                 wall[j] = (exp_now_ns() - t0) * 1e-9;
                 /* the wall time on `threads` idle cores (sol's blocks are independent; peers: 1 core) */
                 est[j] = e->kind == ENC_SOL ? cpu / threads : cpu;
+                cpu_s[j] = cpu;
                 err_stats es = decoded_stats(&maps_[k].exact, blocks, SOL_BC4_INTERP_16BIT);
                 double slowest = encs[j] == E_OPTIMAL ? block_cpu_s(&src, st.max_block, &e->options) : 0.0;
                 char slow_cell[32] = "-", bounded_cell[32] = "-";
@@ -1120,10 +1140,27 @@ static void bench_set(const exp_run *exp)
                     fprintf(stderr, "bench:   slowest block %.4f s CPU, bounded blocks %llu\n", slowest,
                             (unsigned long long)st.bounded_blocks);
             }
-            if (all)
-                exp_table_row(ratios, "%s|%d|%.2f|%.1f|%.1f|%.2f|%.1f|%.2f|%.1f", maps_[k].name, bits, est[0] / est[4],
-                              est[1] / est[4], est[2] / est[0], est[2] / est[1], est[3], est[3] / est[5],
-                              est[6] / est[0]);
+            /* indices into encs: 0 fast, 1 common, 2 adaptive, 3 optimal, 4 libsquish, 5 nvtt, 6 adaptive-fast */
+            char c[9][32];
+            bench_ratio(c[0], ran, est, 0, 4, "%.2f");
+            bench_ratio(c[1], ran, cpu_s, 0, 4, "%.2f");
+            snprintf(c[2], sizeof c[2], "-");
+            if (ran[0] && ran[4]) {
+                double t0 = thread_cpu_s();
+                free(to_rgba8(&src));
+                double conv = thread_cpu_s() - t0;
+                snprintf(c[2], sizeof c[2], "%.2f", cpu_s[0] / (cpu_s[4] - conv));
+            }
+            bench_ratio(c[3], ran, est, 1, 4, "%.1f");
+            bench_ratio(c[4], ran, est, 2, 0, "%.1f");
+            bench_ratio(c[5], ran, est, 2, 1, "%.2f");
+            snprintf(c[6], sizeof c[6], "-");
+            if (ran[3])
+                snprintf(c[6], sizeof c[6], "%.1f", est[3]);
+            bench_ratio(c[7], ran, est, 3, 5, "%.2f");
+            bench_ratio(c[8], ran, est, 6, 0, "%.1f");
+            exp_table_row(ratios, "%s|%d|%s|%s|%s|%s|%s|%s|%s|%s|%s", maps_[k].name, bits, c[0], c[1], c[2], c[3], c[4],
+                          c[5], c[6], c[7], c[8]);
             sol_image_free(&src);
         }
     exp_table_write(t, exp, "bench_set");
