@@ -11,9 +11,9 @@
  * Speed: the two palettes are computed from the anchors (the 8-bit decoder's rounding, as
  * sol_nm_palettes builds its table) through a 256-entry table of decoded codes instead of read from
  * the 4 MB table (two rows of it per channel were two cache misses), and the nearest entry of every
- * value is taken by a branch-free scan over the 8 entries that the compiler vectorises over the 16
- * values. Same entries, same comparisons in the same order: the same blocks as the scalar scan
- * (sol_nm_nearest_index on the table's rows; pinned by a test). */
+ * value is taken by a branch-free scan over the 8 entries, 2 (SSE2) or 4 (AVX2, chosen at run time)
+ * values at a time. Same entries, same comparisons in the same order: the same blocks as the scalar
+ * scan (sol_nm_nearest_index on the table's rows; pinned by a test for every path). */
 #include "normalmaps_internal.h"
 
 #include <math.h>
@@ -147,6 +147,8 @@ __attribute__((target("avx2"))) static double squared_error_avx2(const double pa
 }
 #endif
 
+#endif /* __SSE2__ */
+
 /* The scan of `path` (sol_nm_bc4_fast_path), or the widest one the processor runs if it has not. */
 static double squared_error(const double pal[8], const double t[16], uint8_t index[16], int path)
 {
@@ -161,7 +163,6 @@ static double squared_error(const double pal[8], const double t[16], uint8_t ind
     (void)path;
     return squared_error_scalar(pal, t, index);
 }
-#endif
 
 /* Code of decoded value t: lrint((t + 1) 127.5) clamped to 0..255. The magic constant 1.5 2^52 makes
  * the addition round v to an integer exactly as lrint does (the current rounding mode, v in
