@@ -1063,6 +1063,160 @@ Test(normalmaps, hard_terrain_blocks_finish_exactly_within_the_work_bound)
     }
 }
 
+/* The fast BC4 encoder as first written: palettes read from the 4 MB table, nearest entries by the
+ * scalar scan, codes by lrint. sol_nm_bc4_fast must give the same blocks bit for bit. */
+static double reference_fast_error(const double pal[8], const double t[16], uint8_t index[16])
+{
+    double s = 0.0;
+    for (int p = 0; p < 16; ++p) {
+        int i = sol_nm_nearest_index(pal, t[p]);
+        index[p] = (uint8_t)i;
+        s += (pal[i] - t[p]) * (pal[i] - t[p]);
+    }
+    return s;
+}
+
+static void reference_fast(const double t[16], sol_bc4_block *out)
+{
+    int lo = 255, hi = 0, lo6 = 255, hi6 = 0;
+    for (int p = 0; p < 16; ++p) {
+        double v = (t[p] + 1.0) * 127.5;
+        int c = v <= 0.0 ? 0 : (v >= 255.0 ? 255 : (int)lrint(v));
+        lo = c < lo ? c : lo;
+        hi = c > hi ? c : hi;
+        if (c != 0 && c != 255) {
+            lo6 = c < lo6 ? c : lo6;
+            hi6 = c > hi6 ? c : hi6;
+        }
+    }
+    if (lo6 > hi6)
+        lo6 = hi6 = lo;
+    const double(*pal)[8] = sol_nm_palettes(SOL_BC4_INTERP_8BIT);
+    sol_bc4_block eight = {(uint8_t)hi, (uint8_t)lo, {0}}, six = {(uint8_t)lo6, (uint8_t)hi6, {0}};
+    double e6 = reference_fast_error(pal[six.e0 << 8 | six.e1], t, six.index);
+    if (hi > lo && reference_fast_error(pal[eight.e0 << 8 | eight.e1], t, eight.index) <= e6)
+        *out = eight;
+    else
+        *out = six;
+}
+
+static void assert_fast_matches_reference(const double t[16], const char *what, int a, int b)
+{
+    sol_bc4_block got, want;
+    reference_fast(t, &want);
+    for (int path = 0; path <= 3; ++path) { /* the dispatched scan, scalar, SSE2, AVX2 */
+        sol_nm_bc4_fast_path(t, path, &got);
+        cr_assert(got.e0 == want.e0 && got.e1 == want.e1 && !memcmp(got.index, want.index, 16),
+                  "%s (%d, %d), path %d: got %d %d, want %d %d", what, a, b, path, got.e0, got.e1, want.e0, want.e1);
+    }
+    sol_nm_bc4_fast(t, &got);
+    cr_assert(got.e0 == want.e0 && got.e1 == want.e1 && !memcmp(got.index, want.index, 16));
+}
+
+/* Every anchor pair, with values on the palette's entries, on the exact midpoints between entries
+ * (ties: the first index wins), on the half codes where the anchors' rounding flips, at 0 and 255
+ * (6-value mode) and in between: the computed palettes and the vectorised scan change nothing. */
+Test(normalmaps, fast_bc4_encoder_is_the_table_scan_bit_for_bit_T10)
+{
+    const double(*tab)[8] = sol_nm_palettes(SOL_BC4_INTERP_8BIT);
+    for (int hi = 0; hi < 256; ++hi)
+        for (int lo = 0; lo <= hi; ++lo) {
+            double t[16];
+            const double *pal = tab[hi << 8 | lo], *pal6 = tab[lo << 8 | hi];
+            t[0] = 2.0 * (hi / 255.0) - 1.0;
+            t[1] = 2.0 * (lo / 255.0) - 1.0;
+            for (int p = 2; p < 16; ++p) {
+                int i = (int)(8 * uniform()), j = (int)(8 * uniform());
+                double u = t[1] + (t[0] - t[1]) * uniform();
+                switch (p % 7) {
+                case 0: u = 0.5 * (pal[i] + pal[j]); break;
+                case 1: u = 0.5 * (pal6[i] + pal6[j]); break;
+                case 2: u = pal[i]; break;
+                case 3: u = (lo + (hi - lo) * uniform() + 0.5) / 127.5 - 1.0; break; /* half codes */
+                case 4: u = (double)(int)(lo + (hi - lo + 1) * uniform()) / 127.5 - 1.0 + 0.5 / 127.5; break;
+                default: break;
+                }
+                t[p] = fmin(t[0], fmax(t[1], u));
+            }
+            assert_fast_matches_reference(t, "pair", hi, lo);
+            if ((hi ^ lo) % 5 == 0) { /* with exact 0 and 1 values: 6-value mode */
+                t[2] = -1.0;
+                t[3] = 1.0;
+                assert_fast_matches_reference(t, "pair with 0 and 1", hi, lo);
+            }
+        }
+    for (int trial = 0; trial < 20000; ++trial) { /* clustered random blocks anywhere in [-1, 1] */
+        double t[16], c = 2.0 * uniform() - 1.0, w = trial % 3 ? 0.05 * uniform() : 2.0 * uniform();
+        for (int p = 0; p < 16; ++p)
+            t[p] = fmin(1.0, fmax(-1.0, c + w * (uniform() - 0.5)));
+        assert_fast_matches_reference(t, "random", trial, 0);
+    }
+}
+
+/* The image path's input check (one pass over the pixels, then blocks in order only if one is
+ * refused) refuses exactly what sol_nm_unit_normals refuses, with the status of the first refused
+ * block; its fast path (unit x, y straight from the rows) gives the blocks of sol_bc5_encode_block. */
+Test(normalmaps, image_check_and_fast_path_match_the_block_encoder_T10)
+{
+    sol_image img = {0};
+    cr_assert_eq(sol_image_alloc(&img, 12, 8, 3), SOL_OK); /* 6 blocks, 96 pixels */
+    for (int i = 0; i < 96; ++i) {
+        double n[16][3];
+        random_block(n, 1.5, 0.5);
+        img.data[3 * i] = (float)n[i % 16][0];
+        img.data[3 * i + 1] = (float)n[i % 16][1];
+        img.data[3 * i + 2] = (float)(i % 5 ? n[i % 16][2] : -n[i % 16][2]); /* some pointing away */
+    }
+    img.data[3 * 5] = 1e-45f; /* a denormal normal (1e-45, 0, 0) and a huge one: both valid */
+    img.data[3 * 5 + 1] = 0.0f;
+    img.data[3 * 5 + 2] = 0.0f;
+    img.data[3 * 6 + 2] = 3e38f;
+    img.data[3 * 7] = 0.0f; /* (0, -0, z): valid while one component is not zero */
+    img.data[3 * 7 + 1] = -0.0f;
+    uint8_t got[96], want[96], untouched[96];
+    sol_bc5_options o = {.encoder = SOL_BC5_FAST};
+    sol_bc5_image_stats st;
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, got, &st), SOL_OK);
+    cr_assert(st.blocks == 6 && st.candidates == 6 && st.searched_blocks == 0 && st.max_block == 0 &&
+              st.max_block_candidates == 1);
+    for (int b = 0; b < 6; ++b) {
+        double n[16][3];
+        for (int p = 0; p < 16; ++p)
+            for (int c = 0; c < 3; ++c)
+                n[p][c] = sol_image_pixel(&img, 4 * (b % 3) + (p & 3), 4 * (b / 3) + (p >> 2))[c];
+        sol_bc5_block blk;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &blk, NULL), SOL_OK);
+        cr_assert_eq(sol_bc4_pack(&blk.x, want + 16 * b), SOL_OK);
+        cr_assert_eq(sol_bc4_pack(&blk.y, want + 16 * b + 8), SOL_OK);
+    }
+    cr_assert_eq(memcmp(got, want, sizeof got), 0);
+    /* one refused pixel anywhere (each lane of the 4-pixel pass, each component) */
+    const float bad[4] = {NAN, INFINITY, -INFINITY, 0.0f};
+    for (int i = 0; i < 96; i += 7)
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 4; ++k) {
+                float keep[3] = {img.data[3 * i], img.data[3 * i + 1], img.data[3 * i + 2]};
+                if (k == 3) /* zero: all three components */
+                    img.data[3 * i] = img.data[3 * i + 1] = img.data[3 * i + 2] = c == 1 ? -0.0f : 0.0f;
+                else
+                    img.data[3 * i + c] = bad[k];
+                memset(untouched, 0xAB, sizeof untouched);
+                cr_assert_eq(sol_bc5_encode_image(&img, &o, untouched, NULL),
+                             k == 3 ? SOL_ERR_ZERO_LENGTH : SOL_ERR_NONFINITE, "pixel %d component %d kind %d", i, c, k);
+                for (int j = 0; j < 96; ++j)
+                    cr_assert_eq(untouched[j], 0xAB);
+                memcpy(&img.data[3 * i], keep, sizeof keep);
+            }
+    /* two refused pixels: the status is the first refused block's (blocks row-major), not the first
+     * pixel's in raster order. Pixel (8, 0) lies in block 2, pixel (1, 3) in block 0. */
+    sol_image_pixel(&img, 8, 0)[0] = NAN;
+    float *z = sol_image_pixel(&img, 1, 3);
+    z[0] = z[1] = z[2] = 0.0f;
+    cr_assert_eq(sol_bc5_encode_image(&img, &o, untouched, NULL), SOL_ERR_ZERO_LENGTH);
+    sol_image_free(&img);
+}
+
+
 /* Smooth blocks near the hemisphere bound (issue 13): normals on a small arc pointing away, one
  * azimuth with varied z, alternating above and below the rim. Their candidates tie with the
  * incumbent to 1e-10 and closer, which the value-level filter and merge of bc5.c decide. */

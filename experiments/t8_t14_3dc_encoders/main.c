@@ -889,6 +889,8 @@ static void t13(const exp_run *exp, const maps *m)
     const int cb = T13_BASE, ob = 1 - T13_BASE;
     uint64_t better, worse;
     t13_pixels_vs_fast(&c, ov.threshold[cb], (sol_bc5_base)cb, &better, &worse);
+    /* the usual encoder as shipped (libsquish, 8-bit input) on the same crops, timed as the fast one */
+    double squish_ns = encoder_ns_per_block(&c, E_SQUISH, 5);
     t13_crops_free(&c);
     double better_pct = better + worse ? 100.0 * (double)better / (double)(better + worse) : 0.0;
     double adaptive_ns = ov.ns[cb];
@@ -911,6 +913,8 @@ static void t13(const exp_run *exp, const maps *m)
     exp_number(exp, "T13-other-base-threshold-error-left-pct", "%.3f", ov.left[ob]);
     /* timings (keys end in -ns: a rerun may change them) */
     exp_number(exp, "T13-fast-ns", "%.0f", ov.fast_ns);
+    exp_number(exp, "T13-squish-ns", "%.0f", squish_ns);
+    exp_number(exp, "T13-fast-over-squish-timing", "%.2f", ov.fast_ns / squish_ns);
     exp_number(exp, "T13-common-ns", "%.0f", ov.common_ns);
     exp_number(exp, "T13-adaptive-ns", "%.0f", adaptive_ns);
     exp_number(exp, "T13-overhead-common-ns", "%.0f", adaptive_ns - ov.common_ns);
@@ -1067,6 +1071,15 @@ static int bench_wanted(const char *list, const char *name)
     return 0;
 }
 
+/* cell = t[a] / t[b] printed with fmt, or "-" if encoder a or b did not run. */
+static void bench_ratio(char cell[32], const int ran[], const double t[], int a, int b, const char *fmt)
+{
+    if (ran[a] && ran[b])
+        snprintf(cell, 32, fmt, t[a] / t[b]);
+    else
+        snprintf(cell, 32, "-");
+}
+
 /* ---- make bench: the accuracy knobs of the adaptive and optimal encoders ----
  * On each benchmark map and source depth, beside the runs of bench_set (whose blocks and CPU times
  * they reuse): the adaptive encoder's threshold_deg around either base, and the optimal encoder's
@@ -1216,7 +1229,9 @@ static void bench_set(const exp_run *exp)
                                  "map,source bits,encoder,mean deg,max deg,wall time (s; 1 thread),CPU time (s),idle-cores time (s),"
                                  "threads,slowest block CPU time (s),bounded blocks,speed vs 3 h (x)");
     exp_table *ratios = exp_table_new("make bench: time ratios against the goals of issue 13",
-                                      "map,source bits,time: fast / libsquish,time: common / libsquish,time: adaptive / fast,"
+                                      "map,source bits,time: fast / libsquish,time per core: fast / libsquish,"
+                                      "time per core: fast / libsquish without its input conversion,"
+                                      "time: common / libsquish,time: adaptive / fast,"
                                       "time: adaptive / common,optimal idle-cores time (s; goal <= 60),time: optimal / nvtt highest,"
                                       "time: adaptive fast base / fast");
     exp_table *kt = exp_table_new("make bench: adaptive encoder threshold_deg (window 4) around either base, with the "
@@ -1234,7 +1249,12 @@ static void bench_set(const exp_run *exp)
                                   "time / nvtt highest,mean deg,max deg,error left above default-limit optimum %");
     /* T8_BENCH_MAPS / T8_BENCH_ENCODERS (comma lists of the names above, e.g. "terrain" and
      * "optimal", plus "thresholds" and "work-limits" for the knob tables) restrict the run while
-     * developing; the ratios need every encoder, the knob tables' error left the optimal one */
+     * developing; a ratio whose encoders did not run is "-", the knob tables' error left needs the
+     * optimal encoder. "time per core" compares CPU times (sol on one thread against the
+     * single-threaded peer), the other ratios the idle-cores times. A peer's time includes the
+     * conversion of the float map to the 8-bit RGBA it takes (to_rgba8, as sol's includes reading and
+     * normalising the floats); the "without" column subtracts that conversion's CPU time, measured
+     * alone. */
     const char *only_maps = getenv("T8_BENCH_MAPS"), *only_encs = getenv("T8_BENCH_ENCODERS");
     const char *only_bits = getenv("T8_BENCH_BITS"); /* "16", "8" or "16,8" */
     for (int k = 0; k < 4; ++k)
@@ -1246,13 +1266,12 @@ static void bench_set(const exp_run *exp)
             double wall[N_BENCH_ENC], est[N_BENCH_ENC], cpus[N_BENCH_ENC] = {0};
             uint8_t *kept[N_BENCH_ENC] = {NULL};
             uint64_t bounded_of[N_BENCH_ENC] = {0};
-            int all = 1;
+            int ran[N_BENCH_ENC] = {0};
             for (int j = 0; j < N_BENCH_ENC; ++j) {
                 const encoder *e = &ENCODERS[encs[j]];
-                if (!bench_wanted(only_encs, bench_names[j])) {
-                    all = 0;
+                if (!bench_wanted(only_encs, bench_names[j]))
                     continue;
-                }
+                ran[j] = 1;
                 uint8_t *blocks = alloc_blocks(&src);
                 sol_bc5_image_stats st;
                 double t0 = exp_now_ns(), cpu = encoder_cpu_s(e, &src, blocks, &st);
@@ -1279,10 +1298,27 @@ static void bench_set(const exp_run *exp)
                     fprintf(stderr, "bench:   slowest block %.4f s CPU, bounded blocks %llu\n", slowest,
                             (unsigned long long)st.bounded_blocks);
             }
-            if (all)
-                exp_table_row(ratios, "%s|%d|%.2f|%.1f|%.1f|%.2f|%.1f|%.2f|%.1f", maps_[k].name, bits, est[0] / est[4],
-                              est[1] / est[4], est[2] / est[0], est[2] / est[1], est[3], est[3] / est[5],
-                              est[6] / est[0]);
+            /* indices into encs: 0 fast, 1 common, 2 adaptive, 3 optimal, 4 libsquish, 5 nvtt, 6 adaptive-fast */
+            char c[9][32];
+            bench_ratio(c[0], ran, est, 0, 4, "%.2f");
+            bench_ratio(c[1], ran, cpus, 0, 4, "%.2f");
+            snprintf(c[2], sizeof c[2], "-");
+            if (ran[0] && ran[4]) {
+                double t0 = thread_cpu_s();
+                free(to_rgba8(&src));
+                double conv = thread_cpu_s() - t0;
+                snprintf(c[2], sizeof c[2], "%.2f", cpus[0] / (cpus[4] - conv));
+            }
+            bench_ratio(c[3], ran, est, 1, 4, "%.1f");
+            bench_ratio(c[4], ran, est, 2, 0, "%.1f");
+            bench_ratio(c[5], ran, est, 2, 1, "%.2f");
+            snprintf(c[6], sizeof c[6], "-");
+            if (ran[3])
+                snprintf(c[6], sizeof c[6], "%.1f", est[3]);
+            bench_ratio(c[7], ran, est, 3, 5, "%.2f");
+            bench_ratio(c[8], ran, est, 6, 0, "%.1f");
+            exp_table_row(ratios, "%s|%d|%s|%s|%s|%s|%s|%s|%s|%s|%s", maps_[k].name, bits, c[0], c[1], c[2], c[3], c[4],
+                          c[5], c[6], c[7], c[8]);
             /* the knob tables (indices into encs: 0 fast, 1 common, 2 adaptive, 3 optimal, 4 libsquish,
              * 5 nvtt highest, 6 adaptive fast base) */
             double *err = malloc(sizeof *err * (size_t)(size / 4) * (size_t)(size / 4));

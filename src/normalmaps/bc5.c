@@ -4,7 +4,11 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <float.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 /* Relative slack on lower bounds: the bounds hold exactly in real arithmetic; the slack covers
  * rounding so that no candidate better than the incumbent is ever pruned. */
@@ -2154,6 +2158,77 @@ static void pack_block(const sol_bc5_block *b, uint8_t out[16])
     sol_bc4_pack(&b->y, out + 8);
 }
 
+/* SOL_OK if sol_nm_unit_normals accepts every block of img, else the status of the first block
+ * it refuses (blocks in raster order). It refuses a pixel only if a component is not finite or all
+ * three are zero; one pass over the pixels tells whether any does, and only then are the blocks
+ * gone through in order to name the first refusal's status. */
+static sol_status check_normals(const sol_image *img, int bw, int nblocks)
+{
+    const size_t n = (size_t)img->width * (size_t)img->height;
+    int bad = 0;
+    size_t i = 0;
+#if defined(__SSE2__) /* 4 pixels (12 floats) at a time */
+    const __m128 sign = _mm_set1_ps(-0.0f), big = _mm_set1_ps(FLT_MAX), zero = _mm_setzero_ps();
+    for (; i + 4 <= n && !bad; i += 4) {
+        const float *v = img->data + 3 * i;
+        __m128 a = _mm_loadu_ps(v), b = _mm_loadu_ps(v + 4), c = _mm_loadu_ps(v + 8);
+        int finite = _mm_movemask_ps(_mm_and_ps(_mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, a), big),
+                                                           _mm_cmple_ps(_mm_andnot_ps(sign, b), big)),
+                                                _mm_cmple_ps(_mm_andnot_ps(sign, c), big)));
+        /* bit 3 k + j: component j of pixel k is zero; a pixel is refused if its three bits are set */
+        unsigned z = (unsigned)_mm_movemask_ps(_mm_cmpeq_ps(a, zero)) |
+                     (unsigned)_mm_movemask_ps(_mm_cmpeq_ps(b, zero)) << 4 |
+                     (unsigned)_mm_movemask_ps(_mm_cmpeq_ps(c, zero)) << 8;
+        bad = finite != 15 || (z & z >> 1 & z >> 2 & 01111u) != 0;
+    }
+#endif
+    for (; i < n && !bad; ++i) {
+        const float *v = img->data + 3 * i;
+        bad = !isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2]) || (v[0] == 0.0f && v[1] == 0.0f && v[2] == 0.0f);
+    }
+    if (!bad)
+        return SOL_OK;
+    for (int b = 0; b < nblocks; ++b) {
+        double raw[16][3], n16[16][3];
+        gather_block(img, b % bw, b / bw, raw);
+        sol_status st = sol_nm_unit_normals(raw, n16);
+        if (st != SOL_OK)
+            return st;
+    }
+    return SOL_OK;
+}
+
+/* The fast encoder on block (bx, by) of a checked image: x and y of the unit normals, each the
+ * quotient sol_nm_unit_normals computes (the same length, the same division; a float pixel that is
+ * not zero has a length in [1e-45, 1e39], inside the range where it skips rescaling), straight from
+ * the image rows, then the two alpha blocks. */
+static void encode_fast_pixels(const sol_image *img, int bx, int by, sol_bc5_block *out)
+{
+    double x[16], y[16], z[16], tx[16], ty[16];
+    for (int p = 0; p < 16; ++p) {
+        const float *v = sol_image_pixel(img, 4 * bx + (p & 3), 4 * by + (p >> 2));
+        x[p] = v[0];
+        y[p] = v[1];
+        z[p] = v[2];
+    }
+#if defined(__SSE2__) /* two pixels at a time: the same correctly rounded operations in the same order */
+    for (int p = 0; p < 16; p += 2) {
+        __m128d a = _mm_loadu_pd(x + p), b = _mm_loadu_pd(y + p), c = _mm_loadu_pd(z + p);
+        __m128d len = _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(a, a), _mm_mul_pd(b, b)), _mm_mul_pd(c, c)));
+        _mm_storeu_pd(tx + p, _mm_div_pd(a, len));
+        _mm_storeu_pd(ty + p, _mm_div_pd(b, len));
+    }
+#else
+    for (int p = 0; p < 16; ++p) {
+        double len = sqrt(x[p] * x[p] + y[p] * y[p] + z[p] * z[p]);
+        tx[p] = x[p] / len;
+        ty[p] = y[p] / len;
+    }
+#endif
+    sol_nm_bc4_fast(tx, &out->x);
+    sol_nm_bc4_fast(ty, &out->y);
+}
+
 sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options *options, uint8_t *blocks,
                                 sol_bc5_image_stats *stats)
 {
@@ -2166,13 +2241,9 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
         return SOL_ERR_INVALID_ARG;
     const int bw = normals->width / 4, nblocks = bw * (normals->height / 4);
     /* validate everything first, so the parallel part cannot fail on input */
-    for (int b = 0; b < nblocks; ++b) {
-        double raw[16][3], n[16][3];
-        gather_block(normals, b % bw, b / bw, raw);
-        sol_status st = sol_nm_unit_normals(raw, n);
-        if (st != SOL_OK)
-            return st;
-    }
+    sol_status st = check_normals(normals, bw, nblocks);
+    if (st != SOL_OK)
+        return st;
     uint64_t searched = 0, candidates = 0, bounded = 0, max_cand = 0;
     int max_block = -1;
     int failed = 0;
@@ -2187,12 +2258,21 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
         for (int b = 0; b < nblocks; ++b) {
             if (failed)
                 continue;
+            sol_bc5_block block;
+            if (o->encoder == SOL_BC5_FAST) { /* no statistics to gather: candidates 1, nothing searched */
+                encode_fast_pixels(normals, b % bw, b / bw, &block);
+                pack_block(&block, blocks + 16 * (size_t)b);
+                candidates += 1;
+                if (my_block < 0) /* every block ties at 1 candidate: the first is the costliest */
+                    my_block = b;
+                my_max = 1;
+                continue;
+            }
             double raw[16][3], n[16][3];
             gather_block(normals, b % bw, b / bw, raw);
             sol_nm_unit_normals(raw, n);
-            sol_bc5_block block;
             sol_bc5_info info = {0.0, 0, 1, 0};
-            encode_unit(n, o, &ws, &block, o->encoder == SOL_BC5_FAST ? NULL : &info); /* fast: no error needed */
+            encode_unit(n, o, &ws, &block, &info);
             pack_block(&block, blocks + 16 * (size_t)b);
             searched += (uint64_t)info.searched;
             bounded += (uint64_t)info.bounded;

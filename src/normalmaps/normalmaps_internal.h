@@ -82,6 +82,10 @@ int sol_nm_nearest_index(const double pal[8], double t);
 
 /* The fast BC4 encoder (bc4_fast.c) on targets in decoded units [-1, 1]. */
 void sol_nm_bc4_fast(const double t[16], sol_bc4_block *out);
+/* The same with the nearest-entry scan chosen: 0 the widest the processor runs (what sol_nm_bc4_fast
+ * uses), 1 scalar, 2 SSE2, 3 AVX2 (each falls back to the next narrower one where it is not
+ * available). Every path gives the same block; the tests compare them. */
+void sol_nm_bc4_fast_path(const double t[16], int path, sol_bc4_block *out);
 
 /* Nonzero: the BC5 searches use their scalar forms even where the AVX2 forms could run (bc5.c; the
  * results are bit-identical either way, the tests compare them). Zero (the default) otherwise. */
