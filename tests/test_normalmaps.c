@@ -225,6 +225,79 @@ Test(normalmaps, bc4_common_ties_go_to_the_least_pair_on_map_blocks)
         }
 }
 
+/* Brute force for a flat block (16 equal targets t): every pair's 16 terms are the same m = min_k
+ * (pal_k - t)^2, added in order as the literal brute force adds them; least score, then least pair. */
+static int bc4_brute_flat(double t, sol_bc4_precision precision, double *score)
+{
+    const double(*pal)[8] = sol_nm_palettes(precision);
+    double best = INFINITY;
+    int best_pair = -1;
+    for (int pair = 0; pair < 65536; ++pair) {
+        double m = INFINITY, s = 0.0;
+        for (int i = 0; i < 8; ++i)
+            m = fmin(m, (pal[pair][i] - t) * (pal[pair][i] - t));
+        for (int k = 0; k < 16; ++k)
+            s += m;
+        if (s < best) {
+            best = s;
+            best_pair = pair;
+        }
+    }
+    *score = best;
+    return best_pair;
+}
+
+/* Flat blocks, decided by bc4_common.c's walk over the entry values: on every anchor code c, for
+ * every precision, the score is 0 and the pair is the least one holding A(c) = 2 c / 255 - 1: (0, c)
+ * (a 6-value pair; no smaller pair (0, e1 < c) holds it: its entries -1, A(e1) and the interpolants
+ * between them are all below A(c), and its fixed +1 is A(c) only for c = 255), except c = 255, whose
+ * +1 the least pair (0, 0) already holds. Also just off each code (an 8-bit source's renormalised
+ * value, a hair nearer 0) and halfway between codes, against the brute force. */
+Test(normalmaps, bc4_common_flat_blocks_on_every_code_equal_brute_force, .timeout = 120)
+{
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec)
+        for (int c = 0; c < 256; ++c) {
+            double t[16], a = 2.0 * c / 255.0 - 1.0, s, s_ref;
+            for (int p = 0; p < 16; ++p)
+                t[p] = a;
+            int pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s);
+            cr_assert(pair == (c == 255 ? 0 : c) && s == 0.0, "code %d, precision %d: pair %04x, score %g", c, prec,
+                      pair, s);
+            const double shifted[2] = {a * (1.0 - 3e-6), c < 255 ? a + 1.0 / 255.0 : a - 1.0 / 255.0};
+            for (int v = 0; v < 2; ++v) {
+                for (int p = 0; p < 16; ++p)
+                    t[p] = shifted[v];
+                pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s);
+                int ref = bc4_brute_flat(shifted[v], (sol_bc4_precision)prec, &s_ref);
+                cr_assert(pair == ref && s == s_ref, "code %d (%d), precision %d: pair %04x vs brute force %04x", c, v,
+                          prec, pair, ref);
+            }
+        }
+}
+
+/* Blocks of two to six distinct values near the codes (what 8-bit sources give: a code renormalised
+ * by slightly different lengths, neighbouring codes), every value held by several pixels: the walk
+ * over the entry values (or the box search after it) returns the brute force's pair and score. */
+Test(normalmaps, bc4_common_few_valued_blocks_equal_brute_force, .timeout = 120)
+{
+    for (int trial = 0; trial < 36; ++trial) {
+        int nv = 2 + trial % 5, c = (int)(256.0 * uniform());
+        double vals[6], t[16];
+        for (int i = 0; i < nv; ++i) {
+            int code = c + (trial % 3 == 2 ? (int)(4.0 * uniform()) - 2 : 0);
+            code = code < 0 ? 0 : code > 255 ? 255 : code;
+            vals[i] = (2.0 * code / 255.0 - 1.0) / (1.0 + 1e-5 * (int)(8.0 * uniform()));
+        }
+        for (int p = 0; p < 16; ++p)
+            t[p] = vals[trial % 2 ? p % nv : (p * nv) / 16];
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        double s, s_ref;
+        int pair = sol_nm_bc4_common(t, prec, &s), ref = bc4_brute_pair(t, prec, &s_ref);
+        cr_assert(pair == ref && s == s_ref, "trial %d (precision %d): pair %04x vs brute force %04x, %.17g vs %.17g",
+                  trial, prec, pair, ref, s, s_ref);
+    }
+}
+
 /* The common BC5 encoder is the per-channel exact search of x and y, indices by nearest value. */
 Test(normalmaps, common_encoder_is_two_exact_channel_searches)
 {
@@ -378,6 +451,107 @@ Test(normalmaps, adaptive_window_equals_brute_force_over_the_window_T13)
         cr_assert(found.x.e0 >= r.x0_lo && found.x.e0 <= r.x0_hi && found.x.e1 >= r.x1_lo && found.x.e1 <= r.x1_hi &&
                   found.y.e0 >= r.y0_lo && found.y.e0 <= r.y0_hi && found.y.e1 >= r.y1_lo && found.y.e1 <= r.y1_hi,
                   "trial %d", trial);
+    }
+}
+
+/* A nearly flat block from an 8-bit normal map: normals within `spread` of a random tilt, each
+ * component stored as an 8-bit UNORM of (n + 1) / 2 and renormalised (few distinct values, so the
+ * window's anchor pairs tie in classes, which the window search merges). */
+static void flat8_block(double n[16][3], double spread)
+{
+    random_block(n, 0.6, spread);
+    for (int p = 0; p < 16; ++p) {
+        double len = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            n[p][c] = 2.0 * round(127.5 * (n[p][c] + 1.0)) / 255.0 - 1.0;
+            len += n[p][c] * n[p][c];
+        }
+        for (int c = 0; c < 3; ++c)
+            n[p][c] /= sqrt(len);
+    }
+}
+
+/* T13: nearly flat blocks from 8-bit sources (the window's tied pairs merged into classes, and the
+ * exact evaluation taking the incumbent's per-pixel angles where a candidate decodes alike): the
+ * default +-4 window still equals the literal brute force over it, both metrics and bases. */
+Test(normalmaps, adaptive_window_on_flat_8bit_blocks_equals_brute_force_T13)
+{
+    for (int trial = 0; trial < 6; ++trial) {
+        double n[16][3];
+        flat8_block(n, trial % 3 == 0 ? 0.0 : 0.004 * trial);
+        sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE,
+                             .precision = (sol_bc4_precision)(trial % 3),
+                             .metric = trial % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED,
+                             .base = trial % 4 < 2 ? SOL_BC5_BASE_COMMON : SOL_BC5_BASE_FAST};
+        sol_bc5_options ob = o;
+        ob.encoder = o.base == SOL_BC5_BASE_FAST ? SOL_BC5_FAST : SOL_BC5_COMMON;
+        sol_bc5_block base, found;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(n, &ob, &base, NULL), SOL_OK);
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &found, &info), SOL_OK);
+        sol_bc5_range r = {clamp_code(base.x.e0 - 4), clamp_code(base.x.e0 + 4), clamp_code(base.x.e1 - 4),
+                           clamp_code(base.x.e1 + 4), clamp_code(base.y.e0 - 4), clamp_code(base.y.e0 + 4),
+                           clamp_code(base.y.e1 - 4), clamp_code(base.y.e1 + 4)};
+        double ref = bc5_brute_force(n, &r, &o);
+        cr_assert_eq(info.error, ref, "trial %d: window %.17g, brute force %.17g", trial, info.error, ref);
+    }
+}
+
+/* The searches' AVX2 forms (channel sides, the quick bound, the window's pair scores; bc5.c) against
+ * their scalar forms: bit-identical blocks, errors, candidate counts and work-bound flags, for the
+ * adaptive window (both bases and metrics, every precision; smooth, rough, flat 8-bit and rim blocks)
+ * and the exact search over small ranges (which also takes rim and pointing-away blocks). On a CPU
+ * without AVX2 both runs take the scalar form. */
+static void degenerate_block(int family, double n[16][3]);
+
+static void encode_both_forms(const double n[16][3], const sol_bc5_options *o, const sol_bc5_range *r, int trial)
+{
+    sol_bc5_block b[2];
+    sol_bc5_info info[2];
+    for (int f = 0; f < 2; ++f) {
+        sol_nm_simd_disable = f;
+        memset(&b[f], 0, sizeof b[f]);
+        if (r)
+            cr_assert_eq(sol_bc5_search_block(n, r, o, &b[f], &info[f]), SOL_OK);
+        else
+            cr_assert_eq(sol_bc5_encode_block(n, o, &b[f], &info[f]), SOL_OK);
+    }
+    sol_nm_simd_disable = 0;
+    cr_assert(memcmp(&b[0], &b[1], sizeof b[0]) == 0, "trial %d: blocks differ", trial);
+    cr_assert(memcmp(&info[0].error, &info[1].error, sizeof info[0].error) == 0, "trial %d: %.17g vs %.17g", trial,
+              info[0].error, info[1].error);
+    cr_assert_eq(info[0].candidates, info[1].candidates, "trial %d", trial);
+    cr_assert_eq(info[0].bounded, info[1].bounded, "trial %d", trial);
+}
+
+Test(normalmaps, search_simd_forms_equal_the_scalar_forms)
+{
+    for (int trial = 0; trial < 48; ++trial) {
+        double n[16][3];
+        if (trial % 4 == 0)
+            flat8_block(n, 0.003 * (trial % 3));
+        else
+            random_block(n, trial % 8 == 7 ? 1.55 : 0.9, trial % 4 == 1 ? 0.02 : 0.35);
+        sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE,
+                             .precision = (sol_bc4_precision)(trial % 3),
+                             .metric = trial % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED,
+                             .base = trial % 6 < 3 ? SOL_BC5_BASE_COMMON : SOL_BC5_BASE_FAST};
+        encode_both_forms(n, &o, NULL, trial);
+        sol_bc5_block common;
+        cr_assert_eq(sol_bc5_encode_block(n, &(sol_bc5_options){.precision = o.precision}, &common, NULL), SOL_OK);
+        sol_bc5_range r = {clamp_code(common.x.e0 - 3), clamp_code(common.x.e0 + 3), clamp_code(common.x.e1 - 3),
+                           clamp_code(common.x.e1 + 3), clamp_code(common.y.e0 - 3), clamp_code(common.y.e0 + 3),
+                           clamp_code(common.y.e1 - 3), clamp_code(common.y.e1 + 3)};
+        encode_both_forms(n, &o, &r, trial);
+    }
+    for (int family = 0; family < 4; ++family) { /* pointing away, rims: search_unit's away and loose terms */
+        double n[16][3];
+        degenerate_block(family, n);
+        sol_bc5_options o = {.metric = family % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED};
+        sol_bc5_range r = {100, 110, 140, 150, 100, 110, 140, 150};
+        encode_both_forms(n, &o, &r, 100 + family);
+        o.encoder = SOL_BC5_ADAPTIVE;
+        encode_both_forms(n, &o, NULL, 200 + family);
     }
 }
 

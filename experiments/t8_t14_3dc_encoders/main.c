@@ -713,7 +713,9 @@ static void t13_window_sweep(const exp_run *exp, t13_crops *c, double *at4, doub
                                  "window,common base: blocks at optimum %,error left %,core-ns per block,"
                                  "fast base: blocks at optimum %,error left %,core-ns per block");
     FILE *dat = exp_open(exp, "t13_window.dat");
-    fprintf(dat, "# window, blocks at optimum %%, error left %%, core-ns per block (common base), the same (fast base)\n");
+    /* every column named, so that compare_runs.sh knows both core-ns columns as timings */
+    fprintf(dat, "# window, blocks at optimum %% (common base), error left %% (common base), core-ns per block (common "
+                 "base), blocks at optimum %% (fast base), error left %% (fast base), core-ns per block (fast base)\n");
     const int windows[] = {-1, 1, 2, 3, 4, 6, 8, 12, 16};
     for (size_t w = 0; w < sizeof windows / sizeof windows[0]; ++w) {
         int at, atf;
@@ -1049,7 +1051,10 @@ static void t14(const exp_run *exp)
  * independent) and CPU time for the peers - what a loaded machine does not inflate; the ratios use
  * it. The wall column is the measured single-thread run. Error
  * against the exact normals, 16-bit interpolation. For the optimal encoder: blocks the work bound
- * stopped, and the costliest block (most candidates) timed alone. */
+ * stopped, and the costliest block (most candidates) timed alone. Then the accuracy knobs' tables
+ * (bench_threshold, bench_threshold_goals, bench_work_limit; see bench_thresholds below). Env:
+ * T8_BENCH_MAPS, T8_BENCH_ENCODERS (encoder names, plus "thresholds" and "work-limits" for the knob
+ * tables) and T8_BENCH_BITS ("16", "8") restrict the run; unset = everything. */
 /* 1 if name is in the comma-separated list (or the list is unset). */
 static int bench_wanted(const char *list, const char *name)
 {
@@ -1060,6 +1065,141 @@ static int bench_wanted(const char *list, const char *name)
         if ((p == list || p[-1] == ',') && (p[n] == ',' || p[n] == '\0'))
             return 1;
     return 0;
+}
+
+/* ---- make bench: the accuracy knobs of the adaptive and optimal encoders ----
+ * On each benchmark map and source depth, beside the runs of bench_set (whose blocks and CPU times
+ * they reuse): the adaptive encoder's threshold_deg around either base, and the optimal encoder's
+ * work_limit, each row an encode of the whole map on one thread (CPU time, as encoder_cpu_s), with
+ * the baselines and the peers (libsquish, nvtt) in the same table. Error: mean angle against the
+ * exact normals (16-bit interpolation), and the error left above the optimum as T13 defines it (the
+ * summed per-block objective against the source over the optimal encoder's, in % of the latter; the
+ * optimal encoder's run of bench_set, computed once per map). */
+static const double BENCH_THRESHOLDS[] = {0.0, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 3.0, 5.0};
+enum { N_BENCH_THRESHOLDS = sizeof BENCH_THRESHOLDS / sizeof BENCH_THRESHOLDS[0] };
+static const uint64_t BENCH_WORK_LIMITS[] = {UINT64_C(1) << 10, UINT64_C(1) << 14, UINT64_C(1) << 18,
+                                             UINT64_C(1) << 22}; /* --quick: the first and the third */
+
+/* What the knob rows of one map and source depth compare with. */
+typedef struct bench_ref {
+    const char *map;
+    int bits;
+    const sol_image *exact, *src;
+    double fast_cpu, common_cpu, nvtt_cpu; /* CPU s of bench_set's runs; 0: not run */
+    double opt_total;                      /* summed objective of the optimal encoder's blocks; < 0: not run */
+    double *err;                           /* scratch, one per block */
+} bench_ref;
+
+/* Summed per-block objective (sum dN^2 against the source) of packed blocks. */
+static double blocks_total(const bench_ref *r, const uint8_t *blocks)
+{
+    block_errors(r->src, blocks, r->err);
+    double total = 0.0;
+    for (int b = 0; b < r->src->width * r->src->height / 16; ++b)
+        total += r->err[b];
+    return total;
+}
+
+/* "x.xxx" (or "-" when the reference was not run) into cell. */
+static void ratio_cell(char *cell, size_t size, double num, double den, const char *fmt)
+{
+    if (den > 0.0)
+        snprintf(cell, size, fmt, num / den);
+    else
+        snprintf(cell, size, "-");
+}
+
+static void left_cell(char *cell, size_t size, const bench_ref *r, double total)
+{
+    if (r->opt_total > 0.0)
+        snprintf(cell, size, "%.3f", 100.0 * (total - r->opt_total) / r->opt_total);
+    else
+        snprintf(cell, size, r->opt_total == 0.0 && total == 0.0 ? "0.000" : "-");
+}
+
+/* One row of the threshold table: an encoder's blocks, its CPU time and searched share. */
+static void threshold_row(exp_table *t, const bench_ref *r, const char *enc_name, const char *base,
+                          const char *threshold, const char *searched, double cpu, const uint8_t *blocks,
+                          double *left_out)
+{
+    err_stats es = decoded_stats(r->exact, blocks, SOL_BC4_INTERP_16BIT);
+    double total = blocks_total(r, blocks);
+    char vs_fast[32], vs_common[32], left[32];
+    ratio_cell(vs_fast, sizeof vs_fast, cpu, r->fast_cpu, "%.2f");
+    ratio_cell(vs_common, sizeof vs_common, cpu, r->common_cpu, "%.3f");
+    left_cell(left, sizeof left, r, total);
+    if (left_out)
+        *left_out = r->opt_total > 0.0 ? 100.0 * (total - r->opt_total) / r->opt_total : NAN;
+    exp_table_row(t, "%s|%d|%s|%s|%s|%s|%.3f|%s|%s|%.4f|%.3f|%s", r->map, r->bits, enc_name, base, threshold, searched,
+                  cpu, vs_fast, vs_common, es.mean, es.max, left);
+}
+
+/* The adaptive encoder's threshold around each base on one map (rows into t), and per base the least
+ * threshold of the sweep whose time is within 2x the fast encoder's and within 1.2x the common
+ * encoder's, with the error left there (rows into summary). */
+static void bench_thresholds(exp_table *t, exp_table *summary, const bench_ref *r)
+{
+    for (int base = 0; base < 2; ++base) {
+        double cpu[N_BENCH_THRESHOLDS], left[N_BENCH_THRESHOLDS];
+        for (int i = 0; i < N_BENCH_THRESHOLDS; ++i) {
+            encoder e = {"adaptive", ENC_SOL,
+                         {.encoder = SOL_BC5_ADAPTIVE, .threshold_deg = BENCH_THRESHOLDS[i], .base = (sol_bc5_base)base},
+                         0};
+            uint8_t *blocks = alloc_blocks(r->src);
+            sol_bc5_image_stats st;
+            cpu[i] = encoder_cpu_s(&e, r->src, blocks, &st);
+            char thr[32], searched[32];
+            snprintf(thr, sizeof thr, "%.2f%s", BENCH_THRESHOLDS[i], BENCH_THRESHOLDS[i] == 0.0 ? " (default)" : "");
+            snprintf(searched, sizeof searched, "%.1f", 100.0 * (double)st.searched_blocks / (double)st.blocks);
+            threshold_row(t, r, "adaptive", base ? "fast" : "common", thr, searched, cpu[i], blocks, &left[i]);
+            free(blocks);
+            fprintf(stderr, "bench: %s %d-bit adaptive, %s base, threshold %.2f: CPU %.2f s\n", r->map, r->bits,
+                    base ? "fast" : "common", BENCH_THRESHOLDS[i], cpu[i]);
+        }
+        char cells[2][64];
+        const double goal[2] = {2.0 * r->fast_cpu, 1.2 * r->common_cpu};
+        for (int g = 0; g < 2; ++g) {
+            int at = -1;
+            for (int i = 0; i < N_BENCH_THRESHOLDS && at < 0; ++i)
+                at = goal[g] > 0.0 && cpu[i] <= goal[g] ? i : -1;
+            if (!(goal[g] > 0.0))
+                snprintf(cells[g], sizeof cells[g], "-|-");
+            else if (at < 0)
+                snprintf(cells[g], sizeof cells[g], "none up to %.2f|-", BENCH_THRESHOLDS[N_BENCH_THRESHOLDS - 1]);
+            else if (isnan(left[at]))
+                snprintf(cells[g], sizeof cells[g], "%.2f|-", BENCH_THRESHOLDS[at]);
+            else
+                snprintf(cells[g], sizeof cells[g], "%.2f|%.3f", BENCH_THRESHOLDS[at], left[at]);
+        }
+        char z_fast[32], z_common[32];
+        ratio_cell(z_fast, sizeof z_fast, cpu[0], r->fast_cpu, "%.2f");
+        ratio_cell(z_common, sizeof z_common, cpu[0], r->common_cpu, "%.3f");
+        exp_table_row(summary, "%s|%d|%s|%s|%s|%s|%s", r->map, r->bits, base ? "fast" : "common", z_fast, z_common,
+                      cells[0], cells[1]);
+    }
+}
+
+/* The optimal encoder's work_limit on one map (rows into t): blocks the bound stopped, and the error
+ * left above the default limit's result (bench_set's optimal run). */
+static void bench_work_limits(exp_table *t, const bench_ref *r, int quick)
+{
+    for (size_t i = 0; i < sizeof BENCH_WORK_LIMITS / sizeof BENCH_WORK_LIMITS[0]; i += quick ? 2 : 1) {
+        encoder e = {"optimal", ENC_SOL, {.encoder = SOL_BC5_OPTIMAL, .work_limit = BENCH_WORK_LIMITS[i]}, 0};
+        uint8_t *blocks = alloc_blocks(r->src);
+        sol_bc5_image_stats st;
+        double cpu = encoder_cpu_s(&e, r->src, blocks, &st);
+        err_stats es = decoded_stats(r->exact, blocks, SOL_BC4_INTERP_16BIT);
+        char limit[32], left[32], vs_fast[32], vs_nvtt[32];
+        snprintf(limit, sizeof limit, "2^%d", (int)log2((double)BENCH_WORK_LIMITS[i]));
+        left_cell(left, sizeof left, r, blocks_total(r, blocks));
+        ratio_cell(vs_fast, sizeof vs_fast, cpu, r->fast_cpu, "%.1f");
+        ratio_cell(vs_nvtt, sizeof vs_nvtt, cpu, r->nvtt_cpu, "%.2f");
+        exp_table_row(t, "%s|%d|optimal|%s|%llu|%.3f|%s|%s|%.4f|%.3f|%s", r->map, r->bits, limit,
+                      (unsigned long long)st.bounded_blocks, cpu, vs_fast, vs_nvtt, es.mean, es.max, left);
+        free(blocks);
+        fprintf(stderr, "bench: %s %d-bit optimal, work limit %s: CPU %.2f s, bounded blocks %llu\n", r->map, r->bits,
+                limit, cpu, (unsigned long long)st.bounded_blocks);
+    }
 }
 
 static void bench_set(const exp_run *exp)
@@ -1079,16 +1219,33 @@ static void bench_set(const exp_run *exp)
                                       "map,source bits,time: fast / libsquish,time: common / libsquish,time: adaptive / fast,"
                                       "time: adaptive / common,optimal idle-cores time (s; goal <= 60),time: optimal / nvtt highest,"
                                       "time: adaptive fast base / fast");
+    exp_table *kt = exp_table_new("make bench: adaptive encoder threshold_deg (window 4) around either base, with the "
+                                  "baselines and peers: error vs time (one thread)",
+                                  "map,source bits,encoder,base,threshold deg,searched blocks %,CPU s,time / fast,"
+                                  "time / common,mean deg,max deg,error left above optimum %");
+    exp_table *ks = exp_table_new("make bench: least threshold of the sweep within the time goals of issue 13 "
+                                  "(adaptive <= 2x fast, <= 1.2x common; CPU time, one thread)",
+                                  "map,source bits,base,time / fast at threshold 0,time / common at threshold 0,"
+                                  "least threshold deg with time <= 2x fast,error left there %,"
+                                  "least threshold deg with time <= 1.2x common,error left there %");
+    exp_table *kw = exp_table_new("make bench: optimal encoder work_limit, with the baselines and peers: error vs time "
+                                  "(one thread)",
+                                  "map,source bits,encoder,work limit,bounded blocks,CPU s,time / fast,"
+                                  "time / nvtt highest,mean deg,max deg,error left above default-limit optimum %");
     /* T8_BENCH_MAPS / T8_BENCH_ENCODERS (comma lists of the names above, e.g. "terrain" and
-     * "optimal") restrict the run while developing; the ratios need every encoder */
+     * "optimal", plus "thresholds" and "work-limits" for the knob tables) restrict the run while
+     * developing; the ratios need every encoder, the knob tables' error left the optimal one */
     const char *only_maps = getenv("T8_BENCH_MAPS"), *only_encs = getenv("T8_BENCH_ENCODERS");
+    const char *only_bits = getenv("T8_BENCH_BITS"); /* "16", "8" or "16,8" */
     for (int k = 0; k < 4; ++k)
         for (int bits = 16; bits >= 8; bits -= 8) {
-            if (!bench_wanted(only_maps, maps_[k].name))
+            if (!bench_wanted(only_maps, maps_[k].name) || !bench_wanted(only_bits, bits == 16 ? "16" : "8"))
                 continue;
             sol_image src;
             input_quantize(&maps_[k].exact, bits, &src);
-            double wall[N_BENCH_ENC], est[N_BENCH_ENC];
+            double wall[N_BENCH_ENC], est[N_BENCH_ENC], cpus[N_BENCH_ENC] = {0};
+            uint8_t *kept[N_BENCH_ENC] = {NULL};
+            uint64_t bounded_of[N_BENCH_ENC] = {0};
             int all = 1;
             for (int j = 0; j < N_BENCH_ENC; ++j) {
                 const encoder *e = &ENCODERS[encs[j]];
@@ -1112,7 +1269,9 @@ static void bench_set(const exp_run *exp)
                 exp_table_row(t, "%s|%d|%s|%.4f|%.3f|%.3f|%.3f|%.3f|%d|%s|%s|%.0f", maps_[k].name, bits, e->name, es.mean,
                               es.max, wall[j], cpu, est[j], e->kind == ENC_SOL ? threads : 1, slow_cell, bounded_cell,
                               talk_s / est[j]);
-                free(blocks);
+                kept[j] = blocks;
+                cpus[j] = cpu;
+                bounded_of[j] = st.bounded_blocks;
                 fprintf(stderr, "bench: %s %d-bit %s: mean %.4f max %.3f deg, CPU %.2f s, idle-cores %.2f s%s\n",
                         maps_[k].name, bits, e->name, es.mean, es.max, cpu, est[j],
                         encs[j] == E_OPTIMAL ? " (optimal: see the table for its slowest block)" : "");
@@ -1124,10 +1283,53 @@ static void bench_set(const exp_run *exp)
                 exp_table_row(ratios, "%s|%d|%.2f|%.1f|%.1f|%.2f|%.1f|%.2f|%.1f", maps_[k].name, bits, est[0] / est[4],
                               est[1] / est[4], est[2] / est[0], est[2] / est[1], est[3], est[3] / est[5],
                               est[6] / est[0]);
+            /* the knob tables (indices into encs: 0 fast, 1 common, 2 adaptive, 3 optimal, 4 libsquish,
+             * 5 nvtt highest, 6 adaptive fast base) */
+            double *err = malloc(sizeof *err * (size_t)(size / 4) * (size_t)(size / 4));
+            if (!err)
+                exp_die("out of memory");
+            bench_ref ref = {maps_[k].name, bits, &maps_[k].exact, &src, cpus[0], cpus[1], cpus[5], -1.0, err};
+            if (kept[3])
+                ref.opt_total = blocks_total(&ref, kept[3]);
+            if (bench_wanted(only_encs, "thresholds")) {
+                const int rows[] = {0, 1, 4, 5, 3};
+                for (size_t i = 0; i < sizeof rows / sizeof rows[0]; ++i)
+                    if (kept[rows[i]])
+                        threshold_row(kt, &ref, ENCODERS[encs[rows[i]]].name, "-", "-", "-", cpus[rows[i]],
+                                      kept[rows[i]], NULL);
+                bench_thresholds(kt, ks, &ref);
+            }
+            if (bench_wanted(only_encs, "work-limits") && kept[3]) {
+                const int rows[] = {0, 1, 2, 4, 5};
+                for (size_t i = 0; i < sizeof rows / sizeof rows[0]; ++i) {
+                    if (!kept[rows[i]])
+                        continue;
+                    err_stats es = decoded_stats(&maps_[k].exact, kept[rows[i]], SOL_BC4_INTERP_16BIT);
+                    char left[32], vs_fast[32], vs_nvtt[32];
+                    left_cell(left, sizeof left, &ref, blocks_total(&ref, kept[rows[i]]));
+                    ratio_cell(vs_fast, sizeof vs_fast, cpus[rows[i]], ref.fast_cpu, "%.1f");
+                    ratio_cell(vs_nvtt, sizeof vs_nvtt, cpus[rows[i]], ref.nvtt_cpu, "%.2f");
+                    exp_table_row(kw, "%s|%d|%s|-|-|%.3f|%s|%s|%.4f|%.3f|%s", maps_[k].name, bits,
+                                  ENCODERS[encs[rows[i]]].name, cpus[rows[i]], vs_fast, vs_nvtt, es.mean, es.max, left);
+                }
+                bench_work_limits(kw, &ref, exp->quick);
+                err_stats es = decoded_stats(&maps_[k].exact, kept[3], SOL_BC4_INTERP_16BIT);
+                char vs_fast[32], vs_nvtt[32];
+                ratio_cell(vs_fast, sizeof vs_fast, cpus[3], ref.fast_cpu, "%.1f");
+                ratio_cell(vs_nvtt, sizeof vs_nvtt, cpus[3], ref.nvtt_cpu, "%.2f");
+                exp_table_row(kw, "%s|%d|optimal|2^26 (default)|%llu|%.3f|%s|%s|%.4f|%.3f|0.000", maps_[k].name, bits,
+                              (unsigned long long)bounded_of[3], cpus[3], vs_fast, vs_nvtt, es.mean, es.max);
+            }
+            free(err);
+            for (int j = 0; j < N_BENCH_ENC; ++j)
+                free(kept[j]);
             sol_image_free(&src);
         }
     exp_table_write(t, exp, "bench_set");
     exp_table_write(ratios, exp, "bench_ratios");
+    exp_table_write(kt, exp, "bench_threshold");
+    exp_table_write(ks, exp, "bench_threshold_goals");
+    exp_table_write(kw, exp, "bench_work_limit");
     for (int k = 0; k < 4; ++k)
         sol_image_free(&maps_[k].exact);
 }
