@@ -1276,11 +1276,11 @@ Test(normalmaps, joint_search_is_exact_near_the_hemisphere_bound)
 
 /* Issue 13's smooth blocks near the hemisphere bound at full range, each stopped by the default
  * work bound before the value-level filter and merge (bounded, ~0.5-0.8 s) and now proven: the
- * minimum equals the one the previous search found with an unlimited work_limit (6-60 s per block),
+ * minimum equals the one the previous search found with an unlimited work_limit (0.6-7 s per block),
  * and no better quadruple lies within +-2 codes (literal brute force). */
 Test(normalmaps, smooth_blocks_pointing_away_are_proven_at_full_range)
 {
-    static const double blocks[4][16][3] = {
+    static const double blocks[5][16][3] = {
         {/* one azimuth, z varied, spread 0.01 */
          {-0.87611520604519411, 0.31454040548971196, -0.36535801489874936},
          {-0.87570130131427015, 0.3143918065828552, -0.36647649696817181},
@@ -1352,15 +1352,34 @@ Test(normalmaps, smooth_blocks_pointing_away_are_proven_at_full_range)
          {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
          {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
          {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+        },
+        {/* the same block as the second, exact decoder */
+         {-0.8916893546971657, 0.32012752537472344, -0.32001322194123172},
+         {-0.89155052509629018, 0.32007768382806495, -0.32044958654332867},
+         {-0.89189828688906958, 0.32020253462005421, -0.31935526090427235},
+         {-0.89163900975186461, 0.32010945091564252, -0.32017154108883589},
+         {-0.8920394227332219, 0.32025320413662089, -0.31890994579976345},
+         {-0.89245294561871025, 0.32040166397559944, -0.31760118636137741},
+         {-0.89214303385329818, 0.32029040181235474, -0.31858258843495052},
+         {-0.89266629369895711, 0.32047825857955325, -0.31692360888956234},
+         {-0.89148800037231313, 0.32005523667754543, -0.32064589607143718},
+         {-0.8921298195053724, 0.32028565769773831, -0.31862435974425868},
+         {-0.89235567277096917, 0.32036674181815805, -0.31790958464678071},
+         {-0.8921934742757851, 0.32030851054892823, -0.31842308730622998},
+         {-0.89252482263488342, 0.32042746871488181, -0.31737309002740471},
+         {-0.89168856844882571, 0.32012724310182866, -0.32001569511776534},
+         {-0.89234641494604416, 0.32036341814431585, -0.31793891873728264},
+         {-0.89141603128098168, 0.32002939888214055, -0.32087169246663022},
         }};
     static const struct {
         int metric, precision;
         double reference;
-    } cases[4] = {{SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_16BIT, 2.2487780473159837},
+    } cases[5] = {{SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_16BIT, 2.2487780473159837},
                    {SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, 0.32665022437714958},
                    {SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 0.21311817550708081},
-                   {SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, 0.19969012596338739}};
-    for (int c = 0; c < 4; ++c) {
+                   {SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, 0.19969012596338739},
+                   {SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_FLOAT, 1.6865117685296986}};
+    for (int c = 0; c < 5; ++c) {
         sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = (sol_bc5_metric)cases[c].metric,
                              .precision = (sol_bc4_precision)cases[c].precision};
         sol_bc5_block b;
