@@ -225,6 +225,79 @@ Test(normalmaps, bc4_common_ties_go_to_the_least_pair_on_map_blocks)
         }
 }
 
+/* Brute force for a flat block (16 equal targets t): every pair's 16 terms are the same m = min_k
+ * (pal_k - t)^2, added in order as the literal brute force adds them; least score, then least pair. */
+static int bc4_brute_flat(double t, sol_bc4_precision precision, double *score)
+{
+    const double(*pal)[8] = sol_nm_palettes(precision);
+    double best = INFINITY;
+    int best_pair = -1;
+    for (int pair = 0; pair < 65536; ++pair) {
+        double m = INFINITY, s = 0.0;
+        for (int i = 0; i < 8; ++i)
+            m = fmin(m, (pal[pair][i] - t) * (pal[pair][i] - t));
+        for (int k = 0; k < 16; ++k)
+            s += m;
+        if (s < best) {
+            best = s;
+            best_pair = pair;
+        }
+    }
+    *score = best;
+    return best_pair;
+}
+
+/* Flat blocks, decided by bc4_common.c's walk over the entry values: on every anchor code c, for
+ * every precision, the score is 0 and the pair is the least one holding A(c) = 2 c / 255 - 1: (0, c)
+ * (a 6-value pair; no smaller pair (0, e1 < c) holds it: its entries -1, A(e1) and the interpolants
+ * between them are all below A(c), and its fixed +1 is A(c) only for c = 255), except c = 255, whose
+ * +1 the least pair (0, 0) already holds. Also just off each code (an 8-bit source's renormalised
+ * value, a hair nearer 0) and halfway between codes, against the brute force. */
+Test(normalmaps, bc4_common_flat_blocks_on_every_code_equal_brute_force, .timeout = 120)
+{
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec)
+        for (int c = 0; c < 256; ++c) {
+            double t[16], a = 2.0 * c / 255.0 - 1.0, s, s_ref;
+            for (int p = 0; p < 16; ++p)
+                t[p] = a;
+            int pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s);
+            cr_assert(pair == (c == 255 ? 0 : c) && s == 0.0, "code %d, precision %d: pair %04x, score %g", c, prec,
+                      pair, s);
+            const double shifted[2] = {a * (1.0 - 3e-6), c < 255 ? a + 1.0 / 255.0 : a - 1.0 / 255.0};
+            for (int v = 0; v < 2; ++v) {
+                for (int p = 0; p < 16; ++p)
+                    t[p] = shifted[v];
+                pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s);
+                int ref = bc4_brute_flat(shifted[v], (sol_bc4_precision)prec, &s_ref);
+                cr_assert(pair == ref && s == s_ref, "code %d (%d), precision %d: pair %04x vs brute force %04x", c, v,
+                          prec, pair, ref);
+            }
+        }
+}
+
+/* Blocks of two to six distinct values near the codes (what 8-bit sources give: a code renormalised
+ * by slightly different lengths, neighbouring codes), every value held by several pixels: the walk
+ * over the entry values (or the box search after it) returns the brute force's pair and score. */
+Test(normalmaps, bc4_common_few_valued_blocks_equal_brute_force, .timeout = 120)
+{
+    for (int trial = 0; trial < 36; ++trial) {
+        int nv = 2 + trial % 5, c = (int)(256.0 * uniform());
+        double vals[6], t[16];
+        for (int i = 0; i < nv; ++i) {
+            int code = c + (trial % 3 == 2 ? (int)(4.0 * uniform()) - 2 : 0);
+            code = code < 0 ? 0 : code > 255 ? 255 : code;
+            vals[i] = (2.0 * code / 255.0 - 1.0) / (1.0 + 1e-5 * (int)(8.0 * uniform()));
+        }
+        for (int p = 0; p < 16; ++p)
+            t[p] = vals[trial % 2 ? p % nv : (p * nv) / 16];
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        double s, s_ref;
+        int pair = sol_nm_bc4_common(t, prec, &s), ref = bc4_brute_pair(t, prec, &s_ref);
+        cr_assert(pair == ref && s == s_ref, "trial %d (precision %d): pair %04x vs brute force %04x, %.17g vs %.17g",
+                  trial, prec, pair, ref, s, s_ref);
+    }
+}
+
 /* The common BC5 encoder is the per-channel exact search of x and y, indices by nearest value. */
 Test(normalmaps, common_encoder_is_two_exact_channel_searches)
 {
@@ -925,6 +998,165 @@ Test(normalmaps, hard_terrain_blocks_finish_exactly_within_the_work_bound)
         cr_assert(!info.bounded, "block %d: stopped by the work bound", c);
         cr_assert(info.candidates > 1000000, "block %d: %llu candidates", c, (unsigned long long)info.candidates);
         cr_assert_eq(info.error, reference[c], "block %d: %.17g, reference %.17g", c, info.error, reference[c]);
+        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
+                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
+                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        cr_assert_eq(bc5_brute_force(blocks[c], &r, &o), info.error, "block %d", c);
+    }
+}
+
+/* Smooth blocks near the hemisphere bound (issue 13): normals on a small arc pointing away, one
+ * azimuth with varied z, alternating above and below the rim. Their candidates tie with the
+ * incumbent to 1e-10 and closer, which the value-level filter and merge of bc5.c decide. */
+static void near_hemisphere_block(int family, double spread, double n[16][3])
+{
+    double phi = 2 * M_PI * uniform(), h = 0.05 + 0.9 * uniform();
+    for (int p = 0; p < 16; ++p) {
+        double f = phi + spread * (p / 15.0 - 0.5), hh = h, z;
+        switch (family) {
+        case 0: /* an arc pointing away */
+            z = -h;
+            break;
+        case 1: /* one azimuth, z varied */
+            hh = fmin(1.0, h * (1 + spread * (uniform() - 0.5) * 0.5));
+            f = phi;
+            z = -hh;
+            break;
+        default: /* an arc, alternately above and below the rim */
+            z = p % 2 ? -h : h;
+            break;
+        }
+        double rho = sqrt(1 - hh * hh);
+        n[p][0] = rho * cos(f);
+        n[p][1] = rho * sin(f);
+        n[p][2] = z;
+    }
+}
+
+/* The search equals literal brute force on them, in windows of 11 codes (lists long enough for the
+ * value-level filter and merge) around the common anchors and at the full-span corners, both
+ * metrics, every precision. */
+Test(normalmaps, joint_search_is_exact_near_the_hemisphere_bound)
+{
+    const double spreads[4] = {0.0, 0.01, 0.1, 1.0};
+    for (int trial = 0; trial < 12; ++trial) {
+        double n[16][3];
+        near_hemisphere_block(trial % 3, spreads[(trial / 3) % 4], n);
+        sol_bc5_options o = {.precision = (sol_bc4_precision)(trial % 3),
+                             .metric = (trial / 2) % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED};
+        sol_bc5_block common, found;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &common, NULL), SOL_OK);
+        sol_bc5_range r = {clamp_code(common.x.e0 - 5), clamp_code(common.x.e0 + 5), clamp_code(common.x.e1 - 5),
+                           clamp_code(common.x.e1 + 5), clamp_code(common.y.e0 - 5), clamp_code(common.y.e0 + 5),
+                           clamp_code(common.y.e1 - 5), clamp_code(common.y.e1 + 5)};
+        for (int w = 0; w < 2; ++w) {
+            if (w == 1) /* both modes at the full span: entries -1 and +1 reach the rim */
+                r = (sol_bc5_range){0, 10, 245, 255, 245, 255, 0, 10};
+            cr_assert_eq(sol_bc5_search_block(n, &r, &o, &found, &info), SOL_OK);
+            double ref = bc5_brute_force(n, &r, &o);
+            cr_assert_eq(info.error, ref, "trial %d window %d: search %.17g, brute force %.17g", trial, w, info.error,
+                         ref);
+            cr_assert(!info.bounded);
+        }
+    }
+}
+
+/* Issue 13's smooth blocks near the hemisphere bound at full range, each stopped by the default
+ * work bound before the value-level filter and merge (bounded, ~0.5-0.8 s) and now proven: the
+ * minimum equals the one the previous search found with an unlimited work_limit (6-60 s per block),
+ * and no better quadruple lies within +-2 codes (literal brute force). */
+Test(normalmaps, smooth_blocks_pointing_away_are_proven_at_full_range)
+{
+    static const double blocks[4][16][3] = {
+        {/* one azimuth, z varied, spread 0.01 */
+         {-0.87611520604519411, 0.31454040548971196, -0.36535801489874936},
+         {-0.87570130131427015, 0.3143918065828552, -0.36647649696817181},
+         {-0.87551146779139988, 0.31432365308791849, -0.36698816176440169},
+         {-0.87584509126307519, 0.31444342964394401, -0.36608838504400765},
+         {-0.8760300055489959, 0.31450981704833214, -0.36558857252114846},
+         {-0.87583686533852823, 0.31444047639575851, -0.36611060093636905},
+         {-0.87572421481361051, 0.31440003292263785, -0.36641468159358703},
+         {-0.87559738636494333, 0.31435449933139764, -0.36675668465753497},
+         {-0.87550761583582304, 0.31432227016971243, -0.36699853554044515},
+         {-0.87593447579654315, 0.31447552022656089, -0.36584688230087353},
+         {-0.87562193793314036, 0.31436331376603227, -0.36669050815128951},
+         {-0.87569428556437567, 0.31438928780815362, -0.36649542144668024},
+         {-0.87603072926337422, 0.31451007687422311, -0.36558661481357752},
+         {-0.87599566355652358, 0.3144974876832406, -0.36568145655897849},
+         {-0.87597156116629904, 0.31448883451121235, -0.36574662950689812},
+         {-0.8758742036549565, 0.3144538814926095, -0.36600974821174892},
+        },
+        {/* one azimuth, z varied, spread 0.03 */
+         {-0.8916893546971657, 0.32012752537472344, -0.32001322194123172},
+         {-0.89155052509629018, 0.32007768382806495, -0.32044958654332867},
+         {-0.89189828688906958, 0.32020253462005421, -0.31935526090427235},
+         {-0.89163900975186461, 0.32010945091564252, -0.32017154108883589},
+         {-0.8920394227332219, 0.32025320413662089, -0.31890994579976345},
+         {-0.89245294561871025, 0.32040166397559944, -0.31760118636137741},
+         {-0.89214303385329818, 0.32029040181235474, -0.31858258843495052},
+         {-0.89266629369895711, 0.32047825857955325, -0.31692360888956234},
+         {-0.89148800037231313, 0.32005523667754543, -0.32064589607143718},
+         {-0.8921298195053724, 0.32028565769773831, -0.31862435974425868},
+         {-0.89235567277096917, 0.32036674181815805, -0.31790958464678071},
+         {-0.8921934742757851, 0.32030851054892823, -0.31842308730622998},
+         {-0.89252482263488342, 0.32042746871488181, -0.31737309002740471},
+         {-0.89168856844882571, 0.32012724310182866, -0.32001569511776534},
+         {-0.89234641494604416, 0.32036341814431585, -0.31793891873728264},
+         {-0.89141603128098168, 0.32002939888214055, -0.32087169246663022},
+        },
+        {/* an arc of 0.01 rad alternately above and below the rim */
+         {-0.98577636347346997, 0.044061988288871513, 0.16218354542015828},
+         {-0.98580551906874736, 0.043404794303683665, -0.16218354542015828},
+         {-0.98583423652825464, 0.042747581027476833, 0.16218354542015828},
+         {-0.98586251583922857, 0.042090348752345817, -0.16218354542015828},
+         {-0.98589035698910077, 0.041433097770393813, 0.16218354542015828},
+         {-0.98591775996549702, 0.040775828373731934, -0.16218354542015828},
+         {-0.9859447247562384, 0.040118540854480786, 0.16218354542015828},
+         {-0.9859712513493406, 0.039461235504767683, -0.16218354542015828},
+         {-0.98599733973301407, 0.038803912616728345, 0.16218354542015828},
+         {-0.98602298989566373, 0.038146572482506261, -0.16218354542015828},
+         {-0.98604820182588981, 0.037489215394252588, 0.16218354542015828},
+         {-0.98607297551248685, 0.03683184164412559, -0.16218354542015828},
+         {-0.98609731094444431, 0.036174451524292238, 0.16218354542015828},
+         {-0.98612120811094639, 0.035517045326925463, -0.16218354542015828},
+         {-0.98614466700137238, 0.034859623344205802, 0.16218354542015828},
+         {-0.98616768760529572, 0.034202185868320786, -0.16218354542015828},
+        },
+        {/* 16 equal normals pointing away (8-bit values: not decided by the equal-block solver) */
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+         {-0.96733728762929416, 0.15783144566709784, -0.19836281587191235},
+        }};
+    static const struct {
+        int metric, precision;
+        double reference;
+    } cases[4] = {{SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_16BIT, 2.2487780473159837},
+                   {SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, 0.32665022437714958},
+                   {SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 0.21311817550708081},
+                   {SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, 0.19969012596338739}};
+    for (int c = 0; c < 4; ++c) {
+        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = (sol_bc5_metric)cases[c].metric,
+                             .precision = (sol_bc4_precision)cases[c].precision};
+        sol_bc5_block b;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(blocks[c], &o, &b, &info), SOL_OK);
+        cr_assert(!info.bounded, "block %d: stopped by the work bound", c);
+        cr_assert_eq(info.error, cases[c].reference, "block %d: %.17g, reference %.17g", c, info.error,
+                     cases[c].reference);
         sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
                            clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
                            clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};

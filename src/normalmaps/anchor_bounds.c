@@ -33,8 +33,13 @@ void sol_nm_channel_init(sol_nm_channel *ch, const double t[16], sol_bc4_precisi
         ch->loose_off[p] = 0.0;
         ch->loose_reach[p] = loose_reach(t[p]);
     }
+    sol_nm_reference_order(t, ch->order);
+}
+
+void sol_nm_reference_order(const double t[16], int order[16])
+{
     /* Order: smallest, largest, then by decreasing distance from the mean - the pixels most likely
-     * to be far from a poor palette come first. */
+     * to be far from a poor palette come first (ties: the lower pixel first; an insertion sort, stable). */
     double mean = 0.0;
     for (int p = 0; p < 16; ++p)
         mean += t[p];
@@ -46,20 +51,23 @@ void sol_nm_channel_init(sol_nm_channel *ch, const double t[16], sol_bc4_precisi
         if (t[p] > t[hi])
             hi = p;
     }
-    int n = 0, used[16] = {0};
-    ch->order[n++] = lo;
-    used[lo] = 1;
-    if (!used[hi]) {
-        ch->order[n++] = hi;
-        used[hi] = 1;
-    }
-    while (n < 16) {
-        int best = -1;
-        for (int p = 0; p < 16; ++p)
-            if (!used[p] && (best < 0 || fabs(t[p] - mean) > fabs(t[best] - mean)))
-                best = p;
-        ch->order[n++] = best;
-        used[best] = 1;
+    int n = 0;
+    order[n++] = lo;
+    if (hi != lo)
+        order[n++] = hi;
+    const int first = n;
+    double key[16];
+    for (int p = 0; p < 16; ++p) {
+        if (p == lo || p == hi)
+            continue;
+        double k = fabs(t[p] - mean);
+        int q = n++;
+        for (; q > first && key[q - 1] < k; --q) {
+            key[q] = key[q - 1];
+            order[q] = order[q - 1];
+        }
+        key[q] = k;
+        order[q] = p;
     }
 }
 

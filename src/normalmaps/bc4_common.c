@@ -75,6 +75,7 @@ typedef struct common_ctx {
     double dp[9][16];
     double q[9], q_slack;
     int q_rows;
+    double gcost[16][16]; /* group_cost(i, j) for i >= 1, tabulated with row 2 */
 } common_ctx;
 
 /* Sum of squares of sorted[i..j] about their mean. */
@@ -96,7 +97,9 @@ static double quantisation_bound(common_ctx *c, int m)
                 b = group_cost(c, 0, j);
             else
                 for (int i = r - 1; i <= j; ++i) {
-                    double v = c->dp[r - 1][i - 1] + group_cost(c, i, j);
+                    if (r == 2)
+                        c->gcost[i][j] = group_cost(c, i, j);
+                    double v = c->dp[r - 1][i - 1] + c->gcost[i][j];
                     b = v < b ? v : b;
                 }
             c->dp[r][j] = r - 1 > j ? 0.0 : b;
@@ -509,6 +512,30 @@ static void descend(common_ctx *c, int six, int l, int h)
     }
 }
 
+/* Incumbent seeds: the usual fast encoder's two candidates (bc4_fast.c: anchors at the block's
+ * extreme codes, 8-value (max, min), 6-value (min, max) of the codes the fixed entries do not serve),
+ * both scored exactly at this precision (the fast encoder keeps one by its 8-bit error and computes
+ * indices this search does not need). */
+static void extreme_seeds(common_ctx *c)
+{
+    int lo = 255, hi = 0, lo6 = 255, hi6 = 0;
+    for (int p = 0; p < 16; ++p) {
+        double v = (c->t[p] + 1.0) * 127.5;
+        int k = v <= 0.0 ? 0 : (v >= 255.0 ? 255 : (int)lrint(v));
+        lo = k < lo ? k : lo;
+        hi = k > hi ? k : hi;
+        if (k != 0 && k != 255) {
+            lo6 = k < lo6 ? k : lo6;
+            hi6 = k > hi6 ? k : hi6;
+        }
+    }
+    if (lo6 > hi6)
+        lo6 = hi6 = lo;
+    if (hi > lo)
+        try_pair(c, hi << 8 | lo);
+    try_pair(c, lo6 << 8 | hi6);
+}
+
 /* Incumbent seeds for narrow blocks: per mode, palettes of small span S (codes) whose lattice is
  * centred on the targets' range (the fast encoder's pair has span 0 there, and its refit fails). */
 static void narrow_seeds(common_ctx *c)
@@ -525,78 +552,160 @@ static void narrow_seeds(common_ctx *c)
         }
 }
 
-/* ---- flat blocks (all 16 targets equal) ----
- * The score is then S(m) = 16 equal terms m = min_k (pal_k - t)^2 added in order, non-decreasing in
- * m, so a pair can reach the incumbent only if one of its entries lies within R = sqrt(m_best) of t
- * (m_best the incumbent's term; a relative 1e-9 of slack). The box bounds cannot see this (one entry
- * makes them zero along eight long lines of pairs), so the pairs are listed directly: for each low
- * anchor L, the rows where L itself is within R, the column of high anchors within R, and for each
- * interpolant weight w the high anchors H whose exact entry (1 - w) A(L) + w A(H) is within
- * R + delta of t (an interval of H). Each is scored exactly (S(m), then the tie rule). When t is
- * within R of the 6-value mode's fixed entries -1 or +1 every 6-value pair qualifies: the general
- * search handles that case (returns 0). */
-static void flat_consider(common_ctx *c, int pair, double *m_best)
+/* ---- blocks of few distinct values (8-bit sources, flat blocks): a walk over the entry values ----
+ * A pair's term for a target t is min_i (pal_i - t)^2 over its entries, so it is decided by the entry
+ * of its palette nearest to t; every entry is one of the distinct values V of the entry index
+ * (bc4_entries.c). Pick the target value u held by the most targets and walk V outward from u in
+ * order of d(e) = (e - u)^2 (the value just below u or just above it, whichever is nearer, then the
+ * next, ...), scoring exactly every pair that holds the visited value. A pair none of whose entries
+ * has been visited has a term >= d for the targets equal to u, and every target's term is at least
+ * lb(t) = the least (e - t)^2 over all of V (at the value just below or just above t: (e - t)^2 as
+ * computed is monotone in |e - t| on either side), so, floating-point addition being monotone, it
+ * scores at least LB(d) = the reference-order sum of d (targets equal to u) and lb(t) (the others).
+ * The walk stops when LB(d) > best: every pair that could still reach the incumbent (score < best,
+ * or = best with a smaller index) has been scored, so the result is the exhaustive search's.
+ * The values are listed with the pairs holding them; a value e held by a pair whose other entries
+ * are all at least 2 D away (D = the largest |e - t| over the targets) serves every target of the
+ * block for that pair (the others are no nearer to any target), so all such pairs of e score exactly
+ * the same sum of (e - t)^2 in the same order: only the least of them is scored (the later ones can
+ * only tie with a larger index). This is the rule that decides the tied anchors of flat blocks:
+ * with 16 equal targets the walk stops after the nearest value(s), whose least holder wins, and an
+ * anchor value held by ~500 pairs costs one score plus a pass over its list.
+ * Returns 0 if the walk lists more than max_work pairs (the values -1 and +1 the 6-value mode holds
+ * in every palette, targets far apart): then the box search below finishes from the incumbent found
+ * so far. */
+/* The block's distinct values, each with its least term over every entry value and how many
+ * targets hold it, and per target (reference order) its least term and which value it is. */
+typedef struct walk_plan {
+    int nv;
+    double val[16], term[16];
+    int count[16];
+    double lb[16];
+    int of[16];
+} walk_plan;
+
+static int distinct_values(const common_ctx *c)
 {
-    const double *pal = c->pal[pair], t = c->t[0];
-    double m = (pal[0] - t) * (pal[0] - t);
-    for (int i = 1; i < 8; ++i) {
-        double d = (pal[i] - t) * (pal[i] - t);
-        m = d < m ? d : m;
+    int nv = 1;
+    for (int p = 1; p < 16; ++p)
+        nv += c->sorted[p] != c->sorted[p - 1];
+    return nv;
+}
+
+/* The first entry value above x. */
+static size_t first_above(const sol_nm_entry_index *ix, double x)
+{
+    size_t lo = 0, hi = ix->count;
+    while (lo < hi) {
+        size_t mid = (lo + hi) >> 1;
+        if (ix->value[mid] <= x)
+            lo = mid + 1;
+        else
+            hi = mid;
     }
-    if (m > *m_best * (1.0 + 1e-12))
-        return; /* S(m) > S(m_best) */
-    double v = 0.0;
-    for (int k = 0; k < 16; ++k)
-        v += m;
-    if (v < c->best || (v == c->best && pair < c->best_pair)) {
-        c->best = v;
-        c->best_pair = pair;
-        *m_best = m < *m_best ? m : *m_best;
+    return lo;
+}
+
+static void walk_prepare(const common_ctx *c, const sol_nm_entry_index *ix, walk_plan *w)
+{
+    w->nv = 0;
+    for (int i = 0; i < 16;) {
+        int j = i;
+        while (j < 16 && c->sorted[j] == c->sorted[i])
+            ++j;
+        const double t = c->sorted[i];
+        const size_t a = first_above(ix, t);
+        double m = INFINITY;
+        if (a > 0)
+            m = (ix->value[a - 1] - t) * (ix->value[a - 1] - t);
+        if (a < ix->count) {
+            double d = (ix->value[a] - t) * (ix->value[a] - t);
+            m = d < m ? d : m;
+        }
+        w->val[w->nv] = t;
+        w->term[w->nv] = m;
+        w->count[w->nv++] = j - i;
+        i = j;
+    }
+    for (int k = 0; k < 16; ++k) {
+        int i = 0;
+        while (w->val[i] != c->to[k])
+            ++i;
+        w->lb[k] = w->term[i];
+        w->of[k] = i;
     }
 }
 
-static int flat_search(common_ctx *c)
+/* About how many pairs the walk from value i lists at the incumbent's score (those holding a value
+ * within R of it, R^2 = least term + (best - LB) / count). */
+static size_t walk_work(const common_ctx *c, const sol_nm_entry_index *ix, const walk_plan *w, int i)
 {
-    const double t = c->t[0];
-    const double *pal = c->pal[c->best_pair];
-    double m_best = INFINITY;
-    for (int i = 0; i < 8; ++i)
-        m_best = fmin(m_best, (pal[i] - t) * (pal[i] - t));
-    const double r = sqrt(m_best) * (1.0 + 1e-9) + 1e-300;
-    if (fabs(t + 1.0) <= r || fabs(t - 1.0) <= r)
-        return 0;
-    const double reach = r + c->delta;
-    const int a_lo = code_ceil(t - r), a_hi = code_floor(t + r); /* anchors within r */
-    for (int six = 0; six < 2; ++six) {
-        const int den = six ? 5 : 7, gap = six ? 0 : 1;
-        for (int l = 0; l < 256; ++l) {
-            const double al = anchor(l);
-            if (l >= a_lo && l <= a_hi) /* the low anchor itself: the whole row */
-                for (int h = l + gap; h < 256; ++h)
-                    flat_consider(c, six ? (l << 8 | h) : (h << 8 | l), &m_best);
-            for (int h = a_lo > l + gap ? a_lo : l + gap; h <= a_hi; ++h) /* the high anchor */
-                flat_consider(c, six ? (l << 8 | h) : (h << 8 | l), &m_best);
-            for (int j = 1; j < den; ++j) { /* interpolant of weight w = j / den on H */
-                double w = (double)j / den;
-                int h1 = code_ceil(al + (t - reach - al) / w), h2 = code_floor(al + (t + reach - al) / w);
-                h1 = h1 > l + gap ? h1 : l + gap;
-                for (int h = h1; h <= h2; ++h)
-                    flat_consider(c, six ? (l << 8 | h) : (h << 8 | l), &m_best);
+    double lb = 0.0;
+    for (int k = 0; k < 16; ++k)
+        lb += w->lb[k];
+    double slack = c->best * (1.0 + 1e-9) - lb;
+    if (!(slack < INFINITY))
+        return SIZE_MAX;
+    double r = sqrt((slack > 0.0 ? slack : 0.0) / w->count[i] + w->term[i]) * (1.0 + 1e-9) + 1e-15;
+    return ix->start[first_above(ix, w->val[i] + r)] - ix->start[first_above(ix, w->val[i] - r)];
+}
+
+static int narrow_walk(common_ctx *c, const sol_nm_entry_index *ix, const walk_plan *w, int iu, size_t max_work)
+{
+    const double u = w->val[iu];
+    size_t hi = first_above(ix, u), lo = hi, n = ix->count, work = 0; /* next values above and below u */
+    while (lo > 0 || hi < n) {
+        double dlo = lo > 0 ? (ix->value[lo - 1] - u) * (ix->value[lo - 1] - u) : INFINITY;
+        double dhi = hi < n ? (ix->value[hi] - u) * (ix->value[hi] - u) : INFINITY;
+        size_t v = dlo <= dhi ? --lo : hi++;
+        double d = dlo <= dhi ? dlo : dhi, s = 0.0;
+        for (int k = 0; k < 16; ++k)
+            s += w->of[k] == iu ? d : w->lb[k];
+        if (s > c->best)
+            break;
+        const double e = ix->value[v];
+        const double far = 2.0 * fmax(fabs(e - c->tmin), fabs(e - c->tmax)) * (1.0 + 1e-9);
+        const uint32_t a = ix->start[v], b = ix->start[v + 1];
+        work += b - a;
+        if (work > max_work)
+            return 0;
+        int alone = 0; /* the least pair whose other entries are all far has been scored */
+        for (uint32_t j = a; j < b; ++j) {
+            if (ix->gap[j] >= far) {
+                if (alone)
+                    continue;
+                alone = 1;
             }
+            try_pair(c, ix->pair[j]);
         }
     }
     return 1;
 }
 
+/* Blocks the walk is considered for: at most this many distinct values (8-bit sources; smooth 16-bit
+ * blocks hold 16 and are cheaper in the box search) ... */
+#ifndef WALK_MAX_VALUES
+#define WALK_MAX_VALUES 8
+#endif
+/* ... and the most pairs it may list (measured on the benchmark maps: about what the box search
+ * costs); flat blocks walk before any incumbent is known, up to FLAT_MAX_WORK pairs. */
+#ifndef WALK_MAX_WORK
+#define WALK_MAX_WORK 2048
+#endif
+#define FLAT_MAX_WORK 4096
+#ifndef WALK_FIRST_VALUES
+#define WALK_FIRST_VALUES 4
+#endif
+
 int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score)
 {
-    sol_nm_channel ch; /* for the reference pixel order */
-    sol_nm_channel_init(&ch, t, precision, 0, 0, 0, 255, 0, 255);
+    int order[16];
+    sol_nm_reference_order(t, order);
     common_ctx c;
     c.t = t;
     for (int k = 0; k < 16; ++k)
-        c.to[k] = t[ch.order[k]];
-    c.pal = ch.palettes;
+        c.to[k] = t[order[k]];
+    c.pal = sol_nm_palettes(precision);
     for (int p = 0; p < 16; ++p) { /* insertion sort */
         int q = p;
         for (; q > 0 && c.sorted[q - 1] > t[p]; --q)
@@ -623,26 +732,56 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     c.q_rows = 0;
     c.delta = (precision == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : precision == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) +
               1e-12;
-    sol_bc4_block fast;
-    sol_nm_bc4_fast(t, &fast);
-    c.best_pair = fast.e0 << 8 | fast.e1;
-    c.best = exact_score(&c, c.best_pair, INFINITY);
-    if (fast.e0 > fast.e1)
-        refine(&c, 0, fast.e1, fast.e0);
-    else
-        refine(&c, 1, fast.e0, fast.e1);
+    const int nv = distinct_values(&c);
+    const sol_nm_entry_index *ix = nv <= WALK_MAX_VALUES ? sol_nm_entry_index_get(precision) : NULL;
+    walk_plan wp;
+    int walk_pair = -1;
+    if (ix) {
+        walk_prepare(&c, ix, &wp);
+        if (nv <= WALK_FIRST_VALUES) { /* flat: the walk needs no incumbent */
+            c.best = INFINITY;
+            c.best_pair = 65536;
+            if (narrow_walk(&c, ix, &wp, 0, FLAT_MAX_WORK)) {
+                *score = c.best;
+                return c.best_pair;
+            }
+            walk_pair = c.best_pair;
+        }
+    }
+    c.best = INFINITY;
+    c.best_pair = 65536;
+    extreme_seeds(&c);
+    {
+        int e0 = c.best_pair >> 8, e1 = c.best_pair & 255;
+        if (e0 > e1)
+            refine(&c, 0, e1, e0);
+        else
+            refine(&c, 1, e0, e1);
+    }
+    if (walk_pair >= 0 && walk_pair < 65536)
+        try_pair(&c, walk_pair);
     narrow_seeds(&c);
     {
         int e0 = c.best_pair >> 8, e1 = c.best_pair & 255, six = e0 <= e1;
         descend(&c, six, six ? e0 : e1, six ? e1 : e0);
     }
-    int flat = 1;
-    for (int p = 1; p < 16; ++p)
-        flat &= c.sorted[p] == c.sorted[0];
-    if (!flat || !flat_search(&c)) {
-        search_mode(&c, 0);
-        search_mode(&c, 1);
+    if (ix) { /* the walk from the value it lists the fewest pairs for, if that is few */
+        int iu = 0;
+        size_t least = SIZE_MAX;
+        for (int i = 0; i < wp.nv; ++i) {
+            size_t work = walk_work(&c, ix, &wp, i);
+            if (work < least) {
+                least = work;
+                iu = i;
+            }
+        }
+        if (least <= WALK_MAX_WORK && narrow_walk(&c, ix, &wp, iu, SIZE_MAX)) {
+            *score = c.best;
+            return c.best_pair;
+        }
     }
+    search_mode(&c, 0);
+    search_mode(&c, 1);
     *score = c.best;
     return c.best_pair;
 }

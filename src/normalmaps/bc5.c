@@ -168,8 +168,12 @@ static inline double angle2_lower_bound(double a, double b, const double n[3])
         c2 = (a * inv - n[0]) * (a * inv - n[0]) + (b * inv - n[1]) * (b * inv - n[1]) + n[2] * n[2];
     }
     double c = sqrt(c2) * (1.0 - 1e-6) - 1e-15; /* relative and absolute rounding of c and of dN */
-    if (c > 0.2) { /* large angles (rims, pixels pointing away): the series is loose, use dN itself;
-                    * asin's relative change is at least c's, so the lowering still covers rounding */
+    if (c > 0.2) { /* large angles (rims, pixels pointing away): the series is loose, use dN itself.
+                    * There c and the computed angle (atan2 of a cross product and a dot product of
+                    * magnitude ~1) carry relative rounding errors of a few 1e-16, so lowering c by a
+                    * relative 1e-12 covers them (asin's relative change is at least c's); the closer
+                    * bound lets near-ties at the hemisphere bound be rejected without atan2 */
+        c = sqrt(c2) * (1.0 - 1e-12);
         double e = 2.0 * asin(c < 2.0 ? 0.5 * c : 1.0);
         return e * e;
     }
@@ -517,6 +521,9 @@ typedef struct search_workspace {
     uint64_t *ymark;     /* marks of y list positions (coupling filter), grown on demand */
     size_t ybucket_cap, ymark_cap;
     window_scratch *win; /* the adaptive window path's lists (window_search) */
+    struct value_set *vset;   /* value-level usability (see there), allocated on demand */
+    struct value_mask *vtab; /* VALUE_CODES entries */
+    uint32_t vgen;
 } search_workspace;
 
 static int compare_pairs(const void *pa, const void *pb)
@@ -782,7 +789,8 @@ static int cone_line(double a, double dx, double dy, double c, double s, double 
 
 /* The y intervals for one pixel (target q, squared radius R2) and x palette a: returns their
  * count (up to 16), or -1 if the pixel constrains nothing. */
-static int pixel_y_intervals(const double a[8], const double q[3], double R2, double lo[16], double hi[16])
+static int pixel_y_intervals(const double a[8], const double q[3], double R2, double cone_slack, double lo[16],
+                             double hi[16])
 {
     if (!(R2 < 4.0))
         return -1;
@@ -794,7 +802,7 @@ static int pixel_y_intervals(const double a[8], const double q[3], double R2, do
     } else if (rq == 0.0) {
         clamped = 1.0 - rc2 <= 0.0 ? 2 : 0; /* w . q_xy = 0 >= (1 - rc2) / 2 */
     } else {
-        c = (1.0 + rq * rq - rc2) / (2.0 * rq) - 1e-9;
+        c = (1.0 + rq * rq - rc2) / (2.0 * rq) - cone_slack;
         if (c > 1.0)
             clamped = 0;
         else if (c < 1e-3)
@@ -886,7 +894,7 @@ static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs,
             return -1;
         R2 = R2 * (1.0 + 1e-9) + 1e-15;
         int i = f->np;
-        int cnt = pixel_y_intervals(a, q3, R2, f->lo[i], f->hi[i]);
+        int cnt = pixel_y_intervals(a, q3, R2, 1e-9, f->lo[i], f->hi[i]);
         if (cnt < 0)
             continue;
         if (cnt == 0)
@@ -934,6 +942,277 @@ static int y_filter_pass(const y_filter *f, const double b[8])
     return 1;
 }
 
+/* ---- value-level usability of entries (rims and pixels pointing away) ----
+ *
+ * The loose channel bounds accept every pair holding an entry in a wide interval (any x in
+ * [m / sqrt(1 + ...), reach] can be a clamped decode near the rim direction m, with SOME y), and the
+ * equivalence key above counts every such entry as usable, so a smooth block pointing away keeps
+ * tens of thousands of x pairs, each met by dozens of y pairs within a hair of the incumbent. But a
+ * decode needs an actual y value: an x entry a can serve pixel p under the budget only if some value
+ * b of the y list gives a decode (a, b) inside pixel p's ball (search_unit's per-pixel budget T_p:
+ * the incumbent minus the other pixels' hemisphere bounds theta0^2 for the sum metric, the
+ * incumbent for the max; the ball |u - n| <= sqrt(T_p), or |u - (m, 0)| <= sqrt((T_p - theta0^2) / k)
+ * for a pixel pointing away, see "pixels pointing away"). pixel_y_intervals gives the y intervals of
+ * that ball on the line x = a (a superset), and a bitmap of the y list's values (value_set, exact)
+ * says whether any value lies in them: the entry is then "usable" for p. So
+ *  - a pair of which no entry is usable for some pixel cannot beat the incumbent and is dropped
+ *    (x against the y list's values, then y against the kept x values, and once more each way);
+ *  - two pairs whose usable seeds and usable entries (palette order) are bit-identical on every
+ *    pixel give every candidate the same objective whenever it can beat the incumbent (the argument
+ *    of "equivalent anchor pairs" above, with this finer notion of usable; see seed_key), and are
+ *    merged, then merged again by the budget-based key of that section.
+ * The bounds' rounding allowances here are relative 1e-13 (budgets) and 1e-14 (cone cosines), not
+ * the coupling filter's 1e-9: near the hemisphere bound the balls are microradians wide.
+ * Only candidates that cannot beat the incumbent are removed, and of each merged class the first
+ * in list order is kept, which is the one the enumeration would have met first: same result. */
+#define VALUE_CODES 65536
+
+/* The values of a list's pairs as integer codes: every palette value is K / Q exactly (Q = 65535 for
+ * 8- and 16-bit decoders, whose values are k / 255 = 257 k / 65535 or k / 65535; Q = 35 * 255 = 8925
+ * for exact decoders, whose entries are num / (7 * 255), num / (5 * 255) or codes / 255), so the
+ * decoded 2 v - 1 maps back to K = round((d + 1) Q / 2) and a bitmap of the codes with ranks answers
+ * "is a value in [lo, hi]" exactly (the range's code bounds are widened by 1e-6 code). */
+typedef struct value_set {
+    double half_q; /* Q / 2 */
+    uint64_t bits[VALUE_CODES / 64];
+    uint32_t before[VALUE_CODES / 64]; /* set codes in the words before */
+} value_set;
+
+static void value_set_init(value_set *s, const sol_nm_pair *list, size_t n, const double (*pal)[8],
+                           sol_bc4_precision precision)
+{
+    s->half_q = precision == SOL_BC4_INTERP_FLOAT ? 4462.5 : 32767.5;
+    memset(s->bits, 0, sizeof s->bits);
+    for (size_t i = 0; i < n; ++i)
+        for (int e = 0; e < 8; ++e) {
+            long k = lround((pal[list[i].pair][e] + 1.0) * s->half_q);
+            s->bits[k >> 6] |= UINT64_C(1) << (k & 63);
+        }
+    uint32_t c = 0;
+    for (int w = 0; w < VALUE_CODES / 64; ++w) {
+        s->before[w] = c;
+        c += (uint32_t)__builtin_popcountll(s->bits[w]);
+    }
+}
+
+/* Set codes among 0 .. k. */
+static inline uint32_t value_rank(const value_set *s, long k)
+{
+    uint64_t m = (k & 63) == 63 ? ~UINT64_C(0) : (UINT64_C(1) << ((k & 63) + 1)) - 1;
+    return s->before[k >> 6] + (uint32_t)__builtin_popcountll(s->bits[k >> 6] & m);
+}
+
+/* Whether a value of the set may lie in [lo, hi] (never a false "no"). */
+static int value_set_any(const value_set *s, double lo, double hi)
+{
+    if (!(lo <= hi))
+        return 0;
+    double top = 2.0 * s->half_q, u = ceil((lo + 1.0) * s->half_q - 1e-6), v = floor((hi + 1.0) * s->half_q + 1e-6);
+    long a = u <= 0.0 ? 0 : (long)u, b = v >= top ? (long)top : (long)v;
+    if (a > b)
+        return 0;
+    return value_rank(s, b) > (a ? value_rank(s, a - 1) : 0);
+}
+
+/* Each pixel's ball: centre q, squared radius R2 (widened against rounding); `free`: pixels that
+ * constrain nothing (R2 >= 4, or pointing straight away). */
+typedef struct pixel_reach {
+    unsigned free;
+    double q[16][3], R2[16];
+    int order[16], count; /* the constrained pixels, one per group of equal normals, smallest ball first */
+} pixel_reach;
+
+/* Returns 0 if some pixel cannot meet its budget at all (then no candidate beats the incumbent). */
+static int pixel_reach_init(pixel_reach *pr, const double n[16][3], const away_info *aw, const int group[16],
+                            int use_max, double best)
+{
+    const double budget = best * (1.0 + 1e-13);
+    double total = 0.0;
+    for (int p = 0; p < 16; ++p)
+        total += aw->off[p]; /* theta0^2 of the loose pixels pointing away, else 0 */
+    pr->free = 0;
+    pr->count = 0;
+    for (int p = 0; p < 16; ++p) {
+        double t = use_max ? budget : budget - (total - aw->off[p]) * (1.0 - 1e-13), R2 = t;
+        if ((aw->mask >> p) & 1) {
+            if (!(aw->w[p] > 0.0)) {
+                pr->free |= 1u << p;
+                continue;
+            }
+            R2 = (t - aw->off[p]) / aw->w[p];
+            pr->q[p][0] = aw->m[0][p];
+            pr->q[p][1] = aw->m[1][p];
+            pr->q[p][2] = 0.0;
+        } else {
+            memcpy(pr->q[p], n[p], sizeof pr->q[p]);
+        }
+        if (R2 < 0.0)
+            return 0;
+        pr->R2[p] = R2 * (1.0 + 1e-9) + 1e-15;
+        if (!(pr->R2[p] < 4.0)) {
+            pr->free |= 1u << p;
+            continue;
+        }
+        if (group[p] != p)
+            continue;
+        int k = pr->count++;
+        for (; k > 0 && pr->R2[pr->order[k - 1]] > pr->R2[p]; --k)
+            pr->order[k] = pr->order[k - 1];
+        pr->order[k] = p;
+    }
+    return 1;
+}
+
+/* Whether value v of channel c (0 = x, 1 = y) can serve pixel p with a value of the other channel's set. */
+static int value_usable(double v, int c, const pixel_reach *pr, int p, const value_set *other)
+{
+    if ((pr->free >> p) & 1)
+        return 1;
+    const double v8[8] = {v, v, v, v, v, v, v, v};
+    const double q[3] = {pr->q[p][c], pr->q[p][1 - c], pr->q[p][2]}; /* y intervals of x = v, or swapped */
+    double lo[16], hi[16], rq = hypot(q[0], q[1]);
+    /* the cone's cosine (1 + rq^2 - rc2) / (2 rq) carries a rounding error of a few 1e-16 / rq: lowered
+     * by much more, but far less than the coupling filter's 1e-9, which would widen a cone of a few
+     * microradians (near-ties at the hemisphere bound) to 4e-5 rad */
+    int cnt = pixel_y_intervals(v8, q, pr->R2[p], 1e-14 + (rq > 0.0 ? 1e-15 / rq : 0.0), lo, hi);
+    if (cnt < 0)
+        return 1;
+    for (int k = 0; k < cnt; ++k)
+        if (value_set_any(other, lo[k], hi[k]))
+            return 1;
+    return 0;
+}
+
+/* Per value code (value_set): per pixel, whether usability is known and whether usable. */
+typedef struct value_mask {
+    uint32_t gen; /* the table's generation when filled (0: never) */
+    uint16_t known, usable;
+} value_mask;
+
+typedef struct value_table {
+    value_mask *slot; /* VALUE_CODES entries */
+    uint32_t gen;
+    int c;
+    const pixel_reach *pr;
+    const value_set *other;
+    uint64_t *work;
+} value_table;
+
+static value_mask *value_slot(value_table *t, double v)
+{
+    value_mask *m = &t->slot[(long)((v + 1.0) * t->other->half_q + 0.5)]; /* the value's exact code */
+    if (m->gen != t->gen)
+        *m = (value_mask){t->gen, 0, 0};
+    return m;
+}
+
+static inline int slot_usable(value_table *t, value_mask *s, double v, int p)
+{
+    unsigned bit = 1u << p;
+    if (!(s->known & bit)) {
+        s->known |= (uint16_t)bit;
+        *t->work += 16;
+        if (value_usable(v, t->c, t->pr, p, t->other))
+            s->usable |= (uint16_t)bit;
+    }
+    return (s->usable & bit) != 0;
+}
+
+/* Drops the pairs of which no entry is usable for some constrained pixel; returns the count kept. */
+static size_t usable_filter(sol_nm_pair *list, size_t count, const double (*pal)[8], value_table *t)
+{
+    size_t kept = 0;
+    for (size_t i = 0; i < count; ++i) {
+        const double *a = pal[list[i].pair];
+        value_mask *s[8];
+        for (int e = 0; e < 8; ++e)
+            s[e] = value_slot(t, a[e]);
+        *t->work += 8;
+        int ok = 1;
+        for (int k = 0; k < t->pr->count && ok; ++k) {
+            int p = t->pr->order[k], hit = 0;
+            for (int e = 0; e < 8 && !hit; ++e)
+                hit = slot_usable(t, s[e], a[e], p);
+            ok = hit;
+        }
+        if (ok)
+            list[kept++] = list[i];
+    }
+    return kept;
+}
+
+/* The seed entry's value for pixel p if usable, else a marker: a seed that is not usable starts
+ * best_pixel's scan from a decode outside the pixel's ball, which every usable decode beats, so
+ * then only the usable entries' order decides the choice. (NaN bits: never a palette value.) */
+static uint64_t seed_key(value_table *t, const double pal[8], double target, int p)
+{
+    double v = pal[seed_entry(pal, target)];
+    return slot_usable(t, value_slot(t, v), v, p) ? value_bits(v) : UINT64_C(0x7ff8dead0000beef);
+}
+
+static uint64_t usable_key_hash(value_table *t, const double pal[8], const double tc[16])
+{
+    uint64_t h = 0;
+    for (int p = 0; p < 16; ++p) {
+        h = mix64(h, seed_key(t, pal, tc[p], p));
+        for (int e = 0; e < 8; ++e)
+            if (slot_usable(t, value_slot(t, pal[e]), pal[e], p))
+                h = mix64(h, value_bits(pal[e]));
+        h = mix64(h, 0x5eed);
+    }
+    return h;
+}
+
+static int usable_key_equal(value_table *t, const double pa[8], const double pb[8], const double tc[16])
+{
+    for (int p = 0; p < 16; ++p) {
+        if (seed_key(t, pa, tc[p], p) != seed_key(t, pb, tc[p], p))
+            return 0;
+        int ea = 0, eb = 0;
+        for (;;) {
+            while (ea < 8 && !slot_usable(t, value_slot(t, pa[ea]), pa[ea], p))
+                ++ea;
+            while (eb < 8 && !slot_usable(t, value_slot(t, pb[eb]), pb[eb], p))
+                ++eb;
+            if (ea == 8 || eb == 8) {
+                if (ea != eb)
+                    return 0;
+                break;
+            }
+            if (value_bits(pa[ea++]) != value_bits(pb[eb++]))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* merge_equivalent with the usable entries of the table (targets tc: the channel's components of n). */
+static size_t merge_usable(sol_nm_pair *list, size_t count, const double (*pal)[8], value_table *t,
+                           const double tc[16], uint32_t *slots)
+{
+    size_t size = 64;
+    while (size < 2 * count)
+        size *= 2;
+    memset(slots, 0, size * sizeof *slots);
+    size_t kept = 0;
+    for (size_t i = 0; i < count; ++i) {
+        const double *a = pal[list[i].pair];
+        *t->work += 16;
+        size_t h = (size_t)usable_key_hash(t, a, tc) & (size - 1);
+        int dup = 0;
+        for (; slots[h]; h = (h + 1) & (size - 1))
+            if (usable_key_equal(t, pal[list[slots[h] - 1].pair], a, tc)) {
+                dup = 1;
+                break;
+            }
+        if (dup)
+            continue;
+        list[kept] = list[i];
+        slots[h] = (uint32_t)++kept;
+    }
+    return kept;
+}
+
 /* ---- blocks of 16 equal normals at a rim or pointing away ----
  *
  * Every pixel then picks the same decode, so a candidate's objective is that of the best decode
@@ -979,7 +1258,7 @@ static int equal_block_solve(const double n[16][3], const sol_nm_pair *xl, size_
             if (r2 < 0.0)
                 return 0; /* cannot happen: the incumbent meets its own budget */
             double a8[8] = {a, a, a, a, a, a, a, a}, lo[16], hi[16];
-            int cnt = pixel_y_intervals(a8, q, r2 * (1.0 + 1e-9) + 1e-15, lo, hi);
+            int cnt = pixel_y_intervals(a8, q, r2 * (1.0 + 1e-9) + 1e-15, 1e-9, lo, hi);
             if (cnt < 0)
                 return 0;
             for (int k = 0; k < cnt; ++k) {
@@ -1018,6 +1297,58 @@ static int equal_block_solve(const double n[16][3], const sol_nm_pair *xl, size_
     *px = ax;
     *py = by;
     *value = v;
+    return 1;
+}
+
+/* The value-level filter and merge of both lists (see "value-level usability"); 0 if it could not
+ * run (no memory), leaving the lists as they were. */
+static int value_reduce(const double n[16][3], const away_info *aw, int use_max, double best,
+                        const double (*pal)[8], sol_bc4_precision precision, search_workspace *ws, sol_nm_pair *xl, size_t *nx, sol_nm_pair *yl,
+                        size_t *ny, const double tx[16], const double ty[16], unsigned loose, uint64_t *work)
+{
+    if (!ws->vset && !(ws->vset = malloc(sizeof *ws->vset)))
+        return 0;
+    if (!ws->vtab) {
+        if (!(ws->vtab = calloc(VALUE_CODES, sizeof *ws->vtab)))
+            return 0;
+        ws->vgen = 0;
+    }
+    int group[16];
+    for (int p = 0; p < 16; ++p) {
+        group[p] = p;
+        for (int q = 0; q < p && group[p] == p; ++q)
+            if (memcmp(n[q], n[p], sizeof n[p]) == 0)
+                group[p] = q;
+    }
+    pixel_reach pr;
+    if (!pixel_reach_init(&pr, n, aw, group, use_max, best)) {
+        *nx = *ny = 0; /* no candidate can beat the incumbent */
+        return 1;
+    }
+    value_table t = {ws->vtab, 0, 0, &pr, ws->vset, work};
+    for (int round = 0; round < 2; ++round) {
+        for (int c = 0; c < 2; ++c) {
+            sol_nm_pair *list = c ? yl : xl, *other = c ? xl : yl;
+            size_t *count = c ? ny : nx, ocount = c ? *nx : *ny;
+            value_set_init(ws->vset, other, ocount, pal, precision);
+            *work += 8 * ocount + VALUE_CODES / 64;
+            if (++ws->vgen == 0) { /* wrapped: clear the generations */
+                memset(ws->vtab, 0, VALUE_CODES * sizeof *ws->vtab);
+                ws->vgen = 1;
+            }
+            t.gen = ws->vgen;
+            t.c = c;
+            *count = usable_filter(list, *count, pal, &t);
+            if (round == 1 && *count > 1) {
+                *count = merge_usable(list, *count, pal, &t, c ? ty : tx, ws->slots);
+                /* and the classes of the budget-based key (each merge keeps the first of its classes,
+                 * so their composition does too) */
+                channel_key k;
+                channel_key_init(&k, c ? ty : tx, loose, best * (1.0 + BOUND_SLACK));
+                *count = merge_equivalent(list, *count, &k, pal, ws->slots);
+            }
+        }
+    }
     return 1;
 }
 
@@ -1125,7 +1456,22 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
         size_t ny = sol_nm_channel_collect(&cy, use_max ? room : room - sx_min * (1.0 - BOUND_SLACK), ws->y);
         qsort(ws->x, nx, sizeof *ws->x, compare_pairs);
         qsort(ws->y, ny, sizeof *ws->y, compare_pairs);
-        if (nx > 1 && ny > 1 && nx * ny > 256) { /* merging pays only for long lists */
+        int valued = 0; /* the value-level filter and merge ran */
+        int all_equal = 1; /* 16 equal normals: equal_block_solve below decides them */
+        for (int p = 1; p < 16; ++p)
+            all_equal &= memcmp(n[0], n[p], sizeof n[p]) == 0;
+        size_t pairs_before = nx + ny;
+        if (aw.mask && !all_equal && nx > 1 && ny > 1 && nx * ny > 4096) /* pixels pointing away */
+            valued = value_reduce(n, &aw, use_max, best, pal, precision, ws, ws->x, &nx, ws->y, &ny, tx, ty, loose, &work);
+        /* the floor of every objective (hemisphere bounds), and the incumbent at which the value-level
+         * reduction runs again on the lists' rest: once the incumbent's distance to the floor halved,
+         * or fell by 64 if the last reduction kept over 90% of the pairs (coarse values: it rarely pays) */
+        double floor_all = 0.0, reduce_at = -1.0;
+        for (int p = 0; p < 16; ++p)
+            floor_all = use_max ? (aw.off[p] > floor_all ? aw.off[p] : floor_all) : floor_all + aw.off[p];
+        if (valued)
+            reduce_at = floor_all + (10 * (nx + ny) > 9 * pairs_before ? 1.0 / 64 : 0.5) * (best - floor_all);
+        if (!valued && nx > 1 && ny > 1 && nx * ny > 256) { /* merging pays only for long lists */
             channel_key kx, ky;
             channel_key_init(&kx, tx, loose, room);
             channel_key_init(&ky, ty, loose, room);
@@ -1201,6 +1547,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                                            &py, &v, &evals)) {
                 best = v;
                 solved = 1;
+            } else if (equal && aw.mask && !valued) {
+                valued = 1; /* not decided (e.g. coarse 8-bit values): the value-level reduction, at once */
+                reduce_at = INFINITY;
             }
             candidates += evals;
             work += 8 * nx + 32 * evals;
@@ -1213,6 +1562,24 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             if (work >= rq->work_limit) {
                 bounded = 1;
                 break;
+            }
+            if (valued && best < reduce_at) {
+                size_t rest = nx - i;
+                pairs_before = rest + ny;
+                value_reduce(n, &aw, use_max, best, pal, precision, ws, ws->x + i, &rest, ws->y, &ny, tx, ty, loose, &work);
+                nx = i + rest;
+                reduce_at = floor_all + (10 * (rest + ny) > 9 * pairs_before ? 1.0 / 64 : 0.5) * (best - floor_all);
+                if (i >= nx || ny == 0)
+                    break;
+                for (size_t j = 0; quick && j < ny; ++j)
+                    channel_side_init(pal[ws->y[j].pair], n, order, 1, &aw, &ws->yside[j]);
+                work += 16 * ny;
+                if (filter) {
+                    y_index_init(&yix, ws->y, ny, pal, ws->ybucket);
+                    work += 8 * ny;
+                }
+                if (combine(ws->x[i].score, ws->y[0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
+                    break;
             }
             const double *a = pal[ws->x[i].pair];
             if (quick)
@@ -1264,7 +1631,10 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                         continue;
                 }
                 ++candidates;
-                double margin = best * (1.0 + BOUND_SLACK);
+                /* the bounds are lowered against rounding already, BOUND_SLACK is a second margin;
+                 * the value-reduced lists (blocks near their hemisphere bound) take 1e-12 instead,
+                 * which still covers the different summation orders of bound and objective */
+                double margin = best * (1.0 + (valued ? 1e-12 : BOUND_SLACK));
                 if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, away_off, use_max, margin, &work) >= margin)
                     continue;
                 if (joint_objective_lower(a, pal[ws->y[j].pair], n, order, away_off, use_max, best, margin, &work) >= margin)
@@ -1594,6 +1964,9 @@ static sol_status workspace_alloc(search_workspace *ws)
     ws->ybucket = NULL;
     ws->ymark = NULL;
     ws->ybucket_cap = ws->ymark_cap = 0;
+    ws->vset = NULL;
+    ws->vtab = NULL;
+    ws->vgen = 0;
     ws->win = malloc(sizeof *ws->win);
     if (!ws->x || !ws->y || !ws->slots || !ws->win) {
         free(ws->x);
@@ -1613,6 +1986,8 @@ static void workspace_free(search_workspace *ws)
     free(ws->yside);
     free(ws->ybucket);
     free(ws->ymark);
+    free(ws->vset);
+    free(ws->vtab);
     free(ws->win);
 }
 

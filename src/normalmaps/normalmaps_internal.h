@@ -35,6 +35,9 @@ typedef struct sol_nm_channel {
 
 void sol_nm_channel_init(sol_nm_channel *ch, const double t[16], sol_bc4_precision precision, int use_max,
                          unsigned loose, uint8_t e0_lo, uint8_t e0_hi, uint8_t e1_lo, uint8_t e1_hi);
+/* The reference pixel order of sol_nm_channel_init (ch->order): smallest, largest, then by decreasing
+ * |t - mean| (ties: lower pixel first). */
+void sol_nm_reference_order(const double t[16], int order[16]);
 /* The loose distance^2 of t to palette pal alone (the unweighted loose term above). */
 double sol_nm_loose_term(const double pal[8], double t);
 /* Gives loose pixel p the term offset + weight * (loose distance)^2 (weight, offset >= 0). */
@@ -49,6 +52,19 @@ size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pa
  * score as sol_nm_channel_argmin on the full range with use_max = 0 and no loose pixels (least
  * score, then least e0 << 8 | e1), by branch and bound over boxes of anchor codes. */
 int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score);
+/* Every palette entry of the 65536 pairs indexed by value (bc4_entries.c): value[0..count) the
+ * distinct decoded entries, ascending; the pairs holding value[i] are pair[start[i] .. start[i+1]),
+ * ascending, and gap[j] is at most the distance from value[i] to the nearest other entry of pair[j]
+ * (INFINITY if it has none). */
+typedef struct sol_nm_entry_index {
+    size_t count;
+    const double *value;
+    const uint32_t *start;
+    const uint16_t *pair;
+    const float *gap;
+} sol_nm_entry_index;
+/* The index of a precision (valid), built once on first use (thread-safe); NULL if out of memory. */
+const sol_nm_entry_index *sol_nm_entry_index_get(sol_bc4_precision precision);
 /* The BC4 encoders' input check and mapping: UNORM values in [0, 1] to targets t = 2 v - 1 in the
  * decoded units; SOL_ERR_NONFINITE or SOL_ERR_OUT_OF_RANGE (t partly written) otherwise. */
 sol_status sol_nm_bc4_targets(const double values[16], double t[16]);

@@ -188,7 +188,11 @@ sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_optio
  * (z < 0) are bounded through their rim direction m (dN^2 >= theta0^2 + theta0 cot(theta0) |u - m|^2,
  * theta0 = asin(-z)), rims and pixels pointing away couple x and y through a filter of the y pairs
  * per x pair, and 16 equal normals at a rim or pointing away are solved at the level of decoded
- * values (ties: the first x and y pairs of the search lists holding the best decode). Cost: about
+ * values (ties: the first x and y pairs of the search lists holding the best decode). Blocks with
+ * pixels pointing away also keep only the anchor pairs whose entries can meet an actual value of
+ * the other channel's list inside each pixel's ball under the incumbent, and merge pairs whose such
+ * entries are identical (again whenever the incumbent halves its distance to the hemisphere bound),
+ * which decides candidates tied with the incumbent to 1e-10 and closer. Cost: about
  * 0.1-200 ms per block on smooth to rough maps, 1-100 ms for varied or equal normals pointing away or
  * at rims; the work bound (work_limit) caps the rest - near-ties the bounds cannot separate (e.g.
  * smooth blocks pointing away or along a rim, measured in issue 13), where info->bounded reports that
