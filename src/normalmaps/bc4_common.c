@@ -599,19 +599,8 @@ static void descend(common_ctx *c, int six, int l, int h)
  * indices this search does not need). */
 static void extreme_seeds(common_ctx *c)
 {
-    int lo = 255, hi = 0, lo6 = 255, hi6 = 0;
-    for (int p = 0; p < 16; ++p) {
-        double v = (c->t[p] + 1.0) * 127.5;
-        int k = v <= 0.0 ? 0 : (v >= 255.0 ? 255 : (int)lrint(v));
-        lo = k < lo ? k : lo;
-        hi = k > hi ? k : hi;
-        if (k != 0 && k != 255) {
-            lo6 = k < lo6 ? k : lo6;
-            hi6 = k > hi6 ? k : hi6;
-        }
-    }
-    if (lo6 > hi6)
-        lo6 = hi6 = lo;
+    int lo, hi, lo6, hi6;
+    sol_nm_bc4_fast_anchors(c->t, &lo, &hi, &lo6, &hi6);
     if (hi > lo)
         try_pair(c, hi << 8 | lo);
     try_pair(c, lo6 << 8 | hi6);

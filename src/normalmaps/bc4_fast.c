@@ -183,21 +183,31 @@ void sol_nm_bc4_fast(const double t[16], sol_bc4_block *out)
     sol_nm_bc4_fast_path(t, 0, out);
 }
 
-void sol_nm_bc4_fast_path(const double t[16], int path, sol_bc4_block *out)
+void sol_nm_bc4_fast_anchors(const double t[16], int *lo, int *hi, int *lo6, int *hi6)
 {
     /* codes of the targets (decoded units 2 v - 1 -> 0..255) */
-    int lo = 255, hi = 0, lo6 = 255, hi6 = 0;
+    int l = 255, h = 0, l6 = 255, h6 = 0;
     for (int p = 0; p < 16; ++p) {
         int c = code_of(t[p]);
-        lo = c < lo ? c : lo;
-        hi = c > hi ? c : hi;
+        l = c < l ? c : l;
+        h = c > h ? c : h;
         if (c != 0 && c != 255) {
-            lo6 = c < lo6 ? c : lo6;
-            hi6 = c > hi6 ? c : hi6;
+            l6 = c < l6 ? c : l6;
+            h6 = c > h6 ? c : h6;
         }
     }
-    if (lo6 > hi6) /* every value is 0 or 255: the fixed entries serve them */
-        lo6 = hi6 = lo;
+    if (l6 > h6) /* every value is 0 or 255: the fixed entries serve them */
+        l6 = h6 = l;
+    *lo = l;
+    *hi = h;
+    *lo6 = l6;
+    *hi6 = h6;
+}
+
+void sol_nm_bc4_fast_path(const double t[16], int path, sol_bc4_block *out)
+{
+    int lo, hi, lo6, hi6;
+    sol_nm_bc4_fast_anchors(t, &lo, &hi, &lo6, &hi6);
     double pal[8];
     sol_bc4_block eight = {(uint8_t)hi, (uint8_t)lo, {0}}, six = {(uint8_t)lo6, (uint8_t)hi6, {0}};
     palette8(six.e0, six.e1, pal);

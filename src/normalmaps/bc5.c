@@ -630,33 +630,55 @@ static uint64_t pair_key_hash(const channel_key *k, const double pal[8])
     return h;
 }
 
+/* 1 if the usable entries of two palettes for pixel p (usable(ctx, pal, e, p): entry e is), taken in
+ * entry order, are the same values bit for bit: the two pairs serve that pixel alike. Entries are
+ * tested lazily in that order (the table's test counts work: the same tests as a plain walk). */
+typedef int (*entry_usable_fn)(void *ctx, const double pal[8], int e, int p);
+
+static inline int usable_values_equal(const double pa[8], const double pb[8], int p, entry_usable_fn usable, void *ctx)
+{
+    int ea = 0, eb = 0;
+    for (;;) {
+        while (ea < 8 && !usable(ctx, pa, ea, p))
+            ++ea;
+        while (eb < 8 && !usable(ctx, pb, eb, p))
+            ++eb;
+        if (ea == 8 || eb == 8)
+            return ea == eb;
+        if (value_bits(pa[ea++]) != value_bits(pb[eb++]))
+            return 0;
+    }
+}
+
+static int key_entry_usable(void *ctx, const double pal[8], int e, int p)
+{
+    const channel_key *k = ctx;
+    return usable_entry(pal[e], k->t[p], k->loose[p], k->budget);
+}
+
 static int pair_key_equal(const channel_key *k, const double pa[8], const double pb[8])
 {
     for (int p = 0; p < k->count; ++p) {
-        int loose = k->loose[p];
         if (value_bits(pa[seed_entry(pa, k->t[p])]) != value_bits(pb[seed_entry(pb, k->t[p])]))
             return 0;
-        int ea = 0, eb = 0;
-        for (;;) {
-            while (ea < 8 && !usable_entry(pa[ea], k->t[p], loose, k->budget))
-                ++ea;
-            while (eb < 8 && !usable_entry(pb[eb], k->t[p], loose, k->budget))
-                ++eb;
-            if (ea == 8 || eb == 8) {
-                if (ea != eb)
-                    return 0;
-                break;
-            }
-            if (value_bits(pa[ea++]) != value_bits(pb[eb++]))
-                return 0;
-        }
+        if (!usable_values_equal(pa, pb, p, key_entry_usable, (void *)k))
+            return 0;
     }
     return 1;
 }
 
-/* Keeps the first pair of each equivalence class of a sorted list (in place); returns the count. */
-static size_t merge_equivalent(sol_nm_pair *list, size_t count, const channel_key *k, const double (*pal)[8],
-                               uint32_t *slots)
+/* Keeps the first pair of each equivalence class of a sorted list (in place), classes given by a
+ * hash and an equality of the pairs' palettes (open addressing in slots, at least 2 count + 64
+ * entries); work (if not NULL) is charged 16 per pair before its hash. Returns the count kept. */
+typedef struct pair_classes {
+    uint64_t (*hash)(void *ctx, const double pal[8]);
+    int (*equal)(void *ctx, const double pa[8], const double pb[8]);
+    void *ctx;
+    uint64_t *work;
+} pair_classes;
+
+static size_t merge_classes(sol_nm_pair *list, size_t count, const double (*pal)[8], const pair_classes *pc,
+                            uint32_t *slots)
 {
     size_t size = 64;
     while (size < 2 * count)
@@ -665,10 +687,12 @@ static size_t merge_equivalent(sol_nm_pair *list, size_t count, const channel_ke
     size_t kept = 0;
     for (size_t i = 0; i < count; ++i) {
         const double *a = pal[list[i].pair];
-        size_t h = (size_t)pair_key_hash(k, a) & (size - 1);
+        if (pc->work)
+            *pc->work += 16;
+        size_t h = (size_t)pc->hash(pc->ctx, a) & (size - 1);
         int dup = 0;
         for (; slots[h]; h = (h + 1) & (size - 1))
-            if (pair_key_equal(k, pal[list[slots[h] - 1].pair], a)) {
+            if (pc->equal(pc->ctx, pal[list[slots[h] - 1].pair], a)) {
                 dup = 1;
                 break;
             }
@@ -678,6 +702,24 @@ static size_t merge_equivalent(sol_nm_pair *list, size_t count, const channel_ke
         slots[h] = (uint32_t)++kept;
     }
     return kept;
+}
+
+static uint64_t key_hash_fn(void *ctx, const double pal[8])
+{
+    return pair_key_hash(ctx, pal);
+}
+
+static int key_equal_fn(void *ctx, const double pa[8], const double pb[8])
+{
+    return pair_key_equal(ctx, pa, pb);
+}
+
+/* Keeps the first pair of each equivalence class of a sorted list (in place); returns the count. */
+static size_t merge_equivalent(sol_nm_pair *list, size_t count, const channel_key *k, const double (*pal)[8],
+                               uint32_t *slots)
+{
+    const pair_classes pc = {key_hash_fn, key_equal_fn, (void *)k, NULL};
+    return merge_classes(list, count, pal, &pc, slots);
 }
 
 /* Lower bound of every candidate's objective from the hemisphere alone: a decoded normal has
@@ -1167,54 +1209,47 @@ static uint64_t usable_key_hash(value_table *t, const double pal[8], const doubl
     return h;
 }
 
+static int table_entry_usable(void *ctx, const double pal[8], int e, int p)
+{
+    value_table *t = ctx;
+    return slot_usable(t, value_slot(t, pal[e]), pal[e], p);
+}
+
 static int usable_key_equal(value_table *t, const double pa[8], const double pb[8], const double tc[16])
 {
     for (int p = 0; p < 16; ++p) {
         if (seed_key(t, pa, tc[p], p) != seed_key(t, pb, tc[p], p))
             return 0;
-        int ea = 0, eb = 0;
-        for (;;) {
-            while (ea < 8 && !slot_usable(t, value_slot(t, pa[ea]), pa[ea], p))
-                ++ea;
-            while (eb < 8 && !slot_usable(t, value_slot(t, pb[eb]), pb[eb], p))
-                ++eb;
-            if (ea == 8 || eb == 8) {
-                if (ea != eb)
-                    return 0;
-                break;
-            }
-            if (value_bits(pa[ea++]) != value_bits(pb[eb++]))
-                return 0;
-        }
+        if (!usable_values_equal(pa, pb, p, table_entry_usable, t))
+            return 0;
     }
     return 1;
 }
 
 /* merge_equivalent with the usable entries of the table (targets tc: the channel's components of n). */
+typedef struct usable_ctx {
+    value_table *t;
+    const double *tc;
+} usable_ctx;
+
+static uint64_t usable_hash_fn(void *ctx, const double pal[8])
+{
+    usable_ctx *u = ctx;
+    return usable_key_hash(u->t, pal, u->tc);
+}
+
+static int usable_equal_fn(void *ctx, const double pa[8], const double pb[8])
+{
+    usable_ctx *u = ctx;
+    return usable_key_equal(u->t, pa, pb, u->tc);
+}
+
 static size_t merge_usable(sol_nm_pair *list, size_t count, const double (*pal)[8], value_table *t,
                            const double tc[16], uint32_t *slots)
 {
-    size_t size = 64;
-    while (size < 2 * count)
-        size *= 2;
-    memset(slots, 0, size * sizeof *slots);
-    size_t kept = 0;
-    for (size_t i = 0; i < count; ++i) {
-        const double *a = pal[list[i].pair];
-        *t->work += 16;
-        size_t h = (size_t)usable_key_hash(t, a, tc) & (size - 1);
-        int dup = 0;
-        for (; slots[h]; h = (h + 1) & (size - 1))
-            if (usable_key_equal(t, pal[list[slots[h] - 1].pair], a, tc)) {
-                dup = 1;
-                break;
-            }
-        if (dup)
-            continue;
-        list[kept] = list[i];
-        slots[h] = (uint32_t)++kept;
-    }
-    return kept;
+    usable_ctx u = {t, tc};
+    const pair_classes pc = {usable_hash_fn, usable_equal_fn, &u, t->work};
+    return merge_classes(list, count, pal, &pc, slots);
 }
 
 /* ---- blocks of 16 equal normals at a rim or pointing away ----

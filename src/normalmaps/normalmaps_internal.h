@@ -86,6 +86,11 @@ void sol_nm_bc4_fast(const double t[16], sol_bc4_block *out);
  * uses), 1 scalar, 2 SSE2, 3 AVX2 (each falls back to the next narrower one where it is not
  * available). Every path gives the same block; the tests compare them. */
 void sol_nm_bc4_fast_path(const double t[16], int path, sol_bc4_block *out);
+/* The fast encoder's anchor codes: lo / hi the least and largest code of the 16 targets (the 8-value
+ * pair is hi, lo when hi > lo), lo6 / hi6 those of the codes other than 0 and 255 (the 6-value pair;
+ * both lo when every code is 0 or 255). Codes: lrint((t + 1) 127.5) clamped to 0..255. Also the
+ * common encoder's first incumbents (bc4_common.c). */
+void sol_nm_bc4_fast_anchors(const double t[16], int *lo, int *hi, int *lo6, int *hi6);
 
 /* Nonzero: the BC5 searches use their scalar forms even where the AVX2 forms could run (bc5.c; the
  * results are bit-identical either way, the tests compare them). Zero (the default) otherwise. */
