@@ -60,19 +60,24 @@ static error_stats table_errors(const sol_bestfit_table *t, sol_table_filter f, 
     return stats_of(err, n);
 }
 
-typedef struct table_timing {
-    const sol_bestfit_table *t;
+/* One thread encoding d->tn directions through the table t with `filter` (NULL: the exact search). */
+typedef struct knob_timing {
+    const sol_bestfit_table *t; /* NULL: the exact search */
+    sol_table_filter filter;
     const double *dirs;
     size_t n;
     uint32_t sink;
-} table_timing;
+} knob_timing;
 
-static void time_table(void *p)
+static void time_knob(void *p)
 {
-    table_timing *c = p;
+    knob_timing *c = p;
     for (size_t i = 0; i < c->n; ++i) {
         uint32_t code;
-        sol_normal_encode_bestfit_table(c->t, SOL_TABLE_NEAREST, c->dirs + 3 * i, &code);
+        if (c->t)
+            sol_normal_encode_bestfit_table(c->t, c->filter, c->dirs + 3 * i, &code);
+        else
+            sol_normal_encode(SOL_NORMAL_XYZ_BEST_FIT, c->dirs + 3 * i, &code);
         c->sink ^= code;
     }
 }
@@ -132,10 +137,10 @@ typedef struct sweep_rms {
 /* The accuracy knob: time per normal of the table path (nearest, 16-bit) at this size. */
 static void timing_row(exp_table *knob, const d6_data *d, const sol_bestfit_table *t, int size, error_stats st)
 {
-    table_timing c = {t, d->dirs, d->tn, 0};
+    knob_timing c = {t, SOL_TABLE_NEAREST, d->dirs, d->tn, 0};
     char name[64];
     snprintf(name, sizeof name, "table %dx%d", size, size);
-    exp_table_row(knob, "%s|%.1f|%.5f|%.5f", name, exp_cpu_time_per_item_ns(time_table, &c, d->tn, 5), st.rms, st.max);
+    exp_table_row(knob, "%s|%.1f|%.5f|%.5f", name, exp_cpu_time_per_item_ns(time_knob, &c, d->tn, 5), st.rms, st.max);
 }
 
 /* One table size at every precision and filter (--bench: 16-bit nearest only, the timed one). */
@@ -249,28 +254,7 @@ static void write_claim(const exp_run *exp, const sweep_rms *r, double exact_rms
 /* --bench only (table_knobs): the table's stored precision and filter at 512x512 against the exact
  * search (the peer the table replaces), error and core-ns per encode (one thread). On a CPU the
  * texels are floats whatever the precision, so only the filter changes the time here; a GPU reads
- * 8-bit texels with half the bandwidth of 16-bit ones. */
-typedef struct knob_timing {
-    const sol_bestfit_table *t; /* NULL: the exact search */
-    sol_table_filter filter;
-    const double *dirs;
-    size_t n;
-    uint32_t sink;
-} knob_timing;
-
-static void time_knob(void *p)
-{
-    knob_timing *c = p;
-    for (size_t i = 0; i < c->n; ++i) {
-        uint32_t code;
-        if (c->t)
-            sol_normal_encode_bestfit_table(c->t, c->filter, c->dirs + 3 * i, &code);
-        else
-            sol_normal_encode(SOL_NORMAL_XYZ_BEST_FIT, c->dirs + 3 * i, &code);
-        c->sink ^= code;
-    }
-}
-
+ * 8-bit texels with half the bandwidth of 16-bit ones (timed by time_knob). */
 static void table_knobs(const exp_run *exp, d6_data *d)
 {
     exp_table *t = exp_table_new("Best-fit table 512x512 (D6): stored precision and filter vs angular error and time per "
