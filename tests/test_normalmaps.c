@@ -1217,6 +1217,176 @@ Test(normalmaps, image_check_and_fast_path_match_the_block_encoder_T10)
 }
 
 
+/* The adaptive encoder's threshold level of a block error as sol_bc5_block_error reports it (sum:
+ * sum dN^2; max: max dN = sqrt(max dN^2), so level = error * 180 / pi bit for bit). */
+static double level_of(double error, sol_bc5_metric metric)
+{
+    return metric == SOL_BC5_MAX ? error * (180.0 / M_PI) : sol_nm_threshold_level(error, 0);
+}
+
+/* The chord-bound threshold test (bc5_adaptive.c) never contradicts the exact angles: random
+ * anchors and indices (decodes clamped at the rim included), normals spread, at the rim (z = 0) and
+ * pointing away, the decoded normals themselves (error 0 or nearly), every precision and metric, at
+ * thresholds exactly at the block's level, one ulp either side, 0 and far away; it decides (no NaN)
+ * at 0 and at a huge threshold, and away from the level on smooth blocks. */
+Test(normalmaps, adaptive_threshold_bounds_agree_with_the_exact_angles_T13)
+{
+    int undecided = 0, far_tests = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        sol_bc5_metric metric = (sol_bc5_metric)(trial / 3 % 2);
+        int family = trial / 6 % 5;
+        double n[16][3];
+        sol_bc5_block b;
+        if (family < 3) { /* the fast encoder's block of smooth, rough or rim/away normals */
+            random_block(n, family == 2 ? 1.6 : 1.2, family == 0 ? 0.02 : 0.4);
+            if (family == 2)
+                for (int p = 0; p < 16; p += 3)
+                    n[p][2] = p % 2 ? 0.0 : -fabs(n[p][2]);
+            sol_bc5_options of = {.encoder = SOL_BC5_FAST, .precision = prec};
+            cr_assert_eq(sol_bc5_encode_block(n, &of, &b, NULL), SOL_OK);
+        } else { /* random anchors and indices; family 4: the normals are its own decode */
+            b.x.e0 = (uint8_t)(uniform() * 256);
+            b.x.e1 = (uint8_t)(uniform() * 256);
+            b.y.e0 = (uint8_t)(uniform() * 256);
+            b.y.e1 = (uint8_t)(uniform() * 256);
+            for (int p = 0; p < 16; ++p) {
+                b.x.index[p] = (uint8_t)(uniform() * 8);
+                b.y.index[p] = (uint8_t)(uniform() * 8);
+            }
+            if (family == 4)
+                cr_assert_eq(sol_bc5_decode_block(&b, prec, n), SOL_OK);
+            else
+                random_block(n, 1.6, 1.0);
+        }
+        double u[16][3], t[3][16], err;
+        cr_assert_eq(sol_nm_unit_normals(n, u), SOL_OK);
+        for (int p = 0; p < 16; ++p)
+            for (int c = 0; c < 3; ++c)
+                t[c][p] = u[p][c];
+        cr_assert_eq(sol_bc5_block_error(&b, n, prec, metric, &err), SOL_OK);
+        double level = level_of(err, metric);
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        const double *px = pal[b.x.e0 << 8 | b.x.e1], *py = pal[b.y.e0 << 8 | b.y.e1];
+        const double thr[] = {level, nextafter(level, 0.0), nextafter(level, INFINITY), 0.0, 0.5 * level,
+                              2.0 * level, 1e300};
+        for (size_t k = 0; k < sizeof thr / sizeof thr[0]; ++k) {
+            int exact = !(level <= thr[k]);
+            sol_nm_simd_disable = trial % 2; /* the scalar and the AVX2 forms */
+            int got = sol_nm_threshold_test(px, py, &b, (const double(*)[16])t, metric == SOL_BC5_MAX, thr[k]);
+            sol_nm_simd_disable = 0;
+            cr_assert(got == -1 || got == exact, "trial %d threshold %d: bounds say %d, exact %d (level %.17g)", trial,
+                      (int)k, got, exact, level);
+            undecided += got == -1;
+            if (k == 6)
+                cr_assert_eq(got, 0, "trial %d: undecided at a huge threshold", trial);
+            if (k == 3 && level > 1e-3)
+                cr_assert_eq(got, 1, "trial %d: undecided at threshold 0 (level %g)", trial, level);
+            if ((k == 4 || k == 5) && family == 0 && level > 1e-3) {
+                cr_assert_neq(got, -1, "trial %d: smooth block undecided at %g x its level", trial, k == 4 ? 0.5 : 2.0);
+                ++far_tests;
+            }
+        }
+    }
+    cr_assert(far_tests > 100);
+    cr_assert(undecided > 0); /* the exact level itself is undecidable from bounds */
+}
+
+/* SOL_BC5_THRESHOLD_ARGB8_DEG is what its comment derives: 2 / (255 sqrt 6) rad in degrees, and the
+ * RMS angle of unit normals stored at 8 bits per component (sol_unorm_encode / decode, renormalised)
+ * over the upper hemisphere within 1%. */
+Test(normalmaps, argb8_threshold_is_the_rms_angle_of_8bit_normals_T13)
+{
+    cr_assert_float_eq(SOL_BC5_THRESHOLD_ARGB8_DEG, 2.0 / (255.0 * sqrt(6.0)) * 180.0 / M_PI, 1e-15);
+    cr_assert_float_eq(SOL_BC5_THRESHOLD_ARGB8_DEG, 0.18346, 1e-5);
+    double s = 0.0;
+    const int count = 200000;
+    for (int i = 0; i < count; ++i) {
+        double z = uniform(), phi = 2 * M_PI * uniform(), r = sqrt(1 - z * z);
+        double n[3] = {r * cos(phi), r * sin(phi), z}, q[3];
+        for (int c = 0; c < 3; ++c)
+            q[c] = 2.0 * sol_unorm_decode(sol_unorm_encode(0.5 * (n[c] + 1.0), 8), 8) - 1.0;
+        double e = sol_angle3(n, q);
+        s += e * e;
+    }
+    double rms = sqrt(s / count) * 180.0 / M_PI;
+    cr_assert(fabs(rms / SOL_BC5_THRESHOLD_ARGB8_DEG - 1.0) < 0.01, "RMS angle of 8-bit normals %g deg", rms);
+}
+
+/* The image encoders' adaptive path (rows read directly, the threshold from chord bounds, no error
+ * computed) gives the blocks and statistics of sol_bc5_encode_block with its exact error, block
+ * for block: both bases and metrics, every precision, thresholds at 0, exactly at a block's level
+ * and one ulp below it, between and above the blocks' levels, scalar and AVX2 forms; also the common
+ * encoder's image path. */
+Test(normalmaps, adaptive_image_path_equals_the_exact_block_path_T13)
+{
+    enum { W = 16, H = 8, NB = W * H / 16 };
+    sol_image img = {0};
+    cr_assert_eq(sol_image_alloc(&img, W, H, 3), SOL_OK);
+    for (int b = 0; b < NB; ++b) {
+        double n[16][3];
+        random_block(n, b == 5 ? 1.6 : 1.0, b % 2 ? 0.03 : 0.3);
+        for (int p = 0; p < 16; ++p) {
+            float *v = sol_image_pixel(&img, 4 * (b % (W / 4)) + (p & 3), 4 * (b / (W / 4)) + (p >> 2));
+            for (int c = 0; c < 3; ++c)
+                v[c] = (float)(n[p][c] * (1.0 + 0.5 * (p % 3))); /* lengths not 1 */
+            if (b == 5 && p % 4 == 0)
+                v[2] = p % 8 ? 0.0f : -v[2]; /* rims and pointing away */
+        }
+    }
+    for (int cfg = 0; cfg < 12; ++cfg) {
+        sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .precision = (sol_bc4_precision)(cfg % 3),
+                             .metric = (sol_bc5_metric)(cfg / 3 % 2), .base = (sol_bc5_base)(cfg / 6),
+                             .window = cfg == 0 ? 0 : -1};
+        /* the base encoder's levels, block by block */
+        double n[NB][16][3], level[NB];
+        for (int b = 0; b < NB; ++b) {
+            for (int p = 0; p < 16; ++p)
+                for (int c = 0; c < 3; ++c)
+                    n[b][p][c] = sol_image_pixel(&img, 4 * (b % (W / 4)) + (p & 3), 4 * (b / (W / 4)) + (p >> 2))[c];
+            sol_bc5_options ob = o;
+            ob.encoder = o.base == SOL_BC5_BASE_FAST ? SOL_BC5_FAST : SOL_BC5_COMMON;
+            sol_bc5_block blk;
+            sol_bc5_info info;
+            cr_assert_eq(sol_bc5_encode_block(n[b], &ob, &blk, &info), SOL_OK);
+            level[b] = level_of(info.error, o.metric);
+        }
+        const double thr[] = {0.0, level[1], nextafter(level[1], 0.0), level[2], nextafter(level[3], 0.0),
+                              0.5 * (level[4] + level[6]), 1e6};
+        for (size_t k = 0; k < sizeof thr / sizeof thr[0]; ++k) {
+            o.threshold_deg = thr[k];
+            for (int enc = 0; enc < (k == 0 ? 2 : 1); ++enc) {
+                sol_bc5_options oe = o;
+                if (enc)
+                    oe.encoder = SOL_BC5_COMMON;
+                uint8_t got[16 * NB], want[16 * NB];
+                sol_bc5_image_stats st;
+                sol_nm_simd_disable = cfg % 2; /* the scalar and the AVX2 forms */
+                cr_assert_eq(sol_bc5_encode_image(&img, &oe, got, &st), SOL_OK);
+                sol_nm_simd_disable = 0;
+                uint64_t searched = 0, candidates = 0, bounded = 0;
+                for (int b = 0; b < NB; ++b) {
+                    sol_bc5_block blk;
+                    sol_bc5_info info;
+                    cr_assert_eq(sol_bc5_encode_block(n[b], &oe, &blk, &info), SOL_OK);
+                    cr_assert(!isnan(info.error));
+                    cr_assert_eq(info.searched, enc == 0 && !(level[b] <= thr[k]), "cfg %d threshold %d block %d",
+                                 cfg, (int)k, b);
+                    cr_assert_eq(sol_bc4_pack(&blk.x, want + 16 * b), SOL_OK);
+                    cr_assert_eq(sol_bc4_pack(&blk.y, want + 16 * b + 8), SOL_OK);
+                    searched += (uint64_t)info.searched;
+                    candidates += info.candidates;
+                    bounded += (uint64_t)info.bounded;
+                }
+                cr_assert_eq(memcmp(got, want, sizeof got), 0, "cfg %d threshold %d encoder %d", cfg, (int)k, enc);
+                cr_assert(st.blocks == NB && st.searched_blocks == searched && st.candidates == candidates &&
+                          st.bounded_blocks == bounded);
+            }
+        }
+    }
+    sol_image_free(&img);
+}
+
 /* Smooth blocks near the hemisphere bound (issue 13): normals on a small arc pointing away, one
  * azimuth with varied z, alternating above and below the rim. Their candidates tie with the
  * incumbent to 1e-10 and closer, which the value-level filter and merge of bc5.c decide. */

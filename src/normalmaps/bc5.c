@@ -2058,14 +2058,11 @@ sol_status sol_bc5_search_block(const double normals[16][3], const sol_bc5_range
 
 /* ---- the three encoders ---- */
 
-/* Common encoder: two independent least-squares BC4 blocks, indices by nearest component (T10). */
-static void encode_common(const double n[16][3], sol_bc4_precision precision, sol_bc5_block *out)
+/* Common encoder: two independent least-squares BC4 blocks, indices by nearest component (T10).
+ * tx, ty: the x and y components of the unit normals. */
+static void encode_common(const double tx[16], const double ty[16], sol_bc4_precision precision, sol_bc5_block *out)
 {
-    double tx[16], ty[16], s;
-    for (int p = 0; p < 16; ++p) {
-        tx[p] = n[p][0];
-        ty[p] = n[p][1];
-    }
+    double s;
     int px = sol_nm_bc4_common(tx, precision, &s), py = sol_nm_bc4_common(ty, precision, &s);
     const double(*pal)[8] = sol_nm_palettes(precision);
     out->x.e0 = (uint8_t)(px >> 8);
@@ -2076,18 +2073,6 @@ static void encode_common(const double n[16][3], sol_bc4_precision precision, so
         out->x.index[p] = (uint8_t)sol_nm_nearest_index(pal[px], tx[p]);
         out->y.index[p] = (uint8_t)sol_nm_nearest_index(pal[py], ty[p]);
     }
-}
-
-/* The usual fast encoder: two independent one-pass alpha blocks (bc4_fast.c). */
-static void encode_fast(const double n[16][3], sol_bc5_block *out)
-{
-    double tx[16], ty[16];
-    for (int p = 0; p < 16; ++p) {
-        tx[p] = n[p][0];
-        ty[p] = n[p][1];
-    }
-    sol_nm_bc4_fast(tx, &out->x);
-    sol_nm_bc4_fast(ty, &out->y);
 }
 
 static double own_index_objective(const sol_bc5_block *b, const double n[16][3], sol_bc4_precision precision,
@@ -2108,38 +2093,45 @@ static uint8_t clamp_code(int v)
     return (uint8_t)(v < 0 ? 0 : (v > 255 ? 255 : v));
 }
 
-/* One block with validated options and unit normals. */
-static void encode_unit(const double n[16][3], const sol_bc5_options *o, search_workspace *ws,
-                        sol_bc5_block *out, sol_bc5_info *info)
+/* One block with validated options and unit normals n (t[c][p] = n[p][c], the per-channel view). info may
+ * be NULL; with want_error 0, info->error is left NAN where the block is not searched (the image
+ * encoders need no error: the adaptive threshold is then decided from chord bounds,
+ * sol_nm_threshold_test, and the angles computed only where the bounds cannot decide; the blocks
+ * and the searched / candidates / bounded counts are the same either way). */
+static void encode_unit(const double n[16][3], const double t[3][16], const sol_bc5_options *o, search_workspace *ws,
+                        sol_bc5_block *out, sol_bc5_info *info, int want_error)
 {
     int use_max = o->metric == SOL_BC5_MAX;
-    if (o->encoder == SOL_BC5_FAST) {
-        encode_fast(n, out);
-        if (info) {
-            info->error = metric_value(own_index_objective(out, n, o->precision, use_max), o->metric);
-            info->searched = 0;
-            info->candidates = 1;
-            info->bounded = 0;
-        }
-        return;
-    }
     if (o->encoder == SOL_BC5_OPTIMAL) {
         search_request rq = {&full_range, o->precision, use_max, work_limit(o)};
         search_unit(n, &rq, ws, out, info);
         return;
     }
-    sol_bc5_block common;
-    if (o->encoder == SOL_BC5_ADAPTIVE && o->base == SOL_BC5_BASE_FAST)
-        encode_fast(n, &common);
-    else
-        encode_common(n, o->precision, &common);
-    double err = own_index_objective(&common, n, o->precision, use_max);
-    /* adaptive: RMS (or max) angle in degrees against the threshold (T13) */
-    double level = (use_max ? sqrt(err) : sqrt(err / 16.0)) * (180.0 / M_PI);
-    if (o->encoder == SOL_BC5_COMMON || level <= o->threshold_deg) {
-        *out = common;
+    sol_bc5_block base;
+    if (o->encoder == SOL_BC5_FAST || (o->encoder == SOL_BC5_ADAPTIVE && o->base == SOL_BC5_BASE_FAST)) {
+        sol_nm_bc4_fast(t[0], &base.x);
+        sol_nm_bc4_fast(t[1], &base.y);
+    } else
+        encode_common(t[0], t[1], o->precision, &base);
+    double err = NAN;
+    int search = 0;
+    if (o->encoder == SOL_BC5_ADAPTIVE) {
+        /* adaptive: RMS (or max) angle in degrees against the threshold (T13) */
+        if (!want_error) {
+            const double(*pal)[8] = sol_nm_palettes(o->precision);
+            search = sol_nm_threshold_test(pal[base.x.e0 << 8 | base.x.e1], pal[base.y.e0 << 8 | base.y.e1], &base,
+                                           t, use_max, o->threshold_deg);
+        }
+        if (want_error || search < 0) {
+            err = own_index_objective(&base, n, o->precision, use_max);
+            search = !(sol_nm_threshold_level(err, use_max) <= o->threshold_deg);
+        }
+    } else if (want_error)
+        err = own_index_objective(&base, n, o->precision, use_max);
+    if (!search) {
+        *out = base;
         if (info) {
-            info->error = metric_value(err, o->metric);
+            info->error = want_error ? metric_value(err, o->metric) : NAN;
             info->searched = 0;
             info->candidates = 1;
             info->bounded = 0;
@@ -2147,11 +2139,11 @@ static void encode_unit(const double n[16][3], const sol_bc5_options *o, search_
         return;
     }
     int w = o->window == 0 ? 4 : (o->window < 0 ? 0 : o->window > 255 ? 255 : o->window); /* 255: all codes */
-    sol_bc5_range r = {clamp_code(common.x.e0 - w), clamp_code(common.x.e0 + w), clamp_code(common.x.e1 - w),
-                       clamp_code(common.x.e1 + w), clamp_code(common.y.e0 - w), clamp_code(common.y.e0 + w),
-                       clamp_code(common.y.e1 - w), clamp_code(common.y.e1 + w)};
+    sol_bc5_range r = {clamp_code(base.x.e0 - w), clamp_code(base.x.e0 + w), clamp_code(base.x.e1 - w),
+                       clamp_code(base.x.e1 + w), clamp_code(base.y.e0 - w), clamp_code(base.y.e0 + w),
+                       clamp_code(base.y.e1 - w), clamp_code(base.y.e1 + w)};
     search_request rq = {&r, o->precision, use_max, work_limit(o)};
-    if (!window_search(n, &r, common.x.e0 << 8 | common.x.e1, common.y.e0 << 8 | common.y.e1, &rq, ws, out, info))
+    if (!window_search(n, &r, base.x.e0 << 8 | base.x.e1, base.y.e0 << 8 | base.y.e1, &rq, ws, out, info))
         search_unit(n, &rq, ws, out, info);
 }
 
@@ -2171,7 +2163,11 @@ sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_optio
     search_workspace ws = {0};
     if (o->encoder != SOL_BC5_COMMON && o->encoder != SOL_BC5_FAST && (st = workspace_alloc(&ws)) != SOL_OK)
         return st;
-    encode_unit(n, o, &ws, out, info);
+    double t[3][16];
+    for (int p = 0; p < 16; ++p)
+        for (int c = 0; c < 3; ++c)
+            t[c][p] = n[p][c];
+    encode_unit(n, (const double(*)[16])t, o, &ws, out, info, info != NULL);
     workspace_free(&ws);
     return SOL_OK;
 }
@@ -2303,11 +2299,10 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
                 my_max = 1;
                 continue;
             }
-            double raw[16][3], n[16][3];
-            gather_block(normals, b % bw, b / bw, raw);
-            sol_nm_unit_normals(raw, n);
+            double n[16][3], t[3][16];
+            sol_nm_unit_pixels(normals, b % bw, b / bw, n, t);
             sol_bc5_info info = {0.0, 0, 1, 0};
-            encode_unit(n, o, &ws, &block, &info);
+            encode_unit(n, (const double(*)[16])t, o, &ws, &block, &info, 0);
             pack_block(&block, blocks + 16 * (size_t)b);
             searched += (uint64_t)info.searched;
             bounded += (uint64_t)info.bounded;

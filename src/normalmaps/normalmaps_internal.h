@@ -4,6 +4,8 @@
 
 #include "sol_normalmaps.h"
 
+#include <math.h>
+
 /* Palette of every ordered anchor pair in DECODED units (2 v - 1, in [-1, 1]): table[e0 << 8 | e1].
  * Built once per precision (thread-safe); precision must be valid. */
 const double (*sol_nm_palettes(sol_bc4_precision precision))[8];
@@ -95,6 +97,25 @@ void sol_nm_bc4_fast_anchors(const double t[16], int *lo, int *hi, int *lo6, int
 /* Nonzero: the BC5 searches use their scalar forms even where the AVX2 forms could run (bc5.c; the
  * results are bit-identical either way, the tests compare them). Zero (the default) otherwise. */
 extern int sol_nm_simd_disable;
+
+/* The adaptive encoder's threshold level of an objective err (sum of dN^2, or max dN^2 when
+ * use_max): the RMS angle sqrt(err / 16) (or the max angle sqrt(err)) in degrees. The block is
+ * searched when it exceeds options.threshold_deg. Monotone in err. */
+static inline double sol_nm_threshold_level(double err, int use_max)
+{
+    return (use_max ? sqrt(err) : sqrt(err / 16.0)) * (180.0 / M_PI);
+}
+/* The adaptive encoder's threshold test (bc5_adaptive.c) of block b (palettes palx, paly of its
+ * anchors, decoded units) against unit normals t (t[c][p]: component c of pixel p) from chord
+ * bounds of the angles, without atan2: 0 if the exact objective's level is <= threshold_deg, 1 if
+ * it is above, -1 if the bounds cannot tell (then compute the exact objective). Never contradicts
+ * the exact test. */
+int sol_nm_threshold_test(const double palx[8], const double paly[8], const sol_bc5_block *b, const double t[3][16],
+                          int use_max, double threshold_deg);
+/* The unit normals of block (bx, by) of a 3-channel image whose pixels sol_nm_unit_normals accepts,
+ * bit for bit as it computes them (the same length and quotients; a finite non-zero float pixel
+ * never takes its rescaling path), as n[p][c] and again as t[c][p]. */
+void sol_nm_unit_pixels(const sol_image *img, int bx, int by, double n[16][3], double t[3][16]);
 
 /* Validates and normalises 16 source normals. */
 sol_status sol_nm_unit_normals(const double in[16][3], double out[16][3]);
