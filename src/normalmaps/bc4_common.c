@@ -835,10 +835,13 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     }
     if (walk_pair >= 0 && walk_pair < 65536)
         try_pair(&c, walk_pair);
-    narrow_seeds(&c);
+    const int wide = (c.tmax - c.tmin) * 127.5 >= WIDE_CODES;
+    if (!wide)
+        narrow_seeds(&c);
     {
         int e0 = c.best_pair >> 8, e1 = c.best_pair & 255, six = e0 <= e1;
-        descend(&c, six, six ? e0 : e1, six ? e1 : e0);
+        if (!wide)
+            descend(&c, six, six ? e0 : e1, six ? e1 : e0);
     }
     if (ix) { /* the walk from the value it lists the fewest pairs for, if that is few */
         int iu = 0;
@@ -855,7 +858,7 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
             return c.best_pair;
         }
     }
-    if ((c.tmax - c.tmin) * 127.5 >= WIDE_CODES) {
+    if (wide) {
         span_search(&c, 0);
         span_search(&c, 1);
     } else {

@@ -65,6 +65,8 @@ SPAN_CLONES void sol_nm_span_bounds(const double sorted[16], const double step[S
         r = select4(r >= st, r - st, r);
         u[p] = r;
     }
+    /* fully unrolled, so that the indices are constants and u stays in registers */
+#pragma GCC unroll 63
     for (int c = 0; c < 63; ++c) {
         v4d x = u[network[c][0]], y = u[network[c][1]];
         v4l lt = x < y;
