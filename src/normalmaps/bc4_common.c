@@ -99,7 +99,7 @@ static inline double group_cost(const common_ctx *c, int i, int j)
  * Row r of the programme, dp[r][j] = min over i of dp[r - 1][i - 1] + cost(i..j), is taken i by i,
  * each i updating every j >= i at once (independent lanes, no chain of dependent minima); the minimum
  * of the same sums whatever the order. */
-static double quantisation_bound(common_ctx *c, int m)
+static HOT_CLONES double quantisation_bound(common_ctx *c, int m)
 {
     while (c->q_rows < m) {
         int r = ++c->q_rows;
@@ -107,10 +107,23 @@ static double quantisation_bound(common_ctx *c, int m)
             for (int j = 0; j < 16; ++j)
                 c->dp[1][j] = group_cost(c, 0, j);
         } else {
-            if (r == 2) /* (j < i: no group, infinite cost, so that every row below runs all 16 lanes) */
-                for (int i = 1; i < 16; ++i)
-                    for (int j = 0; j < 16; ++j)
-                        c->gcost[i][j] = j < i ? INFINITY : group_cost(c, i, j);
+            if (r == 2) /* group_cost(i, j), in 16 lanes (j < i: no group, infinite cost, so that every
+                         * row below runs all 16 lanes; inv_n[15 + n] = 1 / n) */
+                for (int i = 1; i < 16; ++i) {
+                    static const double inv_n[32] = {0.0,      0.0,      0.0,      0.0,      0.0,      0.0,
+                                                     0.0,      0.0,      0.0,      0.0,      0.0,      0.0,
+                                                     0.0,      0.0,      0.0,      0.0,      1.0,      1.0 / 2,
+                                                     1.0 / 3,  1.0 / 4,  1.0 / 5,  1.0 / 6,  1.0 / 7,  1.0 / 8,
+                                                     1.0 / 9,  1.0 / 10, 1.0 / 11, 1.0 / 12, 1.0 / 13, 1.0 / 14,
+                                                     1.0 / 15, 1.0 / 16};
+                    const double pi = c->prefix[i], p2i = c->prefix2[i];
+                    for (int j = 0; j < 16; ++j) {
+                        double sj = c->prefix[j + 1] - pi, s2 = c->prefix2[j + 1] - p2i;
+                        double v = s2 - sj * sj * inv_n[j - i + 16];
+                        v = v > 0.0 ? v : 0.0;
+                        c->gcost[i][j] = j < i ? INFINITY : v;
+                    }
+                }
             double b[16];
             for (int j = 0; j < 16; ++j)
                 b[j] = INFINITY;
