@@ -286,7 +286,8 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
 /* bc4_span_bound.c's bound at a phase (the low anchor's) is below the score of the pair (L, L + span)
  * over its lattice entries, for every L of every span 1-255, both modes, the three decoder
  * precisions, random blocks narrow to full-range, on and off the code grid, with the cuts kept
- * whole, cut at the span's least score (as the search cuts them) and all dropped (the floor alone). */
+ * whole, cut at the span's least score (as the search cuts them) and all dropped (the floor alone);
+ * the four-lane form the search uses (sol_nm_span_phase_fs) gives the same values bit for bit. */
 Test(normalmaps, bc4_span_phase_bound_is_below_every_pair_of_its_span)
 {
     for (int trial = 0; trial < 24; ++trial) {
@@ -341,7 +342,11 @@ Test(normalmaps, bc4_span_phase_bound_is_below_every_pair_of_its_span)
                     for (int li = 0; li < 3; ++li) {
                         sol_nm_span_cuts cu = cuts[k];
                         sol_nm_span_cuts_keep(&cu, limits[li]);
+                        double fs[256];
+                        sol_nm_span_phase_fs(&cu, 0, 256 - d, fs);
                         for (int l = 0; l + d < 256; ++l) {
+                            double f1 = sol_nm_span_phase_f(&cu, 2.0 * l / 255.0 - 1.0);
+                            cr_assert(memcmp(&f1, &fs[l], sizeof f1) == 0, "phase_fs %.17g != phase_f %.17g", fs[l], f1);
                             double lb = sol_nm_span_phase_bound(&cu, delta, 2.0 * l / 255.0 - 1.0);
                             cr_assert(lb <= score[l],
                                       "trial %d, mode %d, span %d, low anchor %d, limit %d: bound %.17g above the "

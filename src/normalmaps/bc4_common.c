@@ -487,7 +487,8 @@ static void search_mode(common_ctx *c, int six)
  *   (t_15-i - t_i - D) is left outside, and the two terms sum to at least half its square.
  * The spans of the region whose bound reaches the incumbent are visited least bound first; in each,
  * the low anchors of the region whose phase bound (sol_nm_span_phase_bound: the lattice fit at the
- * phase A(L), from the span's 16 cut sequences) reaches the incumbent are scored exactly (early exit)
+ * phase A(L), from the span's 16 cut sequences; its F for all the span's L at once, four lanes at a
+ * time, by sol_nm_span_phase_fs) reaches the incumbent are scored exactly (early exit)
  * in ascending order, so ties go to the least pair as in the reference (a skipped pair scores above
  * the incumbent). Used for wide blocks, whose region is long in the span direction
  * and whose few surviving spans hold a few pairs each (on the benchmark maps 5-10% of the region's
@@ -566,8 +567,12 @@ static void span_search(common_ctx *c, int six)
         int d = spans[i], l1 = g.h_min - d, l2 = 255 - d;
         l1 = l1 > 0 ? l1 : 0;
         l2 = l2 < g.l_max ? l2 : g.l_max;
+        if (l1 > l2)
+            continue;
+        double f[256];
+        sol_nm_span_phase_fs(cu, l1, l2 - l1 + 1, f);
         for (int l = l1; l <= l2; ++l)
-            if (sol_nm_span_phase_f(cu, anchor(l)) <= fstar)
+            if (f[l - l1] <= fstar)
                 try_pair(c, make_pair(six, l, l + d));
     }
 }

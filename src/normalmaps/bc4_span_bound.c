@@ -168,3 +168,28 @@ double sol_nm_span_phase_bound(const sol_nm_span_cuts *cu, double delta, double 
     double lb = f > 0.0 ? f - 8.0 * delta * sqrt(f) : 0.0;
     return lb > 0.0 ? lb * (1.0 - 1e-9) : 0.0;
 }
+
+/* sol_nm_span_phase_f at the phases A(l) = 2 l / 255 - 1 of the low anchors l = l1 .. l1 + count - 1
+ * (count <= 256), four at a time: the same operations in the same order per lane, so the values are
+ * those of sol_nm_span_phase_f (the tests compare them). */
+SPAN_CLONES void sol_nm_span_phase_fs(const sol_nm_span_cuts *cu, int l1, int count, double out[256])
+{
+    const v4d zero = {0.0, 0.0, 0.0, 0.0}, magic = zero + 0x1.8p52, s = zero + cu->step, inv = zero + cu->inv;
+    const v4l abs_mask = (v4l){0, 0, 0, 0} + 0x7fffffffffffffffLL;
+    for (int i = 0; i < count; i += 4) {
+        v4d psi;
+        for (int k = 0; k < 4; ++k)
+            psi[k] = (2.0 * (l1 + i + k) / 255.0 - 1.0) - cu->base;
+        v4d f = zero + cu->floor;
+        for (int c = 0; c < cu->n; ++c) {
+            const v4d x = cu->mean[c] - psi, m = (x * inv + magic) - magic;
+            v4d cd = (v4d)((v4l)(x - s * m) & abs_mask) - 1e-14;
+            cd = select4(cd > zero, cd, zero);
+            const v4d v = cu->v[c] + 16.0 * cd * cd;
+            f = select4(v < f, v, f);
+        }
+        f -= cu->slack;
+        for (int k = 0; k < 4 && i + k < count; ++k)
+            out[i + k] = f[k];
+    }
+}

@@ -95,6 +95,9 @@ static inline double sol_nm_span_phase_f(const sol_nm_span_cuts *cu, double phas
 void sol_nm_span_cuts4(const double sorted[16], const double step[SOL_NM_SPAN_LANES],
                        sol_nm_span_cuts out[SOL_NM_SPAN_LANES]);
 void sol_nm_span_cuts_keep(sol_nm_span_cuts *cu, double limit);
+/* sol_nm_span_phase_f (below) at the phases A(l) = 2 l / 255 - 1, l = l1 .. l1 + count - 1 (count <=
+ * 256), into out[0 .. count): the same values, computed four at a time. */
+void sol_nm_span_phase_fs(const sol_nm_span_cuts *cu, int l1, int count, double out[256]);
 double sol_nm_span_phase_bound(const sol_nm_span_cuts *cu, double delta, double phase);
 /* Every palette entry of the 65536 pairs indexed by value (bc4_entries.c): value[0..count) the
  * distinct decoded entries, ascending; the pairs holding value[i] are pair[start[i] .. start[i+1]),
