@@ -77,9 +77,19 @@ static inline double decoded_angle(double a, double b, const double n[3])
 /* The index pair (i, j) of palettes a, b whose decoded normal is closest in angle to n.
  * Candidates are compared by the cosine of their angle. A candidate with x^2 + y^2 <= 1 decodes to
  * a unit vector whose chord to n satisfies chord^2 >= (a-nx)^2 + (b-ny)^2; one with z clamped has
- * chord^2 >= nz^2; either bound above the best chord^2 so far skips the candidate. */
+ * chord^2 >= nz^2; either bound above the best chord^2 so far skips the candidate.
+ * The choice (the reference order): the per-channel nearest pair (i0, j0) first (the first entry of
+ * least squared distance in each palette), then every pair (i, j) in i-major order, a pair replacing
+ * the best only with a strictly larger cosine. The skip tests only ever get stricter as the best
+ * chord^2 shrinks, so when nz^2 is above the seed's chord^2 (no clamped decode can ever be tried) the
+ * rows i and columns j whose own distance da_i or db_j already fails against the seed are skipped
+ * outright: the pairs visited are those of the reference walk that are not skipped, in its order,
+ * and the seed is not re-tried (its cosine cannot be strictly larger than itself); so the choice is
+ * the reference walk's, bit for bit, and on smooth pixels it costs the seed and a few neighbours
+ * instead of 64 pairs. */
 static void best_pixel_index(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
 {
+    const double keep = 1.0 - BOUND_SLACK;
     double da[8], db[8];
     int i0 = 0, j0 = 0;
     for (int k = 0; k < 8; ++k) {
@@ -89,37 +99,62 @@ static void best_pixel_index(const double a[8], const double b[8], const double 
         j0 = db[k] < db[j0] ? k : j0;
     }
     double nz2 = n[2] * n[2];
+    /* the seed: the reference walk's first pair, tried against no incumbent (every skip test fails) */
     int best_i = -1, best_j = -1;
     double best_cos = -INFINITY, best_chord2 = INFINITY;
-    for (int pass = 0; pass < 2; ++pass) {
-        for (int i = 0; i < 8; ++i) {
-            if (da[i] * (1.0 - BOUND_SLACK) > best_chord2 && nz2 * (1.0 - BOUND_SLACK) > best_chord2)
+    {
+        double r2 = a[i0] * a[i0] + b[j0] * b[j0], dot = a[i0] * n[0] + b[j0] * n[1];
+        double cosine = r2 <= 1.0 ? dot + sqrt(1.0 - r2) * n[2] : dot / sqrt(r2);
+        if (cosine > best_cos) {
+            best_cos = cosine;
+            best_chord2 = 2.0 - 2.0 * cosine;
+            best_i = i0;
+            best_j = j0;
+        }
+    }
+    unsigned rows = 0xff, cols = 0xff;
+    int tight = nz2 * keep > best_chord2; /* clamped decodes are skipped from here on */
+    if (tight) {
+        rows = cols = 0;
+        for (int k = 0; k < 8; ++k) {
+            rows |= (unsigned)(da[k] * keep <= best_chord2) << k;
+            cols |= (unsigned)(db[k] * keep <= best_chord2) << k;
+        }
+        if (rows == 1u << i0 && cols == 1u << j0) { /* only the seed is left */
+            *bi = best_i;
+            *bj = best_j;
+            return;
+        }
+    }
+    for (int i = 0; i < 8; ++i) {
+        if (!((rows >> i) & 1))
+            continue;
+        if (da[i] * keep > best_chord2 && nz2 * keep > best_chord2)
+            continue;
+        for (int j = 0; j < 8; ++j) {
+            if (!((cols >> j) & 1) || (tight && i == i0 && j == j0))
                 continue;
-            for (int j = 0; j < 8; ++j) {
-                if (pass == 0 && (i != i0 || j != j0))
-                    continue; /* pass 0 seeds the incumbent with the per-channel nearest pair */
-                double r2 = a[i] * a[i] + b[j] * b[j], dot = a[i] * n[0] + b[j] * n[1], cosine;
-                if (r2 <= 1.0) {
-                    if ((da[i] + db[j]) * (1.0 - BOUND_SLACK) > best_chord2)
-                        continue;
-                    if (n[2] <= 0.0 && dot <= best_cos)
-                        continue; /* the z term adds <= 0 (rounding is monotone) */
-                    cosine = dot + sqrt(1.0 - r2) * n[2];
-                } else {
-                    if (nz2 * (1.0 - BOUND_SLACK) > best_chord2)
-                        continue;
-                    /* cosine = dot / r with r > 1: no better than best_cos >= 0 if dot <= 0 or
-                     * dot^2 < best_cos^2 r^2 (with a margin for the rounding of the division) */
-                    if (best_cos >= 0.0 && (dot <= 0.0 || dot * dot < best_cos * best_cos * r2 * (1.0 - 1e-12)))
-                        continue;
-                    cosine = dot / sqrt(r2);
-                }
-                if (cosine > best_cos) {
-                    best_cos = cosine;
-                    best_chord2 = 2.0 - 2.0 * cosine;
-                    best_i = i;
-                    best_j = j;
-                }
+            double r2 = a[i] * a[i] + b[j] * b[j], dot = a[i] * n[0] + b[j] * n[1], cosine;
+            if (r2 <= 1.0) {
+                if ((da[i] + db[j]) * keep > best_chord2)
+                    continue;
+                if (n[2] <= 0.0 && dot <= best_cos)
+                    continue; /* the z term adds <= 0 (rounding is monotone) */
+                cosine = dot + sqrt(1.0 - r2) * n[2];
+            } else {
+                if (nz2 * keep > best_chord2)
+                    continue;
+                /* cosine = dot / r with r > 1: no better than best_cos >= 0 if dot <= 0 or
+                 * dot^2 < best_cos^2 r^2 (with a margin for the rounding of the division) */
+                if (best_cos >= 0.0 && (dot <= 0.0 || dot * dot < best_cos * best_cos * r2 * (1.0 - 1e-12)))
+                    continue;
+                cosine = dot / sqrt(r2);
+            }
+            if (cosine > best_cos) {
+                best_cos = cosine;
+                best_chord2 = 2.0 - 2.0 * cosine;
+                best_i = i;
+                best_j = j;
             }
         }
     }
