@@ -126,13 +126,13 @@ static void best_pixel_index(const double a[8], const double b[8], const double 
             return;
         }
     }
-    for (int i = 0; i < 8; ++i) {
-        if (!((rows >> i) & 1))
-            continue;
+    for (unsigned rm = rows; rm; rm &= rm - 1) { /* the set bits in increasing order */
+        int i = __builtin_ctz(rm);
         if (da[i] * keep > best_chord2 && nz2 * keep > best_chord2)
             continue;
-        for (int j = 0; j < 8; ++j) {
-            if (!((cols >> j) & 1) || (tight && i == i0 && j == j0))
+        for (unsigned cm = cols; cm; cm &= cm - 1) {
+            int j = __builtin_ctz(cm);
+            if (tight && i == i0 && j == j0)
                 continue;
             double r2 = a[i] * a[i] + b[j] * b[j], dot = a[i] * n[0] + b[j] * n[1], cosine;
             if (r2 <= 1.0) {
@@ -1995,6 +1995,20 @@ static double window_quick(const channel_side *xs, const channel_side *ys, const
     return joint_objective_quick(xs, ys, n, order, away_off, use_max, budget, work);
 }
 
+/* channel_side_init for the window search: no pixel points away (lt = 0), t the channel's
+ * components in visiting order. */
+static void window_side_init(const double pal[8], const double t[16], channel_side *s)
+{
+    memset(s->lt, 0, sizeof s->lt);
+#if SEARCH_AVX2
+    if (search_avx2()) {
+        channel_side_nearest_avx2(pal, t, s);
+        return;
+    }
+#endif
+    channel_side_nearest(pal, t, s);
+}
+
 /* order_worst_first's order (pixels by decreasing err, equal errors in pixel order: a stable sort),
  * from each pixel's rank (how many pixels come before it) instead of insertion: no data-dependent
  * branches. */
@@ -2076,8 +2090,7 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
          * candidates, and the y sides' marks (each y side is computed when first needed), the x
          * side per x pair. */
         int order[16], prepared = 0;
-        static const away_info no_away = {0}; /* no pixel points away here (every nz > 0): no away terms */
-        double nz[16];
+        double nz[16], tord[2][16]; /* nz and the components in visiting order */
         channel_side xside;
         for (int i = 0; i < nx && ny > 0 && !bounded; ++i) {
             const window_entry *ex = &w->list[0][i];
@@ -2098,18 +2111,21 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                 ++candidates;
                 if (!prepared) {
                     window_order(pixel_err, order);
-                    for (int k = 0; k < 16; ++k)
+                    for (int k = 0; k < 16; ++k) {
                         nz[k] = n[order[k]][2];
+                        tord[0][k] = n[order[k]][0];
+                        tord[1][k] = n[order[k]][1];
+                    }
                     memset(w->ready, 0, (size_t)ny);
                     prepared = 1;
                 }
                 if (!x_ready) {
-                    channel_side_init(a, n, order, 0, &no_away, &xside);
+                    window_side_init(a, tord[0], &xside);
                     x_ready = 1;
                 }
                 const double *b = pal[ey->pair];
                 if (!w->ready[j]) {
-                    channel_side_init(b, n, order, 1, &no_away, &w->yside[j]);
+                    window_side_init(b, tord[1], &w->yside[j]);
                     w->ready[j] = 1;
                 }
                 double margin = best * (1.0 + BOUND_SLACK);
