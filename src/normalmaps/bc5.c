@@ -87,17 +87,54 @@ static inline double decoded_angle(double a, double b, const double n[3])
  * and the seed is not re-tried (its cosine cannot be strictly larger than itself); so the choice is
  * the reference walk's, bit for bit, and on smooth pixels it costs the seed and a few neighbours
  * instead of 64 pairs. */
-static void best_pixel_index(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
+#if SEARCH_AVX2
+/* best_pixel_index's per-channel squared distances d[k] = (p[k] - t)^2 (the same operations) and the
+ * first index of their least (the scalar loop's strict comparisons keep the first). */
+static inline AVX2_FN int channel_distances_avx2(const double p[8], double t, double d[8])
+{
+    __m256d tt = _mm256_set1_pd(t), u = _mm256_sub_pd(_mm256_loadu_pd(p), tt), v = _mm256_sub_pd(_mm256_loadu_pd(p + 4), tt);
+    u = _mm256_mul_pd(u, u);
+    v = _mm256_mul_pd(v, v);
+    _mm256_storeu_pd(d, u);
+    _mm256_storeu_pd(d + 4, v);
+    __m256d m = _mm256_min_pd(u, v);
+    m = _mm256_min_pd(m, _mm256_permute4x64_pd(m, 0x4e));
+    m = _mm256_min_pd(m, _mm256_permute_pd(m, 5)); /* the least in every lane */
+    unsigned eq = (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(u, m, _CMP_EQ_OQ)) |
+                  (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(v, m, _CMP_EQ_OQ)) << 4;
+    return __builtin_ctz(eq);
+}
+
+/* Bit k set where d[k] * keep <= c (the same product and comparison as the scalar loop). */
+static inline AVX2_FN unsigned within_mask_avx2(const double d[8], double keep, double c)
+{
+    __m256d kk = _mm256_set1_pd(keep), cc = _mm256_set1_pd(c);
+    __m256d u = _mm256_mul_pd(_mm256_loadu_pd(d), kk), v = _mm256_mul_pd(_mm256_loadu_pd(d + 4), kk);
+    return (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(u, cc, _CMP_LE_OQ)) |
+           (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(v, cc, _CMP_LE_OQ)) << 4;
+}
+#endif
+
+/* best_pixel_index's walk; avx2: the distances and masks by the AVX2 helpers (same values). */
+static inline __attribute__((always_inline)) void best_pixel_index_body(const double a[8], const double b[8],
+                                                                        const double n[3], int *bi, int *bj, int avx2)
 {
     const double keep = 1.0 - BOUND_SLACK;
     double da[8], db[8];
     int i0 = 0, j0 = 0;
-    for (int k = 0; k < 8; ++k) {
-        da[k] = (a[k] - n[0]) * (a[k] - n[0]);
-        db[k] = (b[k] - n[1]) * (b[k] - n[1]);
-        i0 = da[k] < da[i0] ? k : i0;
-        j0 = db[k] < db[j0] ? k : j0;
-    }
+    (void)avx2;
+#if SEARCH_AVX2
+    if (avx2) {
+        i0 = channel_distances_avx2(a, n[0], da);
+        j0 = channel_distances_avx2(b, n[1], db);
+    } else
+#endif
+        for (int k = 0; k < 8; ++k) {
+            da[k] = (a[k] - n[0]) * (a[k] - n[0]);
+            db[k] = (b[k] - n[1]) * (b[k] - n[1]);
+            i0 = da[k] < da[i0] ? k : i0;
+            j0 = db[k] < db[j0] ? k : j0;
+        }
     double nz2 = n[2] * n[2];
     /* the seed: the reference walk's first pair, tried against no incumbent (every skip test fails) */
     int best_i = -1, best_j = -1;
@@ -116,10 +153,16 @@ static void best_pixel_index(const double a[8], const double b[8], const double 
     int tight = nz2 * keep > best_chord2; /* clamped decodes are skipped from here on */
     if (tight) {
         rows = cols = 0;
-        for (int k = 0; k < 8; ++k) {
-            rows |= (unsigned)(da[k] * keep <= best_chord2) << k;
-            cols |= (unsigned)(db[k] * keep <= best_chord2) << k;
-        }
+#if SEARCH_AVX2
+        if (avx2) {
+            rows = within_mask_avx2(da, keep, best_chord2);
+            cols = within_mask_avx2(db, keep, best_chord2);
+        } else
+#endif
+            for (int k = 0; k < 8; ++k) {
+                rows |= (unsigned)(da[k] * keep <= best_chord2) << k;
+                cols |= (unsigned)(db[k] * keep <= best_chord2) << k;
+            }
         if (rows == 1u << i0 && cols == 1u << j0) { /* only the seed is left */
             *bi = best_i;
             *bj = best_j;
@@ -160,6 +203,24 @@ static void best_pixel_index(const double a[8], const double b[8], const double 
     }
     *bi = best_i;
     *bj = best_j;
+}
+
+#if SEARCH_AVX2
+static AVX2_FN void best_pixel_index_avx2(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
+{
+    best_pixel_index_body(a, b, n, bi, bj, 1);
+}
+#endif
+
+static void best_pixel_index(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
+{
+#if SEARCH_AVX2
+    if (search_avx2()) {
+        best_pixel_index_avx2(a, b, n, bi, bj);
+        return;
+    }
+#endif
+    best_pixel_index_body(a, b, n, bi, bj, 0);
 }
 
 /* The angle (radians) of best_pixel_index's choice. */
