@@ -333,6 +333,26 @@ Test(normalmaps, bc4_common_flat_blocks_on_every_code_equal_brute_force, .timeou
         }
 }
 
+/* Flat blocks within a hair of -1 or +1 (rim normals of an axis block): the nearest entry value is
+ * -1 or +1, held by 33151 pairs (every 6-value pair), over the walk's cap for blocks of several
+ * values; one-valued blocks walk without a cap (the holders of the nearest value and of an
+ * equidistant one, then stop), and the result is the brute force's pair and score. */
+Test(normalmaps, bc4_common_flat_blocks_at_the_ends_equal_brute_force)
+{
+    const double off[] = {0.0, 1e-9, 1e-7, 1e-6, 3e-6, 1.0 / 65535.0, 1.0 / 255.0, 1.5 / 255.0};
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec)
+        for (int k = 0; k < (int)(sizeof off / sizeof *off); ++k)
+            for (int sign = -1; sign <= 1; sign += 2) {
+                double t[16], v = sign * (1.0 - off[k]), s, s_ref;
+                for (int p = 0; p < 16; ++p)
+                    t[p] = v;
+                int pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s);
+                int ref = bc4_brute_flat(v, (sol_bc4_precision)prec, &s_ref);
+                cr_assert(pair == ref && s == s_ref, "t %.17g, precision %d: pair %04x vs brute force %04x", v, prec,
+                          pair, ref);
+            }
+}
+
 /* Blocks of two to six distinct values near the codes (what 8-bit sources give: a code renormalised
  * by slightly different lengths, neighbouring codes), every value held by several pixels: the walk
  * over the entry values (or the box search after it) returns the brute force's pair and score. */
