@@ -1025,6 +1025,47 @@ Test(normalmaps, degenerate_families_are_proven_at_full_range)
     }
 }
 
+/* Rim arcs next to an axis (z = 0, azimuths within 0.01-0.3 rad of x = -1 or x = +1; some pixels a
+ * hair above or below the rim): one y pair is left and the x list holds the 33151 pairs with an
+ * entry -1 or +1, exact ties that the search evaluated one by one (33154 candidates, ~0.3 s) until
+ * the equivalent pairs were merged with one list a single pair. Checked: proven with few candidates,
+ * the error the block's own, no better quadruple within +-2 codes of the result nor among the
+ * 6-value x pairs (0..10, 0..10) that hold -1 and +1 (literal brute force, with the search over the
+ * same window). */
+Test(normalmaps, rim_arcs_next_to_an_axis_are_proven_with_few_candidates)
+{
+    const double spread[3] = {0.01, 0.1, 0.3};
+    for (int c = 0; c < 12; ++c) {
+        double n[16][3], phi = c % 2 ? M_PI : 0.02;
+        for (int p = 0; p < 16; ++p) {
+            double f = phi + spread[c / 4] * (p / 15.0 - 0.5), z = c % 4 >= 2 && p % 3 == 0 ? 0.004 * (p % 2 ? 1 : -1) : 0.0;
+            n[p][0] = sqrt(1.0 - z * z) * cos(f);
+            n[p][1] = sqrt(1.0 - z * z) * sin(f);
+            n[p][2] = z;
+        }
+        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = c % 4 == 1 || c % 4 == 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED};
+        sol_bc5_block b;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+        cr_assert(!info.bounded && info.candidates < 2000, "case %d: %llu candidates", c,
+                  (unsigned long long)info.candidates);
+        double own;
+        cr_assert_eq(sol_bc5_block_error(&b, n, o.precision, o.metric, &own), SOL_OK);
+        cr_assert_eq(own, info.error, "case %d", c);
+        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
+                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
+                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "case %d", c);
+        r.x0_lo = r.x1_lo = 0;
+        r.x0_hi = r.x1_hi = 10;
+        sol_bc5_block wb;
+        sol_bc5_info window;
+        cr_assert_eq(sol_bc5_search_block(n, &r, &o, &wb, &window), SOL_OK);
+        cr_assert_eq(window.error, bc5_brute_force(n, &r, &o), "case %d", c);
+        cr_assert(info.error <= window.error, "case %d", c);
+    }
+}
+
 /* The hardest blocks of the real terrain map (make bench, 1024^2, issue 13): rough blocks whose
  * per-channel bounds leave over a million candidates. The old search (joint index bound only) ran
  * into the work bound on them (bounded, 0.2-0.3 s); with the quick per-candidate bound they finish

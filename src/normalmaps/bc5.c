@@ -1510,7 +1510,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             floor_all = use_max ? (aw.off[p] > floor_all ? aw.off[p] : floor_all) : floor_all + aw.off[p];
         if (valued)
             reduce_at = floor_all + (10 * (nx + ny) > 9 * pairs_before ? 1.0 / 64 : 0.5) * (best - floor_all);
-        if (!valued && nx > 1 && ny > 1 && nx * ny > 256) { /* merging pays only for long lists */
+        /* merging pays only for long lists; one list may be a single pair: a rim block near an axis
+         * (x = -1 or +1) has one y pair left and the 33151 x pairs holding -1 or +1, exact ties */
+        if (!valued && (nx > 1 || ny > 1) && nx * ny > 256) {
             channel_key kx, ky;
             channel_key_init(&kx, tx, loose, room);
             channel_key_init(&ky, ty, loose, room);
