@@ -353,6 +353,27 @@ Test(normalmaps, bc4_common_flat_blocks_at_the_ends_equal_brute_force)
             }
 }
 
+/* The joint search (bc5.c search_unit) takes a flat channel's least-squares pair from
+ * sol_nm_bc4_common instead of sol_nm_channel_argmin (full range, sum metric): the two give the same
+ * pair and score on flat channels, at the ends (+-1 and a hair inside: rim blocks on an axis), on
+ * and between codes, and at random values, every precision. */
+Test(normalmaps, bc4_common_equals_channel_argmin_on_flat_channels)
+{
+    const double values[] = {-1.0, -1.0 + 1e-6, -1.0 + 1.0 / 65535.0, 1.0 - 3e-6, 1.0, 0.0, 128.0 / 127.5 - 1.0,
+                             (128.0 / 127.5 - 1.0) * (1.0 - 3e-6), 0.5 / 255.0, 0.3, -0.7};
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec)
+        for (int k = 0; k < (int)(sizeof values / sizeof *values) + 2; ++k) {
+            double t[16], v = k < (int)(sizeof values / sizeof *values) ? values[k] : 2.0 * uniform() - 1.0, s, s_ref;
+            for (int p = 0; p < 16; ++p)
+                t[p] = v;
+            sol_nm_channel ch;
+            sol_nm_channel_init(&ch, t, (sol_bc4_precision)prec, 0, 0, 0, 255, 0, 255);
+            int pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s), ref = sol_nm_channel_argmin(&ch, &s_ref);
+            cr_assert(pair == ref && s == s_ref, "t %.17g, precision %d: pair %04x vs %04x, %.17g vs %.17g", v, prec,
+                      pair, ref, s, s_ref);
+        }
+}
+
 /* Blocks of two to six distinct values near the codes (what 8-bit sources give: a code renormalised
  * by slightly different lengths, neighbouring codes), every value held by several pixels: the walk
  * over the entry values (or the box search after it) returns the brute force's pair and score. */
