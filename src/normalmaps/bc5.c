@@ -1540,7 +1540,19 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     sol_nm_channel_init(&cx, tx, precision, use_max, 0, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi);
     sol_nm_channel_init(&cy, ty, precision, use_max, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi);
     double sx_min, sy_min;
-    int px = sol_nm_channel_argmin(&cx, &sx_min), py = sol_nm_channel_argmin(&cy, &sy_min);
+    /* the least-squares pairs. A flat channel (16 equal targets: flat blocks, equal normals, a rim
+     * block on an axis) on the full range with the sum metric goes to bc4_common.c's search: the same
+     * pair and score as sol_nm_channel_argmin (its documented contract, tested), decided by a walk
+     * over the entry values instead of scoring every tied pair (x = -1: 33151 pairs) */
+    const int full = r->x0_lo == 0 && r->x0_hi == 255 && r->x1_lo == 0 && r->x1_hi == 255 && r->y0_lo == 0 &&
+                     r->y0_hi == 255 && r->y1_lo == 0 && r->y1_hi == 255;
+    int flat_x = full && !use_max, flat_y = flat_x;
+    for (int p = 1; p < 16; ++p) {
+        flat_x &= tx[p] == tx[0];
+        flat_y &= ty[p] == ty[0];
+    }
+    int px = flat_x ? sol_nm_bc4_common(tx, precision, &sx_min) : sol_nm_channel_argmin(&cx, &sx_min);
+    int py = flat_y ? sol_nm_bc4_common(ty, precision, &sy_min) : sol_nm_channel_argmin(&cy, &sy_min);
     const double(*pal)[8] = cx.palettes;
     double best = joint_objective(pal[px], pal[py], n, use_max, INFINITY, NULL, NULL);
     uint64_t candidates = 1;
@@ -1606,7 +1618,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             floor_all = use_max ? (aw.off[p] > floor_all ? aw.off[p] : floor_all) : floor_all + aw.off[p];
         if (valued)
             reduce_at = floor_all + (10 * (nx + ny) > 9 * pairs_before ? 1.0 / 64 : 0.5) * (best - floor_all);
-        if (!valued && nx > 1 && ny > 1 && nx * ny > 256) { /* merging pays only for long lists */
+        /* merging pays only for long lists; one list may be a single pair: a rim block near an axis
+         * (x = -1 or +1) has one y pair left and the 33151 x pairs holding -1 or +1, exact ties */
+        if (!valued && (nx > 1 || ny > 1) && nx * ny > 256) {
             channel_key kx, ky;
             channel_key_init(&kx, tx, loose, room);
             channel_key_init(&ky, ty, loose, room);
