@@ -283,6 +283,85 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
     }
 }
 
+/* bc4_span_bound.c's bound at a phase (the low anchor's) is below the score of the pair (L, L + span)
+ * over its lattice entries, for every L of every span 1-255, both modes, the three decoder
+ * precisions, random blocks narrow to full-range, on and off the code grid, with the cuts kept
+ * whole, cut at the span's least score (as the search cuts them) and all dropped (the floor alone);
+ * the four-lane form the search uses (sol_nm_span_phase_fs) gives the same values bit for bit. */
+Test(normalmaps, bc4_span_phase_bound_is_below_every_pair_of_its_span)
+{
+    for (int trial = 0; trial < 24; ++trial) {
+        double t[16], sorted[16];
+        double c = 2.0 * uniform() - 1.0, w = trial % 4 == 0 ? 0.05 : trial % 4 == 1 ? 0.3 : trial % 4 == 2 ? 0.8 : 2.0;
+        for (int p = 0; p < 16; ++p) {
+            double v = c + w * (uniform() - 0.5);
+            if (trial % 3 == 2)
+                v = round((v + 1.0) * 127.5) / 127.5 - 1.0; /* on the code grid */
+            t[p] = sorted[p] = fmin(1.0, fmax(-1.0, v));
+        }
+        for (int p = 1; p < 16; ++p)
+            for (int q = p; q > 0 && sorted[q - 1] > sorted[q]; --q) {
+                double x = sorted[q];
+                sorted[q] = sorted[q - 1];
+                sorted[q - 1] = x;
+            }
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        double delta = (prec == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : prec == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) +
+                       1e-12;
+        int checked = 0;
+        for (int six = 0; six < 2; ++six) {
+            int den = six ? 5 : 7, entries = six ? 6 : 8;
+            for (int d0 = 0; d0 < 256; d0 += SOL_NM_SPAN_LANES) {
+                double step[SOL_NM_SPAN_LANES];
+                sol_nm_span_cuts cuts[SOL_NM_SPAN_LANES];
+                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k)
+                    step[k] = (2.0 * (d0 + k) / 255.0) / den;
+                sol_nm_span_cuts4(sorted, step, cuts);
+                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k) {
+                    int d = d0 + k;
+                    if (d == 0) {
+                        cr_assert(sol_nm_span_phase_bound(&cuts[k], delta, 0.3) == 0.0, "span 0");
+                        if (!six)
+                            continue;
+                    }
+                    double score[256], least = INFINITY;
+                    for (int l = 0; l + d < 256; ++l) {
+                        const double *e = pal[six ? (l << 8 | (l + d)) : ((l + d) << 8 | l)];
+                        double s = 0.0;
+                        for (int p = 0; p < 16; ++p) {
+                            double m = INFINITY;
+                            for (int i = 0; i < entries; ++i)
+                                m = fmin(m, (e[i] - t[p]) * (e[i] - t[p]));
+                            s += m;
+                        }
+                        score[l] = s;
+                        least = fmin(least, s);
+                    }
+                    const double limits[3] = {INFINITY, least, -1.0};
+                    for (int li = 0; li < 3; ++li) {
+                        sol_nm_span_cuts cu = cuts[k];
+                        sol_nm_span_cuts_keep(&cu, limits[li]);
+                        double fs[256];
+                        sol_nm_span_phase_fs(&cu, 0, 256 - d, fs);
+                        for (int l = 0; l + d < 256; ++l) {
+                            double f1 = sol_nm_span_phase_f(&cu, 2.0 * l / 255.0 - 1.0);
+                            cr_assert(memcmp(&f1, &fs[l], sizeof f1) == 0, "phase_fs %.17g != phase_f %.17g", fs[l], f1);
+                            double lb = sol_nm_span_phase_bound(&cu, delta, 2.0 * l / 255.0 - 1.0);
+                            cr_assert(lb <= score[l],
+                                      "trial %d, mode %d, span %d, low anchor %d, limit %d: bound %.17g above the "
+                                      "score %.17g",
+                                      trial, six, d, l, li, lb, score[l]);
+                            checked += lb > 0.0;
+                        }
+                    }
+                }
+            }
+        }
+        cr_assert(checked > 0, "trial %d: the bound was never positive", trial);
+    }
+}
+
 /* Brute force for a flat block (16 equal targets t): every pair's 16 terms are the same m = min_k
  * (pal_k - t)^2, added in order as the literal brute force adds them; least score, then least pair. */
 static int bc4_brute_flat(double t, sol_bc4_precision precision, double *score)
@@ -330,6 +409,47 @@ Test(normalmaps, bc4_common_flat_blocks_on_every_code_equal_brute_force, .timeou
                 cr_assert(pair == ref && s == s_ref, "code %d (%d), precision %d: pair %04x vs brute force %04x", c, v,
                           prec, pair, ref);
             }
+        }
+}
+
+/* Flat blocks within a hair of -1 or +1 (rim normals of an axis block): the nearest entry value is
+ * -1 or +1, held by 33151 pairs (every 6-value pair), over the walk's cap for blocks of several
+ * values; one-valued blocks walk without a cap (the holders of the nearest value and of an
+ * equidistant one, then stop), and the result is the brute force's pair and score. */
+Test(normalmaps, bc4_common_flat_blocks_at_the_ends_equal_brute_force)
+{
+    const double off[] = {0.0, 1e-9, 1e-7, 1e-6, 3e-6, 1.0 / 65535.0, 1.0 / 255.0, 1.5 / 255.0};
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec)
+        for (int k = 0; k < (int)(sizeof off / sizeof *off); ++k)
+            for (int sign = -1; sign <= 1; sign += 2) {
+                double t[16], v = sign * (1.0 - off[k]), s, s_ref;
+                for (int p = 0; p < 16; ++p)
+                    t[p] = v;
+                int pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s);
+                int ref = bc4_brute_flat(v, (sol_bc4_precision)prec, &s_ref);
+                cr_assert(pair == ref && s == s_ref, "t %.17g, precision %d: pair %04x vs brute force %04x", v, prec,
+                          pair, ref);
+            }
+}
+
+/* The joint search (bc5.c search_unit) takes a flat channel's least-squares pair from
+ * sol_nm_bc4_common instead of sol_nm_channel_argmin (full range, sum metric): the two give the same
+ * pair and score on flat channels, at the ends (+-1 and a hair inside: rim blocks on an axis), on
+ * and between codes, and at random values, every precision. */
+Test(normalmaps, bc4_common_equals_channel_argmin_on_flat_channels)
+{
+    const double values[] = {-1.0, -1.0 + 1e-6, -1.0 + 1.0 / 65535.0, 1.0 - 3e-6, 1.0, 0.0, 128.0 / 127.5 - 1.0,
+                             (128.0 / 127.5 - 1.0) * (1.0 - 3e-6), 0.5 / 255.0, 0.3, -0.7};
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec)
+        for (int k = 0; k < (int)(sizeof values / sizeof *values) + 2; ++k) {
+            double t[16], v = k < (int)(sizeof values / sizeof *values) ? values[k] : 2.0 * uniform() - 1.0, s, s_ref;
+            for (int p = 0; p < 16; ++p)
+                t[p] = v;
+            sol_nm_channel ch;
+            sol_nm_channel_init(&ch, t, (sol_bc4_precision)prec, 0, 0, 0, 255, 0, 255);
+            int pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s), ref = sol_nm_channel_argmin(&ch, &s_ref);
+            cr_assert(pair == ref && s == s_ref, "t %.17g, precision %d: pair %04x vs %04x, %.17g vs %.17g", v, prec,
+                      pair, ref, s, s_ref);
         }
 }
 
@@ -1002,6 +1122,47 @@ Test(normalmaps, degenerate_families_are_proven_at_full_range)
         floor = o.metric == SOL_BC5_MAX ? e : 16 * e * e;
         cr_assert(info.error >= floor * (1 - 1e-12), "case %d: %.17g below the hemisphere bound %.17g", c,
                   info.error, floor);
+    }
+}
+
+/* Rim arcs next to an axis (z = 0, azimuths within 0.01-0.3 rad of x = -1 or x = +1; some pixels a
+ * hair above or below the rim): one y pair is left and the x list holds the 33151 pairs with an
+ * entry -1 or +1, exact ties that the search evaluated one by one (33154 candidates, ~0.3 s) until
+ * the equivalent pairs were merged with one list a single pair. Checked: proven with few candidates,
+ * the error the block's own, no better quadruple within +-2 codes of the result nor among the
+ * 6-value x pairs (0..10, 0..10) that hold -1 and +1 (literal brute force, with the search over the
+ * same window). */
+Test(normalmaps, rim_arcs_next_to_an_axis_are_proven_with_few_candidates)
+{
+    const double spread[3] = {0.01, 0.1, 0.3};
+    for (int c = 0; c < 12; ++c) {
+        double n[16][3], phi = c % 2 ? M_PI : 0.02;
+        for (int p = 0; p < 16; ++p) {
+            double f = phi + spread[c / 4] * (p / 15.0 - 0.5), z = c % 4 >= 2 && p % 3 == 0 ? 0.004 * (p % 2 ? 1 : -1) : 0.0;
+            n[p][0] = sqrt(1.0 - z * z) * cos(f);
+            n[p][1] = sqrt(1.0 - z * z) * sin(f);
+            n[p][2] = z;
+        }
+        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = c % 4 == 1 || c % 4 == 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED};
+        sol_bc5_block b;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+        cr_assert(!info.bounded && info.candidates < 2000, "case %d: %llu candidates", c,
+                  (unsigned long long)info.candidates);
+        double own;
+        cr_assert_eq(sol_bc5_block_error(&b, n, o.precision, o.metric, &own), SOL_OK);
+        cr_assert_eq(own, info.error, "case %d", c);
+        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
+                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
+                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "case %d", c);
+        r.x0_lo = r.x1_lo = 0;
+        r.x0_hi = r.x1_hi = 10;
+        sol_bc5_block wb;
+        sol_bc5_info window;
+        cr_assert_eq(sol_bc5_search_block(n, &r, &o, &wb, &window), SOL_OK);
+        cr_assert_eq(window.error, bc5_brute_force(n, &r, &o), "case %d", c);
+        cr_assert(info.error <= window.error, "case %d", c);
     }
 }
 
