@@ -1477,8 +1477,8 @@ Test(normalmaps, argb8_threshold_is_the_rms_angle_of_8bit_normals_T13)
 /* The image encoders' adaptive path (rows read directly, the threshold from chord bounds, no error
  * computed) gives the blocks and statistics of sol_bc5_encode_block with its exact error, block
  * for block: both bases and metrics, every precision, thresholds at 0, exactly at a block's level
- * and one ulp below it, between and above the blocks' levels, scalar and AVX2 forms; also the common
- * encoder's image path. */
+ * and one ulp below it, between and above the blocks' levels, scalar and AVX2 forms, with a denormal
+ * and a huge pixel; also the common encoder's image path. */
 Test(normalmaps, adaptive_image_path_equals_the_exact_block_path_T13)
 {
     enum { W = 16, H = 8, NB = W * H / 16 };
@@ -1495,6 +1495,10 @@ Test(normalmaps, adaptive_image_path_equals_the_exact_block_path_T13)
                 v[2] = p % 8 ? 0.0f : -v[2]; /* rims and pointing away */
         }
     }
+    float *tiny = sol_image_pixel(&img, 1, 1), *huge = sol_image_pixel(&img, 2, 2); /* block 0: both valid */
+    tiny[0] = 1e-45f; /* a denormal normal (1e-45, 0, 0) */
+    tiny[1] = tiny[2] = 0.0f;
+    huge[2] = 3e38f;
     for (int cfg = 0; cfg < 12; ++cfg) {
         sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .precision = (sol_bc4_precision)(cfg % 3),
                              .metric = (sol_bc5_metric)(cfg / 3 % 2), .base = (sol_bc5_base)(cfg / 6),
