@@ -412,6 +412,47 @@ Test(normalmaps, bc4_common_flat_blocks_on_every_code_equal_brute_force, .timeou
         }
 }
 
+/* Flat blocks within a hair of -1 or +1 (rim normals of an axis block): the nearest entry value is
+ * -1 or +1, held by 33151 pairs (every 6-value pair), over the walk's cap for blocks of several
+ * values; one-valued blocks walk without a cap (the holders of the nearest value and of an
+ * equidistant one, then stop), and the result is the brute force's pair and score. */
+Test(normalmaps, bc4_common_flat_blocks_at_the_ends_equal_brute_force)
+{
+    const double off[] = {0.0, 1e-9, 1e-7, 1e-6, 3e-6, 1.0 / 65535.0, 1.0 / 255.0, 1.5 / 255.0};
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec)
+        for (int k = 0; k < (int)(sizeof off / sizeof *off); ++k)
+            for (int sign = -1; sign <= 1; sign += 2) {
+                double t[16], v = sign * (1.0 - off[k]), s, s_ref;
+                for (int p = 0; p < 16; ++p)
+                    t[p] = v;
+                int pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s);
+                int ref = bc4_brute_flat(v, (sol_bc4_precision)prec, &s_ref);
+                cr_assert(pair == ref && s == s_ref, "t %.17g, precision %d: pair %04x vs brute force %04x", v, prec,
+                          pair, ref);
+            }
+}
+
+/* The joint search (bc5.c search_unit) takes a flat channel's least-squares pair from
+ * sol_nm_bc4_common instead of sol_nm_channel_argmin (full range, sum metric): the two give the same
+ * pair and score on flat channels, at the ends (+-1 and a hair inside: rim blocks on an axis), on
+ * and between codes, and at random values, every precision. */
+Test(normalmaps, bc4_common_equals_channel_argmin_on_flat_channels)
+{
+    const double values[] = {-1.0, -1.0 + 1e-6, -1.0 + 1.0 / 65535.0, 1.0 - 3e-6, 1.0, 0.0, 128.0 / 127.5 - 1.0,
+                             (128.0 / 127.5 - 1.0) * (1.0 - 3e-6), 0.5 / 255.0, 0.3, -0.7};
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec)
+        for (int k = 0; k < (int)(sizeof values / sizeof *values) + 2; ++k) {
+            double t[16], v = k < (int)(sizeof values / sizeof *values) ? values[k] : 2.0 * uniform() - 1.0, s, s_ref;
+            for (int p = 0; p < 16; ++p)
+                t[p] = v;
+            sol_nm_channel ch;
+            sol_nm_channel_init(&ch, t, (sol_bc4_precision)prec, 0, 0, 0, 255, 0, 255);
+            int pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s), ref = sol_nm_channel_argmin(&ch, &s_ref);
+            cr_assert(pair == ref && s == s_ref, "t %.17g, precision %d: pair %04x vs %04x, %.17g vs %.17g", v, prec,
+                      pair, ref, s, s_ref);
+        }
+}
+
 /* Blocks of two to six distinct values near the codes (what 8-bit sources give: a code renormalised
  * by slightly different lengths, neighbouring codes), every value held by several pixels: the walk
  * over the entry values (or the box search after it) returns the brute force's pair and score. */
@@ -1081,6 +1122,47 @@ Test(normalmaps, degenerate_families_are_proven_at_full_range)
         floor = o.metric == SOL_BC5_MAX ? e : 16 * e * e;
         cr_assert(info.error >= floor * (1 - 1e-12), "case %d: %.17g below the hemisphere bound %.17g", c,
                   info.error, floor);
+    }
+}
+
+/* Rim arcs next to an axis (z = 0, azimuths within 0.01-0.3 rad of x = -1 or x = +1; some pixels a
+ * hair above or below the rim): one y pair is left and the x list holds the 33151 pairs with an
+ * entry -1 or +1, exact ties that the search evaluated one by one (33154 candidates, ~0.3 s) until
+ * the equivalent pairs were merged with one list a single pair. Checked: proven with few candidates,
+ * the error the block's own, no better quadruple within +-2 codes of the result nor among the
+ * 6-value x pairs (0..10, 0..10) that hold -1 and +1 (literal brute force, with the search over the
+ * same window). */
+Test(normalmaps, rim_arcs_next_to_an_axis_are_proven_with_few_candidates)
+{
+    const double spread[3] = {0.01, 0.1, 0.3};
+    for (int c = 0; c < 12; ++c) {
+        double n[16][3], phi = c % 2 ? M_PI : 0.02;
+        for (int p = 0; p < 16; ++p) {
+            double f = phi + spread[c / 4] * (p / 15.0 - 0.5), z = c % 4 >= 2 && p % 3 == 0 ? 0.004 * (p % 2 ? 1 : -1) : 0.0;
+            n[p][0] = sqrt(1.0 - z * z) * cos(f);
+            n[p][1] = sqrt(1.0 - z * z) * sin(f);
+            n[p][2] = z;
+        }
+        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = c % 4 == 1 || c % 4 == 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED};
+        sol_bc5_block b;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+        cr_assert(!info.bounded && info.candidates < 2000, "case %d: %llu candidates", c,
+                  (unsigned long long)info.candidates);
+        double own;
+        cr_assert_eq(sol_bc5_block_error(&b, n, o.precision, o.metric, &own), SOL_OK);
+        cr_assert_eq(own, info.error, "case %d", c);
+        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
+                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
+                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "case %d", c);
+        r.x0_lo = r.x1_lo = 0;
+        r.x0_hi = r.x1_hi = 10;
+        sol_bc5_block wb;
+        sol_bc5_info window;
+        cr_assert_eq(sol_bc5_search_block(n, &r, &o, &wb, &window), SOL_OK);
+        cr_assert_eq(window.error, bc5_brute_force(n, &r, &o), "case %d", c);
+        cr_assert(info.error <= window.error, "case %d", c);
     }
 }
 

@@ -868,7 +868,11 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
         if (nv <= WALK_FIRST_VALUES) { /* flat: the walk needs no incumbent */
             c.best = INFINITY;
             c.best_pair = 65536;
-            if (narrow_walk(&c, ix, &wp, 0, FLAT_MAX_WORK)) {
+            /* one value: the walk lists the holders of the nearest value (and of an equidistant one
+             * on its other side) and stops, so it has no cap: up to 2 x 33151 pairs (the values -1 and
+             * +1, held by every 6-value pair), most skipped by one comparison, well below the box
+             * search's cost there (~1.5 ms) */
+            if (narrow_walk(&c, ix, &wp, 0, nv == 1 ? SIZE_MAX : FLAT_MAX_WORK)) {
                 *score = c.best;
                 return c.best_pair;
             }
