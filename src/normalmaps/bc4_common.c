@@ -598,10 +598,11 @@ static void refine(common_ctx *c, int six, int l, int h)
 {
     const int den = six ? 5 : 7;
     for (int round = 0; round < 3; ++round) {
-        double al = anchor(l), ah = anchor(h), step = (ah - al) / den;
+        double al = anchor(l), ah = anchor(h), step = (ah - al) / den, inv = step > 0.0 ? 1.0 / step : 0.0;
         double saa = 0.0, sab = 0.0, sbb = 0.0, sat = 0.0, sbt = 0.0;
         for (int p = 0; p < 16; ++p) {
-            double t = c->t[p], k = step > 0.0 ? floor((t - al) / step + 0.5) : 0.0;
+            /* the nearest lattice position (round to nearest by the 1.5 2^52 addition: |k| < 2^51) */
+            double t = c->t[p], k = ((t - al) * inv + 0x1.8p52) - 0x1.8p52;
             k = k < 0.0 ? 0.0 : (k > den ? den : k);
             if (six && fabs(t - (al + k * step)) > fmin(fabs(t + 1.0), fabs(t - 1.0)))
                 continue; /* served by a fixed entry */

@@ -48,10 +48,12 @@ typedef long long v4l __attribute__((vector_size(4 * sizeof(long long))));
 #define select4(mask, a, b) ((v4d)(((v4l)(a) & (mask)) | ((v4l)(b) & ~(mask))))
 
 /* The phases u_p = (t_p - t_0) mod step of the 16 sorted targets, ascending, for four steps at once
- * (st: the steps, inv: their inverses); an always-inlined helper of the two functions below. */
-static inline __attribute__((always_inline)) void sorted_phases(const double sorted[16], v4d st, v4d inv, v4d u[16])
+ * (*step: the steps, *inverse: their inverses; pointers, as passing 32-byte vectors warns about its
+ * ABI); an always-inlined helper of the two functions below. */
+static inline __attribute__((always_inline)) void sorted_phases(const double sorted[16], const v4d *step,
+                                                                const v4d *inverse, v4d u[16])
 {
-    const v4d zero = {0.0, 0.0, 0.0, 0.0}, magic = zero + 0x1.8p52;
+    const v4d zero = {0.0, 0.0, 0.0, 0.0}, magic = zero + 0x1.8p52, st = *step, inv = *inverse;
     for (int p = 0; p < 16; ++p) {
         /* any representative works (only t mod s matters): v - s round(v / s) (round to nearest by
          * the 1.5 2^52 addition; v / s < 2^51), then one correction step each way keeps it in [0, s) */
@@ -80,7 +82,7 @@ SPAN_CLONES void sol_nm_span_bounds(const double sorted[16], const double step[S
     st = select4(has, st, one); /* a lane without a step: any value, answered 0 below */
     const v4d inv = one / st;
     v4d u[16];
-    sorted_phases(sorted, st, inv, u);
+    sorted_phases(sorted, &st, &inv, u);
     v4d sum = zero, sum2 = zero;
     for (int p = 0; p < 16; ++p) {
         sum += u[p];
@@ -124,7 +126,7 @@ SPAN_CLONES void sol_nm_span_cuts4(const double sorted[16], const double step[SO
     st = select4(has, st, one);
     const v4d inv = one / st;
     v4d u[16], sum = zero, sum2 = zero;
-    sorted_phases(sorted, st, inv, u);
+    sorted_phases(sorted, &st, &inv, u);
     for (int p = 0; p < 16; ++p) {
         sum += u[p];
         sum2 += u[p] * u[p];
