@@ -117,8 +117,8 @@ typedef struct sol_bc5_options {
      * anchor (clamped to 0..255), exactly (the error equals the brute force over that box). 0 = default
      * 4 (the talk's [v-4/255, v+4/255]); negative = 0, i.e. only the base anchors, with joint index
      * choice; 255 or more = every code (no int overflow). Windows up to 8 take a dedicated path (about
-     * 5-50 us of one core per searched block on the 1024^2 benchmark maps, the most on the rough
-     * terrain-derived map; exactly tied anchor pairs of nearly flat blocks are evaluated once per
+     * 3-20 us of one core per searched block on the 1024^2 benchmark maps with the common base, the
+     * most on the rough terrain-derived map; exactly tied anchor pairs of nearly flat blocks are evaluated once per
      * class); wider ones, and blocks with normals at or near the rim (z^2 not
      * above the block's error), the optimal encoder's search restricted to it. */
     int window;
