@@ -283,6 +283,85 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
     }
 }
 
+/* bc4_span_bound.c's bound at a phase (the low anchor's) is below the score of the pair (L, L + span)
+ * over its lattice entries, for every L of every span 1-255, both modes, the three decoder
+ * precisions, random blocks narrow to full-range, on and off the code grid, with the cuts kept
+ * whole, cut at the span's least score (as the search cuts them) and all dropped (the floor alone);
+ * the four-lane form the search uses (sol_nm_span_phase_fs) gives the same values bit for bit. */
+Test(normalmaps, bc4_span_phase_bound_is_below_every_pair_of_its_span)
+{
+    for (int trial = 0; trial < 24; ++trial) {
+        double t[16], sorted[16];
+        double c = 2.0 * uniform() - 1.0, w = trial % 4 == 0 ? 0.05 : trial % 4 == 1 ? 0.3 : trial % 4 == 2 ? 0.8 : 2.0;
+        for (int p = 0; p < 16; ++p) {
+            double v = c + w * (uniform() - 0.5);
+            if (trial % 3 == 2)
+                v = round((v + 1.0) * 127.5) / 127.5 - 1.0; /* on the code grid */
+            t[p] = sorted[p] = fmin(1.0, fmax(-1.0, v));
+        }
+        for (int p = 1; p < 16; ++p)
+            for (int q = p; q > 0 && sorted[q - 1] > sorted[q]; --q) {
+                double x = sorted[q];
+                sorted[q] = sorted[q - 1];
+                sorted[q - 1] = x;
+            }
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        double delta = (prec == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : prec == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) +
+                       1e-12;
+        int checked = 0;
+        for (int six = 0; six < 2; ++six) {
+            int den = six ? 5 : 7, entries = six ? 6 : 8;
+            for (int d0 = 0; d0 < 256; d0 += SOL_NM_SPAN_LANES) {
+                double step[SOL_NM_SPAN_LANES];
+                sol_nm_span_cuts cuts[SOL_NM_SPAN_LANES];
+                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k)
+                    step[k] = (2.0 * (d0 + k) / 255.0) / den;
+                sol_nm_span_cuts4(sorted, step, cuts);
+                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k) {
+                    int d = d0 + k;
+                    if (d == 0) {
+                        cr_assert(sol_nm_span_phase_bound(&cuts[k], delta, 0.3) == 0.0, "span 0");
+                        if (!six)
+                            continue;
+                    }
+                    double score[256], least = INFINITY;
+                    for (int l = 0; l + d < 256; ++l) {
+                        const double *e = pal[six ? (l << 8 | (l + d)) : ((l + d) << 8 | l)];
+                        double s = 0.0;
+                        for (int p = 0; p < 16; ++p) {
+                            double m = INFINITY;
+                            for (int i = 0; i < entries; ++i)
+                                m = fmin(m, (e[i] - t[p]) * (e[i] - t[p]));
+                            s += m;
+                        }
+                        score[l] = s;
+                        least = fmin(least, s);
+                    }
+                    const double limits[3] = {INFINITY, least, -1.0};
+                    for (int li = 0; li < 3; ++li) {
+                        sol_nm_span_cuts cu = cuts[k];
+                        sol_nm_span_cuts_keep(&cu, limits[li]);
+                        double fs[256];
+                        sol_nm_span_phase_fs(&cu, 0, 256 - d, fs);
+                        for (int l = 0; l + d < 256; ++l) {
+                            double f1 = sol_nm_span_phase_f(&cu, 2.0 * l / 255.0 - 1.0);
+                            cr_assert(memcmp(&f1, &fs[l], sizeof f1) == 0, "phase_fs %.17g != phase_f %.17g", fs[l], f1);
+                            double lb = sol_nm_span_phase_bound(&cu, delta, 2.0 * l / 255.0 - 1.0);
+                            cr_assert(lb <= score[l],
+                                      "trial %d, mode %d, span %d, low anchor %d, limit %d: bound %.17g above the "
+                                      "score %.17g",
+                                      trial, six, d, l, li, lb, score[l]);
+                            checked += lb > 0.0;
+                        }
+                    }
+                }
+            }
+        }
+        cr_assert(checked > 0, "trial %d: the bound was never positive", trial);
+    }
+}
+
 /* Brute force for a flat block (16 equal targets t): every pair's 16 terms are the same m = min_k
  * (pal_k - t)^2, added in order as the literal brute force adds them; least score, then least pair. */
 static int bc4_brute_flat(double t, sol_bc4_precision precision, double *score)

@@ -77,54 +77,150 @@ static inline double decoded_angle(double a, double b, const double n[3])
 /* The index pair (i, j) of palettes a, b whose decoded normal is closest in angle to n.
  * Candidates are compared by the cosine of their angle. A candidate with x^2 + y^2 <= 1 decodes to
  * a unit vector whose chord to n satisfies chord^2 >= (a-nx)^2 + (b-ny)^2; one with z clamped has
- * chord^2 >= nz^2; either bound above the best chord^2 so far skips the candidate. */
-static void best_pixel_index(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
+ * chord^2 >= nz^2; either bound above the best chord^2 so far skips the candidate.
+ * The choice (the reference order): the per-channel nearest pair (i0, j0) first (the first entry of
+ * least squared distance in each palette), then every pair (i, j) in i-major order, a pair replacing
+ * the best only with a strictly larger cosine. The skip tests only ever get stricter as the best
+ * chord^2 shrinks, so when nz^2 is above the seed's chord^2 (no clamped decode can ever be tried) the
+ * rows i and columns j whose own distance da_i or db_j already fails against the seed are skipped
+ * outright: the pairs visited are those of the reference walk that are not skipped, in its order,
+ * and the seed is not re-tried (its cosine cannot be strictly larger than itself); so the choice is
+ * the reference walk's, bit for bit, and on smooth pixels it costs the seed and a few neighbours
+ * instead of 64 pairs. */
+#if SEARCH_AVX2
+/* best_pixel_index's per-channel squared distances d[k] = (p[k] - t)^2 (the same operations) and the
+ * first index of their least (the scalar loop's strict comparisons keep the first). */
+static inline AVX2_FN int channel_distances_avx2(const double p[8], double t, double d[8])
 {
+    __m256d tt = _mm256_set1_pd(t), u = _mm256_sub_pd(_mm256_loadu_pd(p), tt), v = _mm256_sub_pd(_mm256_loadu_pd(p + 4), tt);
+    u = _mm256_mul_pd(u, u);
+    v = _mm256_mul_pd(v, v);
+    _mm256_storeu_pd(d, u);
+    _mm256_storeu_pd(d + 4, v);
+    __m256d m = _mm256_min_pd(u, v);
+    m = _mm256_min_pd(m, _mm256_permute4x64_pd(m, 0x4e));
+    m = _mm256_min_pd(m, _mm256_permute_pd(m, 5)); /* the least in every lane */
+    unsigned eq = (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(u, m, _CMP_EQ_OQ)) |
+                  (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(v, m, _CMP_EQ_OQ)) << 4;
+    return __builtin_ctz(eq);
+}
+
+/* Bit k set where d[k] * keep <= c (the same product and comparison as the scalar loop). */
+static inline AVX2_FN unsigned within_mask_avx2(const double d[8], double keep, double c)
+{
+    __m256d kk = _mm256_set1_pd(keep), cc = _mm256_set1_pd(c);
+    __m256d u = _mm256_mul_pd(_mm256_loadu_pd(d), kk), v = _mm256_mul_pd(_mm256_loadu_pd(d + 4), kk);
+    return (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(u, cc, _CMP_LE_OQ)) |
+           (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(v, cc, _CMP_LE_OQ)) << 4;
+}
+#endif
+
+/* best_pixel_index's walk; avx2: the distances and masks by the AVX2 helpers (same values). */
+static inline __attribute__((always_inline)) void best_pixel_index_body(const double a[8], const double b[8],
+                                                                        const double n[3], int *bi, int *bj, int avx2)
+{
+    const double keep = 1.0 - BOUND_SLACK;
     double da[8], db[8];
     int i0 = 0, j0 = 0;
-    for (int k = 0; k < 8; ++k) {
-        da[k] = (a[k] - n[0]) * (a[k] - n[0]);
-        db[k] = (b[k] - n[1]) * (b[k] - n[1]);
-        i0 = da[k] < da[i0] ? k : i0;
-        j0 = db[k] < db[j0] ? k : j0;
-    }
+    (void)avx2;
+#if SEARCH_AVX2
+    if (avx2) {
+        i0 = channel_distances_avx2(a, n[0], da);
+        j0 = channel_distances_avx2(b, n[1], db);
+    } else
+#endif
+        for (int k = 0; k < 8; ++k) {
+            da[k] = (a[k] - n[0]) * (a[k] - n[0]);
+            db[k] = (b[k] - n[1]) * (b[k] - n[1]);
+            i0 = da[k] < da[i0] ? k : i0;
+            j0 = db[k] < db[j0] ? k : j0;
+        }
     double nz2 = n[2] * n[2];
+    /* the seed: the reference walk's first pair, tried against no incumbent (every skip test fails) */
     int best_i = -1, best_j = -1;
     double best_cos = -INFINITY, best_chord2 = INFINITY;
-    for (int pass = 0; pass < 2; ++pass) {
-        for (int i = 0; i < 8; ++i) {
-            if (da[i] * (1.0 - BOUND_SLACK) > best_chord2 && nz2 * (1.0 - BOUND_SLACK) > best_chord2)
+    {
+        double r2 = a[i0] * a[i0] + b[j0] * b[j0], dot = a[i0] * n[0] + b[j0] * n[1];
+        double cosine = r2 <= 1.0 ? dot + sqrt(1.0 - r2) * n[2] : dot / sqrt(r2);
+        if (cosine > best_cos) {
+            best_cos = cosine;
+            best_chord2 = 2.0 - 2.0 * cosine;
+            best_i = i0;
+            best_j = j0;
+        }
+    }
+    unsigned rows = 0xff, cols = 0xff;
+    int tight = nz2 * keep > best_chord2; /* clamped decodes are skipped from here on */
+    if (tight) {
+        rows = cols = 0;
+#if SEARCH_AVX2
+        if (avx2) {
+            rows = within_mask_avx2(da, keep, best_chord2);
+            cols = within_mask_avx2(db, keep, best_chord2);
+        } else
+#endif
+            for (int k = 0; k < 8; ++k) {
+                rows |= (unsigned)(da[k] * keep <= best_chord2) << k;
+                cols |= (unsigned)(db[k] * keep <= best_chord2) << k;
+            }
+        if (rows == 1u << i0 && cols == 1u << j0) { /* only the seed is left */
+            *bi = best_i;
+            *bj = best_j;
+            return;
+        }
+    }
+    for (unsigned rm = rows; rm; rm &= rm - 1) { /* the set bits in increasing order */
+        int i = __builtin_ctz(rm);
+        if (da[i] * keep > best_chord2 && nz2 * keep > best_chord2)
+            continue;
+        for (unsigned cm = cols; cm; cm &= cm - 1) {
+            int j = __builtin_ctz(cm);
+            if (tight && i == i0 && j == j0)
                 continue;
-            for (int j = 0; j < 8; ++j) {
-                if (pass == 0 && (i != i0 || j != j0))
-                    continue; /* pass 0 seeds the incumbent with the per-channel nearest pair */
-                double r2 = a[i] * a[i] + b[j] * b[j], dot = a[i] * n[0] + b[j] * n[1], cosine;
-                if (r2 <= 1.0) {
-                    if ((da[i] + db[j]) * (1.0 - BOUND_SLACK) > best_chord2)
-                        continue;
-                    if (n[2] <= 0.0 && dot <= best_cos)
-                        continue; /* the z term adds <= 0 (rounding is monotone) */
-                    cosine = dot + sqrt(1.0 - r2) * n[2];
-                } else {
-                    if (nz2 * (1.0 - BOUND_SLACK) > best_chord2)
-                        continue;
-                    /* cosine = dot / r with r > 1: no better than best_cos >= 0 if dot <= 0 or
-                     * dot^2 < best_cos^2 r^2 (with a margin for the rounding of the division) */
-                    if (best_cos >= 0.0 && (dot <= 0.0 || dot * dot < best_cos * best_cos * r2 * (1.0 - 1e-12)))
-                        continue;
-                    cosine = dot / sqrt(r2);
-                }
-                if (cosine > best_cos) {
-                    best_cos = cosine;
-                    best_chord2 = 2.0 - 2.0 * cosine;
-                    best_i = i;
-                    best_j = j;
-                }
+            double r2 = a[i] * a[i] + b[j] * b[j], dot = a[i] * n[0] + b[j] * n[1], cosine;
+            if (r2 <= 1.0) {
+                if ((da[i] + db[j]) * keep > best_chord2)
+                    continue;
+                if (n[2] <= 0.0 && dot <= best_cos)
+                    continue; /* the z term adds <= 0 (rounding is monotone) */
+                cosine = dot + sqrt(1.0 - r2) * n[2];
+            } else {
+                if (nz2 * keep > best_chord2)
+                    continue;
+                /* cosine = dot / r with r > 1: no better than best_cos >= 0 if dot <= 0 or
+                 * dot^2 < best_cos^2 r^2 (with a margin for the rounding of the division) */
+                if (best_cos >= 0.0 && (dot <= 0.0 || dot * dot < best_cos * best_cos * r2 * (1.0 - 1e-12)))
+                    continue;
+                cosine = dot / sqrt(r2);
+            }
+            if (cosine > best_cos) {
+                best_cos = cosine;
+                best_chord2 = 2.0 - 2.0 * cosine;
+                best_i = i;
+                best_j = j;
             }
         }
     }
     *bi = best_i;
     *bj = best_j;
+}
+
+#if SEARCH_AVX2
+static AVX2_FN void best_pixel_index_avx2(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
+{
+    best_pixel_index_body(a, b, n, bi, bj, 1);
+}
+#endif
+
+static void best_pixel_index(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
+{
+#if SEARCH_AVX2
+    if (search_avx2()) {
+        best_pixel_index_avx2(a, b, n, bi, bj);
+        return;
+    }
+#endif
+    best_pixel_index_body(a, b, n, bi, bj, 0);
 }
 
 /* The angle (radians) of best_pixel_index's choice. */
@@ -1759,69 +1855,117 @@ static void sort_window_entries(window_entry *list, int count)
 
 /* Scores the window pairs of channel c (sum or max over pixels of the nearest entry's squared
  * distance: the tight per-channel bound) into list, in e0-major order, and returns the count; a
- * pair whose two extreme pixels (least and largest component) alone exceed budget is left out
- * (most pairs of smooth blocks). The full score: one pass over entries, all 16 pixels at a time
- * (a loop the compiler vectorises). */
+ * pair whose score exceeds budget is left out (no candidate can use it): first when its two extreme
+ * pixels (least and largest component) alone exceed it (most pairs of smooth blocks), else once the
+ * score's partial sum (pixels in order, 4 at a time; the terms are >= 0, so the partial sums never
+ * decrease) exceeds it. A pair kept has the full score, summed in pixel order. */
 #if SEARCH_AVX2
-/* m[p] = min_i (a_i - t_p)^2, 4 pixels at a time (_mm256_min_pd(d, m) is d < m ? d : m). */
-static AVX2_FN void nearest_distances_avx2(const double a[8], const double t[16], double m[16])
+/* m[q] = min_i (a_i - t_q)^2 for 4 targets (_mm256_min_pd(d, m) is d < m ? d : m). */
+static inline AVX2_FN void nearest4_avx2(const double a[8], const double t[4], double m[4])
 {
-    for (int p = 0; p < 16; p += 4) {
-        __m256d tp = _mm256_loadu_pd(t + p), d = _mm256_sub_pd(_mm256_set1_pd(a[0]), tp);
-        __m256d mp = _mm256_mul_pd(d, d);
-        for (int i = 1; i < 8; ++i) {
-            d = _mm256_sub_pd(_mm256_set1_pd(a[i]), tp);
-            mp = _mm256_min_pd(_mm256_mul_pd(d, d), mp);
-        }
-        _mm256_storeu_pd(m + p, mp);
+    __m256d tp = _mm256_loadu_pd(t), d = _mm256_sub_pd(_mm256_set1_pd(a[0]), tp);
+    __m256d mp = _mm256_mul_pd(d, d);
+    for (int i = 1; i < 8; ++i) {
+        d = _mm256_sub_pd(_mm256_set1_pd(a[i]), tp);
+        mp = _mm256_min_pd(_mm256_mul_pd(d, d), mp);
     }
+    _mm256_storeu_pd(m, mp);
+}
+
+/* The least squared distances of palette a to targets u and v (*du, *dv): the scalar loop's minima
+ * (a minimum of the same values, whatever the order). */
+static inline AVX2_FN void extreme_distances_avx2(const double a[8], double u, double v, double *du, double *dv)
+{
+    __m256d lo = _mm256_loadu_pd(a), hi = _mm256_loadu_pd(a + 4), tu = _mm256_set1_pd(u), tv = _mm256_set1_pd(v);
+    __m256d d0 = _mm256_sub_pd(lo, tu), d1 = _mm256_sub_pd(hi, tu), d2 = _mm256_sub_pd(lo, tv), d3 = _mm256_sub_pd(hi, tv);
+    __m256d mu = _mm256_min_pd(_mm256_mul_pd(d0, d0), _mm256_mul_pd(d1, d1));
+    __m256d mv = _mm256_min_pd(_mm256_mul_pd(d2, d2), _mm256_mul_pd(d3, d3));
+    __m256d x = _mm256_min_pd(_mm256_unpacklo_pd(mu, mv), _mm256_unpackhi_pd(mu, mv)); /* u0 v0 u2 v2 */
+    __m128d y = _mm_min_pd(_mm256_castpd256_pd128(x), _mm256_extractf128_pd(x, 1));
+    *du = _mm_cvtsd_f64(y);
+    *dv = _mm_cvtsd_f64(_mm_unpackhi_pd(y, y));
+}
+#endif
+
+/* window_channel's loop, t the pixels' components, lo and hi its least and largest; avx2: use the
+ * AVX2 helpers (inlined into window_channel_avx2). */
+static inline __attribute__((always_inline)) int window_channel_body(const double t[16], int lo, int hi,
+                                                                     const double (*pal)[8], int use_max, int e0_lo,
+                                                                     int e0_hi, int e1_lo, int e1_hi, double budget,
+                                                                     window_entry *list, int avx2)
+{
+    int count = 0;
+    (void)avx2;
+    for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
+        for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
+            const double *a = pal[e0 << 8 | e1];
+            double dlo = INFINITY, dhi = INFINITY;
+#if SEARCH_AVX2
+            if (avx2)
+                extreme_distances_avx2(a, t[lo], t[hi], &dlo, &dhi);
+            else
+#endif
+                for (int i = 0; i < 8; ++i) {
+                    double u = (a[i] - t[lo]) * (a[i] - t[lo]), v = (a[i] - t[hi]) * (a[i] - t[hi]);
+                    dlo = u < dlo ? u : dlo;
+                    dhi = v < dhi ? v : dhi;
+                }
+            if ((lo == hi ? dlo : combine(dlo, dhi, use_max)) > budget)
+                continue;
+            double score = 0.0;
+            int k = 0;
+            for (; k < 16; k += 4) {
+                double m[4];
+#if SEARCH_AVX2
+                if (avx2)
+                    nearest4_avx2(a, t + k, m);
+                else
+#endif
+                {
+                    for (int q = 0; q < 4; ++q)
+                        m[q] = (a[0] - t[k + q]) * (a[0] - t[k + q]);
+                    for (int i = 1; i < 8; ++i)
+                        for (int q = 0; q < 4; ++q) {
+                            double d = (a[i] - t[k + q]) * (a[i] - t[k + q]);
+                            m[q] = d < m[q] ? d : m[q];
+                        }
+                }
+                for (int q = 0; q < 4; ++q)
+                    score = use_max ? (m[q] > score ? m[q] : score) : score + m[q];
+                if (score > budget)
+                    break;
+            }
+            if (k < 16)
+                continue;
+            list[count] = (window_entry){score, (uint16_t)(e0 << 8 | e1)};
+            ++count;
+        }
+    return count;
+}
+
+#if SEARCH_AVX2
+static AVX2_FN int window_channel_avx2(const double t[16], int lo, int hi, const double (*pal)[8], int use_max,
+                                       int e0_lo, int e0_hi, int e1_lo, int e1_hi, double budget, window_entry *list)
+{
+    return window_channel_body(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list, 1);
 }
 #endif
 
 static int window_channel(const double n[16][3], int c, const double (*pal)[8], int use_max, int e0_lo, int e0_hi,
                           int e1_lo, int e1_hi, double budget, window_entry *list)
 {
-    int count = 0, lo = 0, hi = 0;
-    const int avx2 = search_avx2();
+    int lo = 0, hi = 0;
     double t[16];
     for (int p = 0; p < 16; ++p) {
         t[p] = n[p][c];
         lo = t[p] < t[lo] ? p : lo;
         hi = t[p] > t[hi] ? p : hi;
     }
-    for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
-        for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
-            const double *a = pal[e0 << 8 | e1];
-            double dlo = INFINITY, dhi = INFINITY;
-            for (int i = 0; i < 8; ++i) {
-                double u = (a[i] - t[lo]) * (a[i] - t[lo]), v = (a[i] - t[hi]) * (a[i] - t[hi]);
-                dlo = u < dlo ? u : dlo;
-                dhi = v < dhi ? v : dhi;
-            }
-            if ((lo == hi ? dlo : combine(dlo, dhi, use_max)) > budget)
-                continue;
-            double m[16];
 #if SEARCH_AVX2
-            if (avx2)
-                nearest_distances_avx2(a, t, m);
-            else
+    if (search_avx2())
+        return window_channel_avx2(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
 #endif
-            {
-                for (int p = 0; p < 16; ++p)
-                    m[p] = (a[0] - t[p]) * (a[0] - t[p]);
-                for (int i = 1; i < 8; ++i)
-                    for (int p = 0; p < 16; ++p) {
-                        double d = (a[i] - t[p]) * (a[i] - t[p]);
-                        m[p] = d < m[p] ? d : m[p];
-                    }
-            }
-            double score = 0.0;
-            for (int p = 0; p < 16; ++p)
-                score = use_max ? (m[p] > score ? m[p] : score) : score + m[p];
-            list[count] = (window_entry){score, (uint16_t)(e0 << 8 | e1)};
-            ++count;
-        }
-    return count;
+    return window_channel_body(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list, 0);
 }
 
 /* Keeps the entries of score <= budget (in order); returns the count. */
@@ -1884,6 +2028,80 @@ static double joint_objective_checked(const double a[8], const double b[8], cons
     return s;
 }
 
+/* joint_objective_quick for the window search, whose pixels never point away (every away term 0),
+ * with the pixels' nz in visiting order (nz[k] = n[order[k]][2]): the same terms, the same sum in
+ * the same order and the same stop, so the same value and work; the AVX2 form computes the terms 4
+ * pixels at a time, and only up to the stop (most candidates stop within the first pixels, visited
+ * worst first). */
+#if SEARCH_AVX2
+static AVX2_FN double window_quick_avx2(const channel_side *xs, const channel_side *ys, const double nz[16],
+                                        int use_max, double budget, uint64_t *work)
+{
+    const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+    const __m256d lower = _mm256_set1_pd(1.0 - 3e-6), absolute = _mm256_set1_pd(5e-15);
+    double s = 0.0, e2[4];
+    for (int k = 0; k < 16; k += 4) { /* quick_terms_avx2's operations, its away term 0 */
+        __m256d a = _mm256_loadu_pd(xs->v + k), b = _mm256_loadu_pd(ys->v + k), z = _mm256_loadu_pd(nz + k);
+        __m256d m1x = _mm256_loadu_pd(xs->m1 + k), m1y = _mm256_loadu_pd(ys->m1 + k);
+        __m256d nz2 = _mm256_mul_pd(z, z);
+        __m256d lb = _mm256_min_pd(_mm256_add_pd(_mm256_loadu_pd(xs->m2 + k), m1y),
+                                   _mm256_add_pd(m1x, _mm256_loadu_pd(ys->m2 + k)));
+        lb = _mm256_min_pd(nz2, lb);
+        __m256d zz = _mm256_sub_pd(_mm256_sub_pd(one, _mm256_mul_pd(a, a)), _mm256_mul_pd(b, b));
+        __m256d up = _mm256_cmp_pd(zz, zero, _CMP_GT_OQ);
+        __m256d dz = _mm256_sub_pd(_mm256_sqrt_pd(_mm256_and_pd(zz, up)), z);
+        __m256d c2 = _mm256_blendv_pd(nz2, _mm256_add_pd(_mm256_add_pd(m1x, m1y), _mm256_mul_pd(dz, dz)), up);
+        lb = _mm256_min_pd(c2, lb);
+        _mm256_storeu_pd(e2, _mm256_max_pd(_mm256_sub_pd(_mm256_mul_pd(lb, lower), absolute), zero));
+        for (int q = 0; q < 4; ++q) {
+            ++*work;
+            s = use_max ? (e2[q] > s ? e2[q] : s) : s + e2[q];
+            if (s >= budget)
+                return s;
+        }
+    }
+    return s;
+}
+#endif
+
+static double window_quick(const channel_side *xs, const channel_side *ys, const double n[16][3], const int order[16],
+                           const double nz[16], int use_max, double budget, uint64_t *work)
+{
+#if SEARCH_AVX2
+    if (search_avx2())
+        return window_quick_avx2(xs, ys, nz, use_max, budget, work);
+#endif
+    static const double away_off[16] = {0};
+    return joint_objective_quick(xs, ys, n, order, away_off, use_max, budget, work);
+}
+
+/* channel_side_init for the window search: no pixel points away (lt = 0), t the channel's
+ * components in visiting order. */
+static void window_side_init(const double pal[8], const double t[16], channel_side *s)
+{
+    memset(s->lt, 0, sizeof s->lt);
+#if SEARCH_AVX2
+    if (search_avx2()) {
+        channel_side_nearest_avx2(pal, t, s);
+        return;
+    }
+#endif
+    channel_side_nearest(pal, t, s);
+}
+
+/* order_worst_first's order (pixels by decreasing err, equal errors in pixel order: a stable sort),
+ * from each pixel's rank (how many pixels come before it) instead of insertion: no data-dependent
+ * branches. */
+static void window_order(const double err[16], int order[16])
+{
+    for (int p = 0; p < 16; ++p) {
+        int rank = 0;
+        for (int q = 0; q < 16; ++q)
+            rank += err[q] > err[p] || (q < p && err[q] == err[p]);
+        order[rank] = p;
+    }
+}
+
 /* Returns 0 (and leaves everything untouched) when the block needs search_unit (see above). */
 static int window_search(const double n[16][3], const sol_bc5_range *r, int base_x, int base_y,
                          const search_request *rq, search_workspace *ws, sol_bc5_block *out, sol_bc5_info *info)
@@ -1916,12 +2134,16 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
     if (best > 0.0) {
         window_scratch *w = ws->win;
         double least_x = INFINITY, least_y = INFINITY, room = best * (1.0 + BOUND_SLACK);
-        int nx = window_channel(n, 0, pal, use_max, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi, room, w->list[0]);
+        /* y first: an x pair above room - least_y (sum metric) is dropped by the filter below, so
+         * window_channel leaves it out at once. If the pair of least x score is left out, no x pair
+         * passes the filter and there is no candidate, whatever least_x then is. */
         int ny = window_channel(n, 1, pal, use_max, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi, room, w->list[1]);
-        for (int k = 0; k < nx; ++k)
-            least_x = w->list[0][k].score < least_x ? w->list[0][k].score : least_x;
         for (int k = 0; k < ny; ++k)
             least_y = w->list[1][k].score < least_y ? w->list[1][k].score : least_y;
+        int nx = window_channel(n, 0, pal, use_max, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi,
+                                use_max ? room : room - least_y * (1.0 - BOUND_SLACK), w->list[0]);
+        for (int k = 0; k < nx; ++k)
+            least_x = w->list[0][k].score < least_x ? w->list[0][k].score : least_x;
         /* a pair can only pair up under the incumbent if its score leaves room for the other channel's least */
         nx = window_filter(w->list[0], nx, use_max ? room : room - least_y * (1.0 - BOUND_SLACK));
         ny = window_filter(w->list[1], ny, use_max ? room : room - least_x * (1.0 - BOUND_SLACK));
@@ -1943,22 +2165,19 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
             nx = (int)merge_equivalent(w->list[0], (size_t)nx, &kx, pal, ws->slots);
             ny = (int)merge_equivalent(w->list[1], (size_t)ny, &ky, pal, ws->slots);
         }
-        /* visit pixels worst-first (by the incumbent's per-pixel error) when rejecting candidates */
-        int order[16];
-        for (int p = 0; p < 16; ++p)
-            order[p] = p;
-        order_worst_first(pixel_err, order);
-        memset(w->ready, 0, (size_t)ny); /* y sides are computed when first needed */
-        away_info aw; /* no pixel points away here (every nz > 0): no away terms */
-        away_info_init(&aw, n, 0u);
-        const double away_off[16] = {0};
+        /* Set up when the first candidate needs it (most searched blocks of smooth maps have none):
+         * the pixels' visiting order, worst first (by the incumbent's per-pixel error) when rejecting
+         * candidates, and the y sides' marks (each y side is computed when first needed), the x
+         * side per x pair. */
+        int order[16], prepared = 0;
+        double nz[16], tord[2][16]; /* nz and the components in visiting order */
         channel_side xside;
         for (int i = 0; i < nx && ny > 0 && !bounded; ++i) {
             const window_entry *ex = &w->list[0][i];
             if (combine(ex->score, w->list[1][0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                 break;
             const double *a = pal[ex->pair];
-            channel_side_init(a, n, order, 0, &aw, &xside);
+            int x_ready = 0;
             for (int j = 0; j < ny; ++j) {
                 const window_entry *ey = &w->list[1][j];
                 if (combine(ex->score, ey->score, use_max) * (1.0 - BOUND_SLACK) >= best)
@@ -1970,13 +2189,27 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                     break;
                 }
                 ++candidates;
+                if (!prepared) {
+                    window_order(pixel_err, order);
+                    for (int k = 0; k < 16; ++k) {
+                        nz[k] = n[order[k]][2];
+                        tord[0][k] = n[order[k]][0];
+                        tord[1][k] = n[order[k]][1];
+                    }
+                    memset(w->ready, 0, (size_t)ny);
+                    prepared = 1;
+                }
+                if (!x_ready) {
+                    window_side_init(a, tord[0], &xside);
+                    x_ready = 1;
+                }
                 const double *b = pal[ey->pair];
                 if (!w->ready[j]) {
-                    channel_side_init(b, n, order, 1, &aw, &w->yside[j]);
+                    window_side_init(b, tord[1], &w->yside[j]);
                     w->ready[j] = 1;
                 }
                 double margin = best * (1.0 + BOUND_SLACK);
-                if (joint_objective_quick(&xside, &w->yside[j], n, order, away_off, use_max, margin, &work) >= margin)
+                if (window_quick(&xside, &w->yside[j], n, order, nz, use_max, margin, &work) >= margin)
                     continue;
                 double v = INFINITY, angle[16];
                 if (joint_objective_checked(a, b, n, order, use_max, margin, best, &inc, &work, &v, cx, cy, angle) >=
