@@ -96,6 +96,12 @@ void sol_nm_bc4_fast_anchors(const double t[16], int *lo, int *hi, int *lo6, int
  * results are bit-identical either way, the tests compare them). Zero (the default) otherwise. */
 extern int sol_nm_simd_disable;
 
+/* At least the largest cosine between unit n (nz < 0: a pixel pointing away) and the 64 decodes
+ * (a_i, b_j, z rebuilt or clamped) of x palette a and y palette b, less than 1e-15 above it
+ * (bc5_away.c): the coupled bound of pixels pointing away. Bit-identical in its scalar and AVX2
+ * forms (sol_nm_simd_disable picks scalar). */
+double sol_nm_away_cosine(const double a[8], const double b[8], const double n[3]);
+
 /* Validates and normalises 16 source normals. */
 sol_status sol_nm_unit_normals(const double in[16][3], double out[16][3]);
 
