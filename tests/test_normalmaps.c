@@ -1469,7 +1469,8 @@ Test(normalmaps, fast_bc4_encoder_takes_the_extremes_T10)
 }
 
 /* The coupled bound of pixels pointing away (bc5_away.c): the largest cosine between n (nz < 0) and
- * the 64 decodes of two palettes. Checked against every decode as the objective measures it (the
+ * the 64 decodes of two palettes, and its cheaper rim form (an upper bound too). Checked against every
+ * decode as the objective measures it (the
  * decoder's z, sol_angle3): acos of the bound, raised and lowered as bc5.c does, never exceeds a
  * decode's angle, and the bound is attained (to rounding) by some decode. Scalar and AVX2 forms give
  * the same bits. Normals: random heights, near the rim (z = -1e-9), straight away, and palettes
@@ -1488,6 +1489,11 @@ Test(normalmaps, away_cosine_bounds_every_decode_and_forms_agree)
         sol_nm_simd_disable = 0;
         double simd = sol_nm_away_cosine(pal[pa], pal[pb], n);
         cr_assert(memcmp(&scalar, &simd, sizeof scalar) == 0, "trial %d: %.17g vs %.17g", trial, scalar, simd);
+        sol_nm_simd_disable = 1;
+        double rim = sol_nm_away_cosine_rim(pal[pa], pal[pb], n);
+        sol_nm_simd_disable = 0;
+        double rim_simd = sol_nm_away_cosine_rim(pal[pa], pal[pb], n);
+        cr_assert(memcmp(&rim, &rim_simd, sizeof rim) == 0, "trial %d: rim %.17g vs %.17g", trial, rim, rim_simd);
         double c = scalar + 1e-14, bound = acos(c < 1.0 ? c : 1.0) * (1.0 - 1e-12), least = INFINITY, top = -2.0;
         for (int i = 0; i < 8; ++i)
             for (int j = 0; j < 8; ++j) {
@@ -1499,15 +1505,16 @@ Test(normalmaps, away_cosine_bounds_every_decode_and_forms_agree)
             }
         cr_assert(bound <= least, "trial %d: bound %.17g above the least angle %.17g", trial, bound, least);
         cr_assert(scalar + 1e-14 >= top && scalar <= top + 1e-7, "trial %d: %.17g vs %.17g", trial, scalar, top);
+        cr_assert(rim + 1e-14 >= top, "trial %d: rim form %.17g below %.17g", trial, rim, top);
     }
 }
 
 /* Blocks of the issue 13 survey (families of normals pointing away; generator below) that the
  * search used to leave bounded (stopped by the default work limit, ~0.5 s): now proven, by the
- * coupled bound of bc5_away.c and the separable decision of bc5.c (a narrow cone, a column of normals
- * at one azimuth, sum and max metric; a cone of 0.3 rad, max metric, decided through the holders of
- * its dominant pixel's decode), and an 8-bit equal block whose incumbent meets the equal-block
- * floor. Reference: the previous search with an unlimited work_limit (error and anchors,
+ * coupled bound of bc5_away.c (an arc of 1 rad) and the separable decision of bc5.c (a narrow cone,
+ * a column of normals at one azimuth, sum and max metric; a cone of 0.3 rad, max metric, decided
+ * through the holders of its dominant pixel's decode), and an 8-bit equal block whose incumbent
+ * meets the equal-block floor. Reference: the previous search with an unlimited work_limit (error and anchors,
  * 0.7-21 s per block); and literal brute force in a +-2 window around the result. */
 static void survey_block(int family, double spread, double n[16][3])
 {
@@ -1549,6 +1556,7 @@ Test(normalmaps, pointing_away_survey_blocks_are_proven_exactly)
     } cases[] = {
         {0, 0.0, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 0.63801834251637657, {0, 4, 0, 148}},
         {6, 0.01, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 0.31456252637523008, {1, 9, 174, 179}},
+        {0, 1.0, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 2.3668588813894837, {2, 20, 210, 87}},
         {5, 0.03, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 1.6865172249719649, {0, 1, 0, 173}},
         {5, 2.0, SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, 1.4635153193691703, {0, 6, 0, 171}},
         {6, 0.3, SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, 0.67999088723525014, {0, 4, 7, 194}},

@@ -16,7 +16,12 @@
  * the cosine; the remaining rounding of d, the roots and the division (a few 1e-16) the caller
  * covers by raising the cosine by 1e-14. The AVX2 form does the same IEEE operations in the same
  * order per decode (no FMA) and max is exact up to the sign of a zero, which both forms drop by
- * adding +0, so they return the same bits (the tests run both and compare). */
+ * adding +0, so they return the same bits (the tests run both and compare).
+ *
+ * sol_nm_away_cosine_rim is the cheaper first stage: with nz < 0 the z term only lowers the cosine,
+ * so (a nx + b ny) / sqrt(max(1, r)) is an upper bound too (exact for clamped decodes); its largest
+ * value is found without roots through the order-preserving d |d| / max(1, r) (= sign(d) cos^2),
+ * one division per decode, and the root taken once. Rounding as above (a few 1e-16). */
 #include "normalmaps_internal.h"
 
 #include <math.h>
@@ -50,9 +55,56 @@ static __attribute__((target("avx2"))) double away_cosine_avx2(const double a[8]
         c = v[k] > c ? v[k] : c;
     return c + 0.0; /* -0 and +0 compare equal; + 0.0 makes both +0 */
 }
+
+static __attribute__((target("avx2"))) double away_cosine_rim_avx2(const double a[8], const double b[8],
+                                                                     const double n[3])
+{
+    const __m256d one = _mm256_set1_pd(1.0), sign = _mm256_set1_pd(-0.0);
+    const __m256d nx = _mm256_set1_pd(n[0]), ny = _mm256_set1_pd(n[1]);
+    __m256d a0 = _mm256_loadu_pd(a), a1 = _mm256_loadu_pd(a + 4);
+    __m256d ax0 = _mm256_mul_pd(a0, nx), ax1 = _mm256_mul_pd(a1, nx);
+    __m256d aa0 = _mm256_mul_pd(a0, a0), aa1 = _mm256_mul_pd(a1, a1);
+    __m256d best = _mm256_set1_pd(-INFINITY);
+    for (int j = 0; j < 8; ++j) {
+        __m256d bj = _mm256_set1_pd(b[j]);
+        __m256d by = _mm256_mul_pd(bj, ny), bb = _mm256_mul_pd(bj, bj);
+        for (int h = 0; h < 2; ++h) {
+            __m256d r = _mm256_max_pd(_mm256_add_pd(h ? aa1 : aa0, bb), one), d = _mm256_add_pd(h ? ax1 : ax0, by);
+            best = _mm256_max_pd(best, _mm256_div_pd(_mm256_mul_pd(d, _mm256_andnot_pd(sign, d)), r));
+        }
+    }
+    double v[4];
+    _mm256_storeu_pd(v, best);
+    double s = v[0];
+    for (int k = 1; k < 4; ++k)
+        s = v[k] > s ? v[k] : s;
+    return s;
+}
 #else
 #define AWAY_AVX2 0
 #endif
+
+double sol_nm_away_cosine_rim(const double a[8], const double b[8], const double n[3])
+{
+    double s;
+#if AWAY_AVX2
+    if (!sol_nm_simd_disable && __builtin_cpu_supports("avx2")) {
+        s = away_cosine_rim_avx2(a, b, n);
+        return s >= 0.0 ? sqrt(s) + 0.0 : -sqrt(-s);
+    }
+#endif
+    s = -INFINITY;
+    for (int j = 0; j < 8; ++j) {
+        double by = b[j] * n[1], bb = b[j] * b[j];
+        for (int i = 0; i < 8; ++i) {
+            double r = a[i] * a[i] + bb, d = a[i] * n[0] + by;
+            r = r > 1.0 ? r : 1.0;
+            double q = d * fabs(d) / r;
+            s = q > s ? q : s;
+        }
+    }
+    return s >= 0.0 ? sqrt(s) + 0.0 : -sqrt(-s);
+}
 
 double sol_nm_away_cosine(const double a[8], const double b[8], const double n[3])
 {

@@ -101,6 +101,9 @@ extern int sol_nm_simd_disable;
  * (bc5_away.c): the coupled bound of pixels pointing away. Bit-identical in its scalar and AVX2
  * forms (sol_nm_simd_disable picks scalar). */
 double sol_nm_away_cosine(const double a[8], const double b[8], const double n[3]);
+/* A cheaper, looser form (bc5_away.c): at least the largest (a_i nx + b_j ny) / max(1, |(a_i, b_j)|)
+ * (the z term, <= 0 for nz < 0, dropped; no roots per decode), less than 1e-15 above it. */
+double sol_nm_away_cosine_rim(const double a[8], const double b[8], const double n[3]);
 
 /* Validates and normalises 16 source normals. */
 sol_status sol_nm_unit_normals(const double in[16][3], double out[16][3]);
