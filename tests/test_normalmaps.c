@@ -283,6 +283,85 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
     }
 }
 
+/* bc4_span_bound.c's bound at a phase (the low anchor's) is below the score of the pair (L, L + span)
+ * over its lattice entries, for every L of every span 1-255, both modes, the three decoder
+ * precisions, random blocks narrow to full-range, on and off the code grid, with the cuts kept
+ * whole, cut at the span's least score (as the search cuts them) and all dropped (the floor alone);
+ * the four-lane form the search uses (sol_nm_span_phase_fs) gives the same values bit for bit. */
+Test(normalmaps, bc4_span_phase_bound_is_below_every_pair_of_its_span)
+{
+    for (int trial = 0; trial < 24; ++trial) {
+        double t[16], sorted[16];
+        double c = 2.0 * uniform() - 1.0, w = trial % 4 == 0 ? 0.05 : trial % 4 == 1 ? 0.3 : trial % 4 == 2 ? 0.8 : 2.0;
+        for (int p = 0; p < 16; ++p) {
+            double v = c + w * (uniform() - 0.5);
+            if (trial % 3 == 2)
+                v = round((v + 1.0) * 127.5) / 127.5 - 1.0; /* on the code grid */
+            t[p] = sorted[p] = fmin(1.0, fmax(-1.0, v));
+        }
+        for (int p = 1; p < 16; ++p)
+            for (int q = p; q > 0 && sorted[q - 1] > sorted[q]; --q) {
+                double x = sorted[q];
+                sorted[q] = sorted[q - 1];
+                sorted[q - 1] = x;
+            }
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        double delta = (prec == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : prec == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) +
+                       1e-12;
+        int checked = 0;
+        for (int six = 0; six < 2; ++six) {
+            int den = six ? 5 : 7, entries = six ? 6 : 8;
+            for (int d0 = 0; d0 < 256; d0 += SOL_NM_SPAN_LANES) {
+                double step[SOL_NM_SPAN_LANES];
+                sol_nm_span_cuts cuts[SOL_NM_SPAN_LANES];
+                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k)
+                    step[k] = (2.0 * (d0 + k) / 255.0) / den;
+                sol_nm_span_cuts4(sorted, step, cuts);
+                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k) {
+                    int d = d0 + k;
+                    if (d == 0) {
+                        cr_assert(sol_nm_span_phase_bound(&cuts[k], delta, 0.3) == 0.0, "span 0");
+                        if (!six)
+                            continue;
+                    }
+                    double score[256], least = INFINITY;
+                    for (int l = 0; l + d < 256; ++l) {
+                        const double *e = pal[six ? (l << 8 | (l + d)) : ((l + d) << 8 | l)];
+                        double s = 0.0;
+                        for (int p = 0; p < 16; ++p) {
+                            double m = INFINITY;
+                            for (int i = 0; i < entries; ++i)
+                                m = fmin(m, (e[i] - t[p]) * (e[i] - t[p]));
+                            s += m;
+                        }
+                        score[l] = s;
+                        least = fmin(least, s);
+                    }
+                    const double limits[3] = {INFINITY, least, -1.0};
+                    for (int li = 0; li < 3; ++li) {
+                        sol_nm_span_cuts cu = cuts[k];
+                        sol_nm_span_cuts_keep(&cu, limits[li]);
+                        double fs[256];
+                        sol_nm_span_phase_fs(&cu, 0, 256 - d, fs);
+                        for (int l = 0; l + d < 256; ++l) {
+                            double f1 = sol_nm_span_phase_f(&cu, 2.0 * l / 255.0 - 1.0);
+                            cr_assert(memcmp(&f1, &fs[l], sizeof f1) == 0, "phase_fs %.17g != phase_f %.17g", fs[l], f1);
+                            double lb = sol_nm_span_phase_bound(&cu, delta, 2.0 * l / 255.0 - 1.0);
+                            cr_assert(lb <= score[l],
+                                      "trial %d, mode %d, span %d, low anchor %d, limit %d: bound %.17g above the "
+                                      "score %.17g",
+                                      trial, six, d, l, li, lb, score[l]);
+                            checked += lb > 0.0;
+                        }
+                    }
+                }
+            }
+        }
+        cr_assert(checked > 0, "trial %d: the bound was never positive", trial);
+    }
+}
+
 /* Brute force for a flat block (16 equal targets t): every pair's 16 terms are the same m = min_k
  * (pal_k - t)^2, added in order as the literal brute force adds them; least score, then least pair. */
 static int bc4_brute_flat(double t, sol_bc4_precision precision, double *score)
@@ -330,6 +409,47 @@ Test(normalmaps, bc4_common_flat_blocks_on_every_code_equal_brute_force, .timeou
                 cr_assert(pair == ref && s == s_ref, "code %d (%d), precision %d: pair %04x vs brute force %04x", c, v,
                           prec, pair, ref);
             }
+        }
+}
+
+/* Flat blocks within a hair of -1 or +1 (rim normals of an axis block): the nearest entry value is
+ * -1 or +1, held by 33151 pairs (every 6-value pair), over the walk's cap for blocks of several
+ * values; one-valued blocks walk without a cap (the holders of the nearest value and of an
+ * equidistant one, then stop), and the result is the brute force's pair and score. */
+Test(normalmaps, bc4_common_flat_blocks_at_the_ends_equal_brute_force)
+{
+    const double off[] = {0.0, 1e-9, 1e-7, 1e-6, 3e-6, 1.0 / 65535.0, 1.0 / 255.0, 1.5 / 255.0};
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec)
+        for (int k = 0; k < (int)(sizeof off / sizeof *off); ++k)
+            for (int sign = -1; sign <= 1; sign += 2) {
+                double t[16], v = sign * (1.0 - off[k]), s, s_ref;
+                for (int p = 0; p < 16; ++p)
+                    t[p] = v;
+                int pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s);
+                int ref = bc4_brute_flat(v, (sol_bc4_precision)prec, &s_ref);
+                cr_assert(pair == ref && s == s_ref, "t %.17g, precision %d: pair %04x vs brute force %04x", v, prec,
+                          pair, ref);
+            }
+}
+
+/* The joint search (bc5.c search_unit) takes a flat channel's least-squares pair from
+ * sol_nm_bc4_common instead of sol_nm_channel_argmin (full range, sum metric): the two give the same
+ * pair and score on flat channels, at the ends (+-1 and a hair inside: rim blocks on an axis), on
+ * and between codes, and at random values, every precision. */
+Test(normalmaps, bc4_common_equals_channel_argmin_on_flat_channels)
+{
+    const double values[] = {-1.0, -1.0 + 1e-6, -1.0 + 1.0 / 65535.0, 1.0 - 3e-6, 1.0, 0.0, 128.0 / 127.5 - 1.0,
+                             (128.0 / 127.5 - 1.0) * (1.0 - 3e-6), 0.5 / 255.0, 0.3, -0.7};
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec)
+        for (int k = 0; k < (int)(sizeof values / sizeof *values) + 2; ++k) {
+            double t[16], v = k < (int)(sizeof values / sizeof *values) ? values[k] : 2.0 * uniform() - 1.0, s, s_ref;
+            for (int p = 0; p < 16; ++p)
+                t[p] = v;
+            sol_nm_channel ch;
+            sol_nm_channel_init(&ch, t, (sol_bc4_precision)prec, 0, 0, 0, 255, 0, 255);
+            int pair = sol_nm_bc4_common(t, (sol_bc4_precision)prec, &s), ref = sol_nm_channel_argmin(&ch, &s_ref);
+            cr_assert(pair == ref && s == s_ref, "t %.17g, precision %d: pair %04x vs %04x, %.17g vs %.17g", v, prec,
+                      pair, ref, s, s_ref);
         }
 }
 
@@ -1005,6 +1125,47 @@ Test(normalmaps, degenerate_families_are_proven_at_full_range)
     }
 }
 
+/* Rim arcs next to an axis (z = 0, azimuths within 0.01-0.3 rad of x = -1 or x = +1; some pixels a
+ * hair above or below the rim): one y pair is left and the x list holds the 33151 pairs with an
+ * entry -1 or +1, exact ties that the search evaluated one by one (33154 candidates, ~0.3 s) until
+ * the equivalent pairs were merged with one list a single pair. Checked: proven with few candidates,
+ * the error the block's own, no better quadruple within +-2 codes of the result nor among the
+ * 6-value x pairs (0..10, 0..10) that hold -1 and +1 (literal brute force, with the search over the
+ * same window). */
+Test(normalmaps, rim_arcs_next_to_an_axis_are_proven_with_few_candidates)
+{
+    const double spread[3] = {0.01, 0.1, 0.3};
+    for (int c = 0; c < 12; ++c) {
+        double n[16][3], phi = c % 2 ? M_PI : 0.02;
+        for (int p = 0; p < 16; ++p) {
+            double f = phi + spread[c / 4] * (p / 15.0 - 0.5), z = c % 4 >= 2 && p % 3 == 0 ? 0.004 * (p % 2 ? 1 : -1) : 0.0;
+            n[p][0] = sqrt(1.0 - z * z) * cos(f);
+            n[p][1] = sqrt(1.0 - z * z) * sin(f);
+            n[p][2] = z;
+        }
+        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = c % 4 == 1 || c % 4 == 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED};
+        sol_bc5_block b;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+        cr_assert(!info.bounded && info.candidates < 2000, "case %d: %llu candidates", c,
+                  (unsigned long long)info.candidates);
+        double own;
+        cr_assert_eq(sol_bc5_block_error(&b, n, o.precision, o.metric, &own), SOL_OK);
+        cr_assert_eq(own, info.error, "case %d", c);
+        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
+                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
+                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "case %d", c);
+        r.x0_lo = r.x1_lo = 0;
+        r.x0_hi = r.x1_hi = 10;
+        sol_bc5_block wb;
+        sol_bc5_info window;
+        cr_assert_eq(sol_bc5_search_block(n, &r, &o, &wb, &window), SOL_OK);
+        cr_assert_eq(window.error, bc5_brute_force(n, &r, &o), "case %d", c);
+        cr_assert(info.error <= window.error, "case %d", c);
+    }
+}
+
 /* The hardest blocks of the real terrain map (make bench, 1024^2, issue 13): rough blocks whose
  * per-channel bounds leave over a million candidates. The old search (joint index bound only) ran
  * into the work bound on them (bounded, 0.2-0.3 s); with the quick per-candidate bound they finish
@@ -1216,6 +1377,180 @@ Test(normalmaps, image_check_and_fast_path_match_the_block_encoder_T10)
     sol_image_free(&img);
 }
 
+
+/* The adaptive encoder's threshold level of a block error as sol_bc5_block_error reports it (sum:
+ * sum dN^2; max: max dN = sqrt(max dN^2), so level = error * 180 / pi bit for bit). */
+static double level_of(double error, sol_bc5_metric metric)
+{
+    return metric == SOL_BC5_MAX ? error * (180.0 / M_PI) : sol_nm_threshold_level(error, 0);
+}
+
+/* The chord-bound threshold test (bc5_adaptive.c) never contradicts the exact angles: random
+ * anchors and indices (decodes clamped at the rim included), normals spread, at the rim (z = 0) and
+ * pointing away, the decoded normals themselves (error 0 or nearly), every precision and metric, at
+ * thresholds exactly at the block's level, one ulp either side, 0 and far away; it decides (no NaN)
+ * at 0 and at a huge threshold, and away from the level on smooth blocks. */
+Test(normalmaps, adaptive_threshold_bounds_agree_with_the_exact_angles_T13)
+{
+    int undecided = 0, far_tests = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        sol_bc5_metric metric = (sol_bc5_metric)(trial / 3 % 2);
+        int family = trial / 6 % 5;
+        double n[16][3];
+        sol_bc5_block b;
+        if (family < 3) { /* the fast encoder's block of smooth, rough or rim/away normals */
+            random_block(n, family == 2 ? 1.6 : 1.2, family == 0 ? 0.02 : 0.4);
+            if (family == 2)
+                for (int p = 0; p < 16; p += 3)
+                    n[p][2] = p % 2 ? 0.0 : -fabs(n[p][2]);
+            sol_bc5_options of = {.encoder = SOL_BC5_FAST, .precision = prec};
+            cr_assert_eq(sol_bc5_encode_block(n, &of, &b, NULL), SOL_OK);
+        } else { /* random anchors and indices; family 4: the normals are its own decode */
+            b.x.e0 = (uint8_t)(uniform() * 256);
+            b.x.e1 = (uint8_t)(uniform() * 256);
+            b.y.e0 = (uint8_t)(uniform() * 256);
+            b.y.e1 = (uint8_t)(uniform() * 256);
+            for (int p = 0; p < 16; ++p) {
+                b.x.index[p] = (uint8_t)(uniform() * 8);
+                b.y.index[p] = (uint8_t)(uniform() * 8);
+            }
+            if (family == 4)
+                cr_assert_eq(sol_bc5_decode_block(&b, prec, n), SOL_OK);
+            else
+                random_block(n, 1.6, 1.0);
+        }
+        double u[16][3], t[3][16], err;
+        cr_assert_eq(sol_nm_unit_normals(n, u), SOL_OK);
+        for (int p = 0; p < 16; ++p)
+            for (int c = 0; c < 3; ++c)
+                t[c][p] = u[p][c];
+        cr_assert_eq(sol_bc5_block_error(&b, n, prec, metric, &err), SOL_OK);
+        double level = level_of(err, metric);
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        const double *px = pal[b.x.e0 << 8 | b.x.e1], *py = pal[b.y.e0 << 8 | b.y.e1];
+        const double thr[] = {level, nextafter(level, 0.0), nextafter(level, INFINITY), 0.0, 0.5 * level,
+                              2.0 * level, 1e300};
+        for (size_t k = 0; k < sizeof thr / sizeof thr[0]; ++k) {
+            int exact = !(level <= thr[k]);
+            sol_nm_simd_disable = trial % 2; /* the scalar and the AVX2 forms */
+            int got = sol_nm_threshold_test(px, py, &b, (const double(*)[16])t, metric == SOL_BC5_MAX, thr[k]);
+            sol_nm_simd_disable = 0;
+            cr_assert(got == -1 || got == exact, "trial %d threshold %d: bounds say %d, exact %d (level %.17g)", trial,
+                      (int)k, got, exact, level);
+            undecided += got == -1;
+            if (k == 6)
+                cr_assert_eq(got, 0, "trial %d: undecided at a huge threshold", trial);
+            if (k == 3 && level > 1e-3)
+                cr_assert_eq(got, 1, "trial %d: undecided at threshold 0 (level %g)", trial, level);
+            if ((k == 4 || k == 5) && family == 0 && level > 1e-3) {
+                cr_assert_neq(got, -1, "trial %d: smooth block undecided at %g x its level", trial, k == 4 ? 0.5 : 2.0);
+                ++far_tests;
+            }
+        }
+    }
+    cr_assert(far_tests > 100);
+    cr_assert(undecided > 0); /* the exact level itself is undecidable from bounds */
+}
+
+/* SOL_BC5_THRESHOLD_ARGB8_DEG is what its comment derives: 2 / (255 sqrt 6) rad in degrees, and the
+ * RMS angle of unit normals stored at 8 bits per component (sol_unorm_encode / decode, renormalised)
+ * over the upper hemisphere within 1%. */
+Test(normalmaps, argb8_threshold_is_the_rms_angle_of_8bit_normals_T13)
+{
+    cr_assert_float_eq(SOL_BC5_THRESHOLD_ARGB8_DEG, 2.0 / (255.0 * sqrt(6.0)) * 180.0 / M_PI, 1e-15);
+    cr_assert_float_eq(SOL_BC5_THRESHOLD_ARGB8_DEG, 0.18346, 1e-5);
+    double s = 0.0;
+    const int count = 200000;
+    for (int i = 0; i < count; ++i) {
+        double z = uniform(), phi = 2 * M_PI * uniform(), r = sqrt(1 - z * z);
+        double n[3] = {r * cos(phi), r * sin(phi), z}, q[3];
+        for (int c = 0; c < 3; ++c)
+            q[c] = 2.0 * sol_unorm_decode(sol_unorm_encode(0.5 * (n[c] + 1.0), 8), 8) - 1.0;
+        double e = sol_angle3(n, q);
+        s += e * e;
+    }
+    double rms = sqrt(s / count) * 180.0 / M_PI;
+    cr_assert(fabs(rms / SOL_BC5_THRESHOLD_ARGB8_DEG - 1.0) < 0.01, "RMS angle of 8-bit normals %g deg", rms);
+}
+
+/* The image encoders' adaptive path (rows read directly, the threshold from chord bounds, no error
+ * computed) gives the blocks and statistics of sol_bc5_encode_block with its exact error, block
+ * for block: both bases and metrics, every precision, thresholds at 0, exactly at a block's level
+ * and one ulp below it, between and above the blocks' levels, scalar and AVX2 forms, with a denormal
+ * and a huge pixel; also the common encoder's image path. */
+Test(normalmaps, adaptive_image_path_equals_the_exact_block_path_T13)
+{
+    enum { W = 16, H = 8, NB = W * H / 16 };
+    sol_image img = {0};
+    cr_assert_eq(sol_image_alloc(&img, W, H, 3), SOL_OK);
+    for (int b = 0; b < NB; ++b) {
+        double n[16][3];
+        random_block(n, b == 5 ? 1.6 : 1.0, b % 2 ? 0.03 : 0.3);
+        for (int p = 0; p < 16; ++p) {
+            float *v = sol_image_pixel(&img, 4 * (b % (W / 4)) + (p & 3), 4 * (b / (W / 4)) + (p >> 2));
+            for (int c = 0; c < 3; ++c)
+                v[c] = (float)(n[p][c] * (1.0 + 0.5 * (p % 3))); /* lengths not 1 */
+            if (b == 5 && p % 4 == 0)
+                v[2] = p % 8 ? 0.0f : -v[2]; /* rims and pointing away */
+        }
+    }
+    float *tiny = sol_image_pixel(&img, 1, 1), *huge = sol_image_pixel(&img, 2, 2); /* block 0: both valid */
+    tiny[0] = 1e-45f; /* a denormal normal (1e-45, 0, 0) */
+    tiny[1] = tiny[2] = 0.0f;
+    huge[2] = 3e38f;
+    for (int cfg = 0; cfg < 12; ++cfg) {
+        sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .precision = (sol_bc4_precision)(cfg % 3),
+                             .metric = (sol_bc5_metric)(cfg / 3 % 2), .base = (sol_bc5_base)(cfg / 6),
+                             .window = cfg == 0 ? 0 : -1};
+        /* the base encoder's levels, block by block */
+        double n[NB][16][3], level[NB];
+        for (int b = 0; b < NB; ++b) {
+            for (int p = 0; p < 16; ++p)
+                for (int c = 0; c < 3; ++c)
+                    n[b][p][c] = sol_image_pixel(&img, 4 * (b % (W / 4)) + (p & 3), 4 * (b / (W / 4)) + (p >> 2))[c];
+            sol_bc5_options ob = o;
+            ob.encoder = o.base == SOL_BC5_BASE_FAST ? SOL_BC5_FAST : SOL_BC5_COMMON;
+            sol_bc5_block blk;
+            sol_bc5_info info;
+            cr_assert_eq(sol_bc5_encode_block(n[b], &ob, &blk, &info), SOL_OK);
+            level[b] = level_of(info.error, o.metric);
+        }
+        const double thr[] = {0.0, level[1], nextafter(level[1], 0.0), level[2], nextafter(level[3], 0.0),
+                              0.5 * (level[4] + level[6]), 1e6};
+        for (size_t k = 0; k < sizeof thr / sizeof thr[0]; ++k) {
+            o.threshold_deg = thr[k];
+            for (int enc = 0; enc < (k == 0 ? 2 : 1); ++enc) {
+                sol_bc5_options oe = o;
+                if (enc)
+                    oe.encoder = SOL_BC5_COMMON;
+                uint8_t got[16 * NB], want[16 * NB];
+                sol_bc5_image_stats st;
+                sol_nm_simd_disable = cfg % 2; /* the scalar and the AVX2 forms */
+                cr_assert_eq(sol_bc5_encode_image(&img, &oe, got, &st), SOL_OK);
+                sol_nm_simd_disable = 0;
+                uint64_t searched = 0, candidates = 0, bounded = 0;
+                for (int b = 0; b < NB; ++b) {
+                    sol_bc5_block blk;
+                    sol_bc5_info info;
+                    cr_assert_eq(sol_bc5_encode_block(n[b], &oe, &blk, &info), SOL_OK);
+                    cr_assert(!isnan(info.error));
+                    cr_assert_eq(info.searched, enc == 0 && !(level[b] <= thr[k]), "cfg %d threshold %d block %d",
+                                 cfg, (int)k, b);
+                    cr_assert_eq(sol_bc4_pack(&blk.x, want + 16 * b), SOL_OK);
+                    cr_assert_eq(sol_bc4_pack(&blk.y, want + 16 * b + 8), SOL_OK);
+                    searched += (uint64_t)info.searched;
+                    candidates += info.candidates;
+                    bounded += (uint64_t)info.bounded;
+                }
+                cr_assert_eq(memcmp(got, want, sizeof got), 0, "cfg %d threshold %d encoder %d", cfg, (int)k, enc);
+                cr_assert(st.blocks == NB && st.searched_blocks == searched && st.candidates == candidates &&
+                          st.bounded_blocks == bounded);
+            }
+        }
+    }
+    sol_image_free(&img);
+}
 
 /* Smooth blocks near the hemisphere bound (issue 13): normals on a small arc pointing away, one
  * azimuth with varied z, alternating above and below the rim. Their candidates tie with the

@@ -837,6 +837,42 @@ static void t13_threshold_sweep(const exp_run *exp, t13_crops *c, t13_overhead *
     exp_table_write(tt, exp, "t13_threshold");
 }
 
+/* The adaptive encoder at the library's default options (common base, threshold 0: every block
+ * searched) and at the ARGB8 threshold (SOL_BC5_THRESHOLD_ARGB8_DEG, the RMS angle 8-bit-per-channel
+ * storage of a normal leaves) around either base, over the crops: searched blocks, error left above
+ * the optimum, time over the fast and the common encoder (issue 13's goals: <= 2x fast, <= 1.2x
+ * common). Rows into a table and exp_number keys (T13-default-*, T13-argb8-*). */
+static void t13_defaults(const exp_run *exp, t13_crops *c, const t13_overhead *ov)
+{
+    exp_table *t = exp_table_new("T13: adaptive encoder (window 4) at the library default and at the ARGB8 threshold",
+                                 "base,threshold deg,searched blocks %,error left %,core-ns per block,time / fast encoder,"
+                                 "time / common encoder");
+    static const char *const base_key[2] = {"common-base", "fast-base"};
+    for (int row = 0; row < 3; ++row) {
+        sol_bc5_options d = {0}; /* row 0: the library's defaults */
+        sol_bc5_base base = row == 0 ? d.base : row == 1 ? SOL_BC5_BASE_FAST : SOL_BC5_BASE_COMMON;
+        double thr = row == 0 ? d.threshold_deg : SOL_BC5_THRESHOLD_ARGB8_DEG;
+        uint64_t searched, cand;
+        double total, ns = threshold_point(c, thr, base, &searched, &cand, &total);
+        double pct = 100.0 * (double)searched / (c->nb * INPUT_COUNT), left = error_left_pct(c, total);
+        exp_table_row(t, "%s%s|%.3f|%.1f|%.3f|%.0f|%.1f|%.2f", base == SOL_BC5_BASE_FAST ? "fast" : "common",
+                      row == 0 ? " (default)" : "", thr, pct, left, ns, ns / ov->fast_ns, ns / ov->common_ns);
+        char key[96];
+        const char *pre = row == 0 ? "T13-default" : "T13-argb8";
+        const char *mid = row == 0 ? "" : base_key[base];
+        snprintf(key, sizeof key, "%s%s%s-searched-pct", pre, *mid ? "-" : "", mid);
+        exp_number(exp, key, "%.1f", pct);
+        snprintf(key, sizeof key, "%s%s%s-error-left-pct", pre, *mid ? "-" : "", mid);
+        exp_number(exp, key, "%.3f", left);
+        snprintf(key, sizeof key, "%s%s%s-over-fast-timing", pre, *mid ? "-" : "", mid);
+        exp_number(exp, key, "%.1f", ns / ov->fast_ns);
+        snprintf(key, sizeof key, "%s%s%s-over-common-timing", pre, *mid ? "-" : "", mid);
+        exp_number(exp, key, "%.2f", ns / ov->common_ns);
+    }
+    exp_number(exp, "T13-argb8-threshold-deg", "%.3f", SOL_BC5_THRESHOLD_ARGB8_DEG);
+    exp_table_write(t, exp, "t13_defaults");
+}
+
 /* Per pixel, over every crop: how many pixels the adaptive encoder (window 4, `threshold_deg`) decodes
  * closer to the source than the usual fast encoder, and how many farther (16-bit interpolants). */
 static void t13_pixels_vs_fast(t13_crops *c, double threshold_deg, sol_bc5_base base, uint64_t *better,
@@ -886,6 +922,7 @@ static void t13(const exp_run *exp, const maps *m)
     t13_overhead ov = {0};
     t13_window_sweep(exp, &c, &at4, &left4, &at4_other, &left4_other);
     t13_threshold_sweep(exp, &c, &ov);
+    t13_defaults(exp, &c, &ov);
     const int cb = T13_BASE, ob = 1 - T13_BASE;
     uint64_t better, worse;
     t13_pixels_vs_fast(&c, ov.threshold[cb], (sol_bc5_base)cb, &better, &worse);
@@ -1088,7 +1125,7 @@ static void bench_ratio(char cell[32], const int ran[], const double t[], int a,
  * exact normals (16-bit interpolation), and the error left above the optimum as T13 defines it (the
  * summed per-block objective against the source over the optimal encoder's, in % of the latter; the
  * optimal encoder's run of bench_set, computed once per map). */
-static const double BENCH_THRESHOLDS[] = {0.0, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 3.0, 5.0};
+static const double BENCH_THRESHOLDS[] = {0.0, 0.05, 0.1, SOL_BC5_THRESHOLD_ARGB8_DEG, 0.2, 0.5, 1.0, 2.0, 3.0, 5.0};
 enum { N_BENCH_THRESHOLDS = sizeof BENCH_THRESHOLDS / sizeof BENCH_THRESHOLDS[0] };
 static const uint64_t BENCH_WORK_LIMITS[] = {UINT64_C(1) << 10, UINT64_C(1) << 14, UINT64_C(1) << 18,
                                              UINT64_C(1) << 22}; /* --quick: the first and the third */
@@ -1162,7 +1199,10 @@ static void bench_thresholds(exp_table *t, exp_table *summary, const bench_ref *
             sol_bc5_image_stats st;
             cpu[i] = encoder_cpu_s(&e, r->src, blocks, &st);
             char thr[32], searched[32];
-            snprintf(thr, sizeof thr, "%.2f%s", BENCH_THRESHOLDS[i], BENCH_THRESHOLDS[i] == 0.0 ? " (default)" : "");
+            snprintf(thr, sizeof thr, "%.*f%s", BENCH_THRESHOLDS[i] == SOL_BC5_THRESHOLD_ARGB8_DEG ? 3 : 2,
+                     BENCH_THRESHOLDS[i],
+                     BENCH_THRESHOLDS[i] == 0.0 ? " (default)"
+                                                : BENCH_THRESHOLDS[i] == SOL_BC5_THRESHOLD_ARGB8_DEG ? " (ARGB8)" : "");
             snprintf(searched, sizeof searched, "%.1f", 100.0 * (double)st.searched_blocks / (double)st.blocks);
             threshold_row(t, r, "adaptive", base ? "fast" : "common", thr, searched, cpu[i], blocks, &left[i]);
             free(blocks);
@@ -1180,15 +1220,22 @@ static void bench_thresholds(exp_table *t, exp_table *summary, const bench_ref *
             else if (at < 0)
                 snprintf(cells[g], sizeof cells[g], "none up to %.2f|-", BENCH_THRESHOLDS[N_BENCH_THRESHOLDS - 1]);
             else if (isnan(left[at]))
-                snprintf(cells[g], sizeof cells[g], "%.2f|-", BENCH_THRESHOLDS[at]);
+                snprintf(cells[g], sizeof cells[g], "%.3g|-", BENCH_THRESHOLDS[at]);
             else
-                snprintf(cells[g], sizeof cells[g], "%.2f|%.3f", BENCH_THRESHOLDS[at], left[at]);
+                snprintf(cells[g], sizeof cells[g], "%.3g|%.3f", BENCH_THRESHOLDS[at], left[at]);
         }
-        char z_fast[32], z_common[32];
+        char z_fast[32], z_common[32], a_fast[32], a_common[32], a_left[32] = "-";
         ratio_cell(z_fast, sizeof z_fast, cpu[0], r->fast_cpu, "%.2f");
         ratio_cell(z_common, sizeof z_common, cpu[0], r->common_cpu, "%.3f");
-        exp_table_row(summary, "%s|%d|%s|%s|%s|%s|%s", r->map, r->bits, base ? "fast" : "common", z_fast, z_common,
-                      cells[0], cells[1]);
+        int ia = 0; /* the ARGB8 threshold's row */
+        while (BENCH_THRESHOLDS[ia] != SOL_BC5_THRESHOLD_ARGB8_DEG)
+            ++ia;
+        ratio_cell(a_fast, sizeof a_fast, cpu[ia], r->fast_cpu, "%.2f");
+        ratio_cell(a_common, sizeof a_common, cpu[ia], r->common_cpu, "%.3f");
+        if (!isnan(left[ia]))
+            snprintf(a_left, sizeof a_left, "%.3f", left[ia]);
+        exp_table_row(summary, "%s|%d|%s|%s|%s|%s|%s|%s|%s|%s", r->map, r->bits, base ? "fast" : "common", z_fast,
+                      z_common, a_fast, a_common, a_left, cells[0], cells[1]);
     }
 }
 
@@ -1241,6 +1288,7 @@ static void bench_set(const exp_run *exp)
     exp_table *ks = exp_table_new("make bench: least threshold of the sweep within the time goals of issue 13 "
                                   "(adaptive <= 2x fast, <= 1.2x common; CPU time, one thread)",
                                   "map,source bits,base,time / fast at threshold 0,time / common at threshold 0,"
+                                  "time / fast at the ARGB8 threshold,time / common there,error left there %,"
                                   "least threshold deg with time <= 2x fast,error left there %,"
                                   "least threshold deg with time <= 1.2x common,error left there %");
     exp_table *kw = exp_table_new("make bench: optimal encoder work_limit, with the baselines and peers: error vs time "

@@ -37,7 +37,9 @@
  * two or three values, and hundreds of pairs put one entry on the same 16-bit value).
  * Wide blocks (at least WIDE_CODES codes) are searched by span instead (span_search: every pair of a
  * span shares one lattice step, so its score is bounded by the targets' fit to that lattice at any
- * phase, bc4_span_bound.c).
+ * phase, bc4_span_bound.c; in a span that survives, each low anchor L fixes the phase, A(L), and the
+ * same fit at that phase bounds the pair (L, L + span): only the L whose phase is near one of the
+ * targets' best phases are scored).
  * Search: the incumbent is the best of the fast encoder's two candidate pairs (extreme_seeds) refined
  * by a least-squares refit of its anchors (refine) and, for blocks narrower than a few codes, palettes of
  * span 1-4 codes centred on the targets (narrow_seeds: the fast pair has span 0 there, and the refit
@@ -85,28 +87,55 @@ typedef struct common_ctx {
 /* Sum of squares of sorted[i..j] about their mean. */
 static inline double group_cost(const common_ctx *c, int i, int j)
 {
-    double n = j - i + 1, s = c->prefix[j + 1] - c->prefix[i], s2 = c->prefix2[j + 1] - c->prefix2[i];
-    double v = s2 - s * s / n;
+    static const double inv[17] = {0.0,       1.0,       1.0 / 2,  1.0 / 3,  1.0 / 4,  1.0 / 5,
+                                   1.0 / 6,   1.0 / 7,   1.0 / 8,  1.0 / 9,  1.0 / 10, 1.0 / 11,
+                                   1.0 / 12,  1.0 / 13,  1.0 / 14, 1.0 / 15, 1.0 / 16};
+    double s = c->prefix[j + 1] - c->prefix[i], s2 = c->prefix2[j + 1] - c->prefix2[i];
+    double v = s2 - s * s * inv[j - i + 1]; /* s^2 / n within a rounding (q_slack) */
     return v > 0.0 ? v : 0.0;
 }
 
-/* q[m]: 1-D optimal m-point quantisation of the 16 targets (contiguous groups of the sorted values). */
-static double quantisation_bound(common_ctx *c, int m)
+/* q[m]: 1-D optimal m-point quantisation of the 16 targets (contiguous groups of the sorted values).
+ * Row r of the programme, dp[r][j] = min over i of dp[r - 1][i - 1] + cost(i..j), is taken i by i,
+ * each i updating every j >= i at once (independent lanes, no chain of dependent minima); the minimum
+ * of the same sums whatever the order. */
+static HOT_CLONES double quantisation_bound(common_ctx *c, int m)
 {
     while (c->q_rows < m) {
         int r = ++c->q_rows;
-        for (int j = 0; j < 16; ++j) {
-            double b = INFINITY;
-            if (r == 1)
-                b = group_cost(c, 0, j);
-            else
-                for (int i = r - 1; i <= j; ++i) {
-                    if (r == 2)
-                        c->gcost[i][j] = group_cost(c, i, j);
-                    double v = c->dp[r - 1][i - 1] + c->gcost[i][j];
-                    b = v < b ? v : b;
+        if (r == 1) {
+            for (int j = 0; j < 16; ++j)
+                c->dp[1][j] = group_cost(c, 0, j);
+        } else {
+            if (r == 2) /* group_cost(i, j), in 16 lanes (j < i: no group, infinite cost, so that every
+                         * row below runs all 16 lanes; inv_n[15 + n] = 1 / n) */
+                for (int i = 1; i < 16; ++i) {
+                    static const double inv_n[32] = {0.0,      0.0,      0.0,      0.0,      0.0,      0.0,
+                                                     0.0,      0.0,      0.0,      0.0,      0.0,      0.0,
+                                                     0.0,      0.0,      0.0,      0.0,      1.0,      1.0 / 2,
+                                                     1.0 / 3,  1.0 / 4,  1.0 / 5,  1.0 / 6,  1.0 / 7,  1.0 / 8,
+                                                     1.0 / 9,  1.0 / 10, 1.0 / 11, 1.0 / 12, 1.0 / 13, 1.0 / 14,
+                                                     1.0 / 15, 1.0 / 16};
+                    const double pi = c->prefix[i], p2i = c->prefix2[i];
+                    for (int j = 0; j < 16; ++j) {
+                        double sj = c->prefix[j + 1] - pi, s2 = c->prefix2[j + 1] - p2i;
+                        double v = s2 - sj * sj * inv_n[j - i + 16];
+                        v = v > 0.0 ? v : 0.0;
+                        c->gcost[i][j] = j < i ? INFINITY : v;
+                    }
                 }
-            c->dp[r][j] = r - 1 > j ? 0.0 : b;
+            double b[16];
+            for (int j = 0; j < 16; ++j)
+                b[j] = INFINITY;
+            for (int i = r - 1; i < 16; ++i) {
+                const double base = c->dp[r - 1][i - 1];
+                for (int j = 0; j < 16; ++j) {
+                    double v = base + c->gcost[i][j];
+                    b[j] = v < b[j] ? v : b[j];
+                }
+            }
+            for (int j = 0; j < 16; ++j)
+                c->dp[r][j] = r - 1 > j ? 0.0 : b[j];
         }
         c->q[r] = c->dp[r][15];
     }
@@ -457,8 +486,11 @@ static void search_mode(common_ctx *c, int six)
  *   D = A(d) + 1 + 2 delta, so of the disjoint pairs of sorted targets (t_i, t_15-i) at least
  *   (t_15-i - t_i - D) is left outside, and the two terms sum to at least half its square.
  * The spans of the region whose bound reaches the incumbent are visited least bound first; in each,
- * the low anchors of the region are scored exactly (early exit) in ascending order, so ties go to the
- * least pair as in the reference. Used for wide blocks, whose region is long in the span direction
+ * the low anchors of the region whose phase bound (sol_nm_span_phase_bound: the lattice fit at the
+ * phase A(L), from the span's 16 cut sequences; its F for all the span's L at once, four lanes at a
+ * time, by sol_nm_span_phase_fs) reaches the incumbent are scored exactly (early exit)
+ * in ascending order, so ties go to the least pair as in the reference (a skipped pair scores above
+ * the incumbent). Used for wide blocks, whose region is long in the span direction
  * and whose few surviving spans hold a few pairs each (on the benchmark maps 5-10% of the region's
  * pairs), where the boxes' per-target intervals, blind to the phase all entries share, had to be
  * split to single pairs. The 6-value mode uses it only when the fixed entries -1, +1 are out of
@@ -517,12 +549,31 @@ static void span_search(common_ctx *c, int six)
             spans[q] = cand[i + k];
         }
     }
+    sol_nm_span_cuts cuts[SOL_NM_SPAN_LANES];
     for (int i = 0; i < n && lb[i] <= c->best; ++i) {
+        if (i % SOL_NM_SPAN_LANES == 0) { /* the cut data of the next four spans to visit */
+            double step[SOL_NM_SPAN_LANES];
+            for (int k = 0; k < SOL_NM_SPAN_LANES; ++k)
+                step[k] = i + k < n ? (anchor(spans[i + k]) + 1.0) / den : 0.0;
+            sol_nm_span_cuts4(c->sorted, step, cuts);
+        }
+        sol_nm_span_cuts *cu = &cuts[i % SOL_NM_SPAN_LANES];
+        /* a low anchor whose F exceeds fstar = F* (1 + 1e-6), F* = (4 delta + sqrt(16 delta^2 + best))^2
+         * (where F - 8 delta sqrt(F) = best; increasing beyond), has a bound above best (1 + 1e-6)
+         * (since F* - 4 delta sqrt(F*) >= best): it cannot reach the incumbent. Only the cuts with
+         * v <= fstar can bring F below fstar. */
+        double r = 4.0 * c->delta + sqrt(16.0 * c->delta * c->delta + c->best), fstar = r * r * (1.0 + 1e-6);
+        sol_nm_span_cuts_keep(cu, fstar + cu->slack);
         int d = spans[i], l1 = g.h_min - d, l2 = 255 - d;
         l1 = l1 > 0 ? l1 : 0;
         l2 = l2 < g.l_max ? l2 : g.l_max;
+        if (l1 > l2)
+            continue;
+        double f[256];
+        sol_nm_span_phase_fs(cu, l1, l2 - l1 + 1, f);
         for (int l = l1; l <= l2; ++l)
-            try_pair(c, make_pair(six, l, l + d));
+            if (f[l - l1] <= fstar)
+                try_pair(c, make_pair(six, l, l + d));
     }
 }
 
@@ -547,10 +598,11 @@ static void refine(common_ctx *c, int six, int l, int h)
 {
     const int den = six ? 5 : 7;
     for (int round = 0; round < 3; ++round) {
-        double al = anchor(l), ah = anchor(h), step = (ah - al) / den;
+        double al = anchor(l), ah = anchor(h), step = (ah - al) / den, inv = step > 0.0 ? 1.0 / step : 0.0;
         double saa = 0.0, sab = 0.0, sbb = 0.0, sat = 0.0, sbt = 0.0;
         for (int p = 0; p < 16; ++p) {
-            double t = c->t[p], k = step > 0.0 ? floor((t - al) / step + 0.5) : 0.0;
+            /* the nearest lattice position (round to nearest by the 1.5 2^52 addition: |k| < 2^51) */
+            double t = c->t[p], k = ((t - al) * inv + 0x1.8p52) - 0x1.8p52;
             k = k < 0.0 ? 0.0 : (k > den ? den : k);
             if (six && fabs(t - (al + k * step)) > fmin(fabs(t + 1.0), fabs(t - 1.0)))
                 continue; /* served by a fixed entry */
@@ -816,7 +868,11 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
         if (nv <= WALK_FIRST_VALUES) { /* flat: the walk needs no incumbent */
             c.best = INFINITY;
             c.best_pair = 65536;
-            if (narrow_walk(&c, ix, &wp, 0, FLAT_MAX_WORK)) {
+            /* one value: the walk lists the holders of the nearest value (and of an equidistant one
+             * on its other side) and stops, so it has no cap: up to 2 x 33151 pairs (the values -1 and
+             * +1, held by every 6-value pair), most skipped by one comparison, well below the box
+             * search's cost there (~1.5 ms) */
+            if (narrow_walk(&c, ix, &wp, 0, nv == 1 ? SIZE_MAX : FLAT_MAX_WORK)) {
                 *score = c.best;
                 return c.best_pair;
             }
@@ -835,10 +891,13 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     }
     if (walk_pair >= 0 && walk_pair < 65536)
         try_pair(&c, walk_pair);
-    narrow_seeds(&c);
+    const int wide = (c.tmax - c.tmin) * 127.5 >= WIDE_CODES;
+    if (!wide)
+        narrow_seeds(&c);
     {
         int e0 = c.best_pair >> 8, e1 = c.best_pair & 255, six = e0 <= e1;
-        descend(&c, six, six ? e0 : e1, six ? e1 : e0);
+        if (!wide)
+            descend(&c, six, six ? e0 : e1, six ? e1 : e0);
     }
     if (ix) { /* the walk from the value it lists the fewest pairs for, if that is few */
         int iu = 0;
@@ -855,7 +914,7 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
             return c.best_pair;
         }
     }
-    if ((c.tmax - c.tmin) * 127.5 >= WIDE_CODES) {
+    if (wide) {
         span_search(&c, 0);
         span_search(&c, 1);
     } else {

@@ -47,15 +47,13 @@ typedef long long v4l __attribute__((vector_size(4 * sizeof(long long))));
 /* mask ? a : b, lane by lane (a macro: a function passing 32-byte vectors warns about its ABI) */
 #define select4(mask, a, b) ((v4d)(((v4l)(a) & (mask)) | ((v4l)(b) & ~(mask))))
 
-SPAN_CLONES void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_LANES], double delta,
-                                    double out[SOL_NM_SPAN_LANES])
+/* The phases u_p = (t_p - t_0) mod step of the 16 sorted targets, ascending, for four steps at once
+ * (*step: the steps, *inverse: their inverses; pointers, as passing 32-byte vectors warns about its
+ * ABI); an always-inlined helper of the two functions below. */
+static inline __attribute__((always_inline)) void sorted_phases(const double sorted[16], const v4d *step,
+                                                                const v4d *inverse, v4d u[16])
 {
-    const v4d zero = {0.0, 0.0, 0.0, 0.0}, one = zero + 1.0, magic = zero + 0x1.8p52;
-    v4d st = {step[0], step[1], step[2], step[3]};
-    const v4l has = st > zero;
-    st = select4(has, st, one); /* a lane without a step: any value, answered 0 below */
-    const v4d inv = one / st;
-    v4d u[16];
+    const v4d zero = {0.0, 0.0, 0.0, 0.0}, magic = zero + 0x1.8p52, st = *step, inv = *inverse;
     for (int p = 0; p < 16; ++p) {
         /* any representative works (only t mod s matters): v - s round(v / s) (round to nearest by
          * the 1.5 2^52 addition; v / s < 2^51), then one correction step each way keeps it in [0, s) */
@@ -65,12 +63,26 @@ SPAN_CLONES void sol_nm_span_bounds(const double sorted[16], const double step[S
         r = select4(r >= st, r - st, r);
         u[p] = r;
     }
+    /* fully unrolled, so that the indices are constants and u stays in registers */
+#pragma GCC unroll 63
     for (int c = 0; c < 63; ++c) {
         v4d x = u[network[c][0]], y = u[network[c][1]];
         v4l lt = x < y;
         u[network[c][0]] = select4(lt, x, y);
         u[network[c][1]] = select4(lt, y, x);
     }
+}
+
+SPAN_CLONES void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_LANES], double delta,
+                                    double out[SOL_NM_SPAN_LANES])
+{
+    const v4d zero = {0.0, 0.0, 0.0, 0.0}, one = zero + 1.0;
+    v4d st = {step[0], step[1], step[2], step[3]};
+    const v4l has = st > zero;
+    st = select4(has, st, one); /* a lane without a step: any value, answered 0 below */
+    const v4d inv = one / st;
+    v4d u[16];
+    sorted_phases(sorted, &st, &inv, u);
     v4d sum = zero, sum2 = zero;
     for (int p = 0; p < 16; ++p) {
         sum += u[p];
@@ -88,5 +100,98 @@ SPAN_CLONES void sol_nm_span_bounds(const double sorted[16], const double step[S
     for (int k = 0; k < 4; ++k) {
         double v = b[k], lb = v > 0.0 ? v - 8.0 * delta * sqrt(v) : 0.0;
         out[k] = has[k] && lb > 0.0 ? lb * (1.0 - 1e-9) : 0.0;
+    }
+}
+
+/* ---- the same bound at a given phase, for the low anchors of one span ----
+ * For a phase phi (a pair's low anchor A(L): its lattice entries lie within delta of phi + s Z), the
+ * bound above before the minimum over phi is F(phi) = sum_p c(t_p - phi)^2. With psi = phi - t_0
+ * and the sorted phases u_p, the nearest lattice point of each u_p is psi + j s with u_p + k_p s
+ * in [psi - s/2, psi + s/2): the u_p below a threshold get one period more than the others, which
+ * is one of the 16 cut sequences y^c above shifted by a whole number m of periods. Every other
+ * choice of (c, m) puts each target at least as far from psi, so, with V_c the sum of squares of
+ * y^c about its mean M_c and cd the circular distance modulo s,
+ *     F(phi) = min_c min_m sum_p (y^c_p + m s - psi)^2 = min_c [V_c + 16 cd(M_c - psi)^2]
+ * exactly, and the pair scores at least F - 8 delta sqrt(F) as above (for F >= 16 delta^2 this is
+ * increasing in F, and below it is negative, so any lower value of F gives a lower bound too).
+ * A cut with V_c above what can reach the incumbent cannot make F smaller than that; the search
+ * drops such cuts (sol_nm_span_cuts_keep) and keeps the least dropped V_c as a floor, so that the
+ * bound holds whatever was dropped. */
+SPAN_CLONES void sol_nm_span_cuts4(const double sorted[16], const double step[SOL_NM_SPAN_LANES],
+                                   sol_nm_span_cuts out[SOL_NM_SPAN_LANES])
+{
+    const v4d zero = {0.0, 0.0, 0.0, 0.0}, one = zero + 1.0;
+    v4d st = {step[0], step[1], step[2], step[3]};
+    const v4l has = st > zero;
+    st = select4(has, st, one);
+    const v4d inv = one / st;
+    v4d u[16], sum = zero, sum2 = zero;
+    sorted_phases(sorted, &st, &inv, u);
+    for (int p = 0; p < 16; ++p) {
+        sum += u[p];
+        sum2 += u[p] * u[p];
+    }
+    for (int c = 0; c < 16; ++c) {
+        if (c > 0) { /* cut after u_{c-1}: it moves up by one period */
+            sum += st;
+            sum2 += st * (2.0 * u[c - 1] + st);
+        }
+        const v4d var = sum2 - sum * sum / 16.0, mean = sum / 16.0;
+        for (int k = 0; k < 4; ++k) {
+            out[k].v[c] = var[k];
+            out[k].mean[c] = mean[k];
+        }
+    }
+    for (int k = 0; k < 4; ++k) {
+        out[k].step = st[k];
+        out[k].inv = inv[k];
+        out[k].slack = 1e-13 * 64.0 * st[k] * st[k];
+        out[k].base = sorted[0];
+        out[k].n = has[k] ? 16 : 0;
+        out[k].floor = has[k] ? INFINITY : 0.0; /* no step: no bound */
+    }
+}
+
+void sol_nm_span_cuts_keep(sol_nm_span_cuts *cu, double limit)
+{
+    int n = 0;
+    for (int c = 0; c < cu->n; ++c)
+        if (cu->v[c] <= limit) {
+            cu->v[n] = cu->v[c];
+            cu->mean[n++] = cu->mean[c];
+        } else if (cu->v[c] < cu->floor)
+            cu->floor = cu->v[c];
+    cu->n = n;
+}
+
+double sol_nm_span_phase_bound(const sol_nm_span_cuts *cu, double delta, double phase)
+{
+    double f = sol_nm_span_phase_f(cu, phase);
+    double lb = f > 0.0 ? f - 8.0 * delta * sqrt(f) : 0.0;
+    return lb > 0.0 ? lb * (1.0 - 1e-9) : 0.0;
+}
+
+/* sol_nm_span_phase_f at the phases A(l) = 2 l / 255 - 1 of the low anchors l = l1 .. l1 + count - 1
+ * (count <= 256), four at a time: the same operations in the same order per lane, so the values are
+ * those of sol_nm_span_phase_f (the tests compare them). */
+SPAN_CLONES void sol_nm_span_phase_fs(const sol_nm_span_cuts *cu, int l1, int count, double out[256])
+{
+    const v4d zero = {0.0, 0.0, 0.0, 0.0}, magic = zero + 0x1.8p52, s = zero + cu->step, inv = zero + cu->inv;
+    const v4l abs_mask = (v4l){0, 0, 0, 0} + 0x7fffffffffffffffLL;
+    for (int i = 0; i < count; i += 4) {
+        v4d psi;
+        for (int k = 0; k < 4; ++k)
+            psi[k] = (2.0 * (l1 + i + k) / 255.0 - 1.0) - cu->base;
+        v4d f = zero + cu->floor;
+        for (int c = 0; c < cu->n; ++c) {
+            const v4d x = cu->mean[c] - psi, m = (x * inv + magic) - magic;
+            v4d cd = (v4d)((v4l)(x - s * m) & abs_mask) - 1e-14;
+            cd = select4(cd > zero, cd, zero);
+            const v4d v = cu->v[c] + 16.0 * cd * cd;
+            f = select4(v < f, v, f);
+        }
+        f -= cu->slack;
+        for (int k = 0; k < 4 && i + k < count; ++k)
+            out[i + k] = f[k];
     }
 }

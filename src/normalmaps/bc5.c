@@ -77,54 +77,150 @@ static inline double decoded_angle(double a, double b, const double n[3])
 /* The index pair (i, j) of palettes a, b whose decoded normal is closest in angle to n.
  * Candidates are compared by the cosine of their angle. A candidate with x^2 + y^2 <= 1 decodes to
  * a unit vector whose chord to n satisfies chord^2 >= (a-nx)^2 + (b-ny)^2; one with z clamped has
- * chord^2 >= nz^2; either bound above the best chord^2 so far skips the candidate. */
-static void best_pixel_index(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
+ * chord^2 >= nz^2; either bound above the best chord^2 so far skips the candidate.
+ * The choice (the reference order): the per-channel nearest pair (i0, j0) first (the first entry of
+ * least squared distance in each palette), then every pair (i, j) in i-major order, a pair replacing
+ * the best only with a strictly larger cosine. The skip tests only ever get stricter as the best
+ * chord^2 shrinks, so when nz^2 is above the seed's chord^2 (no clamped decode can ever be tried) the
+ * rows i and columns j whose own distance da_i or db_j already fails against the seed are skipped
+ * outright: the pairs visited are those of the reference walk that are not skipped, in its order,
+ * and the seed is not re-tried (its cosine cannot be strictly larger than itself); so the choice is
+ * the reference walk's, bit for bit, and on smooth pixels it costs the seed and a few neighbours
+ * instead of 64 pairs. */
+#if SEARCH_AVX2
+/* best_pixel_index's per-channel squared distances d[k] = (p[k] - t)^2 (the same operations) and the
+ * first index of their least (the scalar loop's strict comparisons keep the first). */
+static inline AVX2_FN int channel_distances_avx2(const double p[8], double t, double d[8])
 {
+    __m256d tt = _mm256_set1_pd(t), u = _mm256_sub_pd(_mm256_loadu_pd(p), tt), v = _mm256_sub_pd(_mm256_loadu_pd(p + 4), tt);
+    u = _mm256_mul_pd(u, u);
+    v = _mm256_mul_pd(v, v);
+    _mm256_storeu_pd(d, u);
+    _mm256_storeu_pd(d + 4, v);
+    __m256d m = _mm256_min_pd(u, v);
+    m = _mm256_min_pd(m, _mm256_permute4x64_pd(m, 0x4e));
+    m = _mm256_min_pd(m, _mm256_permute_pd(m, 5)); /* the least in every lane */
+    unsigned eq = (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(u, m, _CMP_EQ_OQ)) |
+                  (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(v, m, _CMP_EQ_OQ)) << 4;
+    return __builtin_ctz(eq);
+}
+
+/* Bit k set where d[k] * keep <= c (the same product and comparison as the scalar loop). */
+static inline AVX2_FN unsigned within_mask_avx2(const double d[8], double keep, double c)
+{
+    __m256d kk = _mm256_set1_pd(keep), cc = _mm256_set1_pd(c);
+    __m256d u = _mm256_mul_pd(_mm256_loadu_pd(d), kk), v = _mm256_mul_pd(_mm256_loadu_pd(d + 4), kk);
+    return (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(u, cc, _CMP_LE_OQ)) |
+           (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(v, cc, _CMP_LE_OQ)) << 4;
+}
+#endif
+
+/* best_pixel_index's walk; avx2: the distances and masks by the AVX2 helpers (same values). */
+static inline __attribute__((always_inline)) void best_pixel_index_body(const double a[8], const double b[8],
+                                                                        const double n[3], int *bi, int *bj, int avx2)
+{
+    const double keep = 1.0 - BOUND_SLACK;
     double da[8], db[8];
     int i0 = 0, j0 = 0;
-    for (int k = 0; k < 8; ++k) {
-        da[k] = (a[k] - n[0]) * (a[k] - n[0]);
-        db[k] = (b[k] - n[1]) * (b[k] - n[1]);
-        i0 = da[k] < da[i0] ? k : i0;
-        j0 = db[k] < db[j0] ? k : j0;
-    }
+    (void)avx2;
+#if SEARCH_AVX2
+    if (avx2) {
+        i0 = channel_distances_avx2(a, n[0], da);
+        j0 = channel_distances_avx2(b, n[1], db);
+    } else
+#endif
+        for (int k = 0; k < 8; ++k) {
+            da[k] = (a[k] - n[0]) * (a[k] - n[0]);
+            db[k] = (b[k] - n[1]) * (b[k] - n[1]);
+            i0 = da[k] < da[i0] ? k : i0;
+            j0 = db[k] < db[j0] ? k : j0;
+        }
     double nz2 = n[2] * n[2];
+    /* the seed: the reference walk's first pair, tried against no incumbent (every skip test fails) */
     int best_i = -1, best_j = -1;
     double best_cos = -INFINITY, best_chord2 = INFINITY;
-    for (int pass = 0; pass < 2; ++pass) {
-        for (int i = 0; i < 8; ++i) {
-            if (da[i] * (1.0 - BOUND_SLACK) > best_chord2 && nz2 * (1.0 - BOUND_SLACK) > best_chord2)
+    {
+        double r2 = a[i0] * a[i0] + b[j0] * b[j0], dot = a[i0] * n[0] + b[j0] * n[1];
+        double cosine = r2 <= 1.0 ? dot + sqrt(1.0 - r2) * n[2] : dot / sqrt(r2);
+        if (cosine > best_cos) {
+            best_cos = cosine;
+            best_chord2 = 2.0 - 2.0 * cosine;
+            best_i = i0;
+            best_j = j0;
+        }
+    }
+    unsigned rows = 0xff, cols = 0xff;
+    int tight = nz2 * keep > best_chord2; /* clamped decodes are skipped from here on */
+    if (tight) {
+        rows = cols = 0;
+#if SEARCH_AVX2
+        if (avx2) {
+            rows = within_mask_avx2(da, keep, best_chord2);
+            cols = within_mask_avx2(db, keep, best_chord2);
+        } else
+#endif
+            for (int k = 0; k < 8; ++k) {
+                rows |= (unsigned)(da[k] * keep <= best_chord2) << k;
+                cols |= (unsigned)(db[k] * keep <= best_chord2) << k;
+            }
+        if (rows == 1u << i0 && cols == 1u << j0) { /* only the seed is left */
+            *bi = best_i;
+            *bj = best_j;
+            return;
+        }
+    }
+    for (unsigned rm = rows; rm; rm &= rm - 1) { /* the set bits in increasing order */
+        int i = __builtin_ctz(rm);
+        if (da[i] * keep > best_chord2 && nz2 * keep > best_chord2)
+            continue;
+        for (unsigned cm = cols; cm; cm &= cm - 1) {
+            int j = __builtin_ctz(cm);
+            if (tight && i == i0 && j == j0)
                 continue;
-            for (int j = 0; j < 8; ++j) {
-                if (pass == 0 && (i != i0 || j != j0))
-                    continue; /* pass 0 seeds the incumbent with the per-channel nearest pair */
-                double r2 = a[i] * a[i] + b[j] * b[j], dot = a[i] * n[0] + b[j] * n[1], cosine;
-                if (r2 <= 1.0) {
-                    if ((da[i] + db[j]) * (1.0 - BOUND_SLACK) > best_chord2)
-                        continue;
-                    if (n[2] <= 0.0 && dot <= best_cos)
-                        continue; /* the z term adds <= 0 (rounding is monotone) */
-                    cosine = dot + sqrt(1.0 - r2) * n[2];
-                } else {
-                    if (nz2 * (1.0 - BOUND_SLACK) > best_chord2)
-                        continue;
-                    /* cosine = dot / r with r > 1: no better than best_cos >= 0 if dot <= 0 or
-                     * dot^2 < best_cos^2 r^2 (with a margin for the rounding of the division) */
-                    if (best_cos >= 0.0 && (dot <= 0.0 || dot * dot < best_cos * best_cos * r2 * (1.0 - 1e-12)))
-                        continue;
-                    cosine = dot / sqrt(r2);
-                }
-                if (cosine > best_cos) {
-                    best_cos = cosine;
-                    best_chord2 = 2.0 - 2.0 * cosine;
-                    best_i = i;
-                    best_j = j;
-                }
+            double r2 = a[i] * a[i] + b[j] * b[j], dot = a[i] * n[0] + b[j] * n[1], cosine;
+            if (r2 <= 1.0) {
+                if ((da[i] + db[j]) * keep > best_chord2)
+                    continue;
+                if (n[2] <= 0.0 && dot <= best_cos)
+                    continue; /* the z term adds <= 0 (rounding is monotone) */
+                cosine = dot + sqrt(1.0 - r2) * n[2];
+            } else {
+                if (nz2 * keep > best_chord2)
+                    continue;
+                /* cosine = dot / r with r > 1: no better than best_cos >= 0 if dot <= 0 or
+                 * dot^2 < best_cos^2 r^2 (with a margin for the rounding of the division) */
+                if (best_cos >= 0.0 && (dot <= 0.0 || dot * dot < best_cos * best_cos * r2 * (1.0 - 1e-12)))
+                    continue;
+                cosine = dot / sqrt(r2);
+            }
+            if (cosine > best_cos) {
+                best_cos = cosine;
+                best_chord2 = 2.0 - 2.0 * cosine;
+                best_i = i;
+                best_j = j;
             }
         }
     }
     *bi = best_i;
     *bj = best_j;
+}
+
+#if SEARCH_AVX2
+static AVX2_FN void best_pixel_index_avx2(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
+{
+    best_pixel_index_body(a, b, n, bi, bj, 1);
+}
+#endif
+
+static void best_pixel_index(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
+{
+#if SEARCH_AVX2
+    if (search_avx2()) {
+        best_pixel_index_avx2(a, b, n, bi, bj);
+        return;
+    }
+#endif
+    best_pixel_index_body(a, b, n, bi, bj, 0);
 }
 
 /* The angle (radians) of best_pixel_index's choice. */
@@ -1769,7 +1865,19 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     sol_nm_channel_init(&cx, tx, precision, use_max, 0, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi);
     sol_nm_channel_init(&cy, ty, precision, use_max, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi);
     double sx_min, sy_min;
-    int px = sol_nm_channel_argmin(&cx, &sx_min), py = sol_nm_channel_argmin(&cy, &sy_min);
+    /* the least-squares pairs. A flat channel (16 equal targets: flat blocks, equal normals, a rim
+     * block on an axis) on the full range with the sum metric goes to bc4_common.c's search: the same
+     * pair and score as sol_nm_channel_argmin (its documented contract, tested), decided by a walk
+     * over the entry values instead of scoring every tied pair (x = -1: 33151 pairs) */
+    const int full = r->x0_lo == 0 && r->x0_hi == 255 && r->x1_lo == 0 && r->x1_hi == 255 && r->y0_lo == 0 &&
+                     r->y0_hi == 255 && r->y1_lo == 0 && r->y1_hi == 255;
+    int flat_x = full && !use_max, flat_y = flat_x;
+    for (int p = 1; p < 16; ++p) {
+        flat_x &= tx[p] == tx[0];
+        flat_y &= ty[p] == ty[0];
+    }
+    int px = flat_x ? sol_nm_bc4_common(tx, precision, &sx_min) : sol_nm_channel_argmin(&cx, &sx_min);
+    int py = flat_y ? sol_nm_bc4_common(ty, precision, &sy_min) : sol_nm_channel_argmin(&cy, &sy_min);
     const double(*pal)[8] = cx.palettes;
     double best = joint_objective(pal[px], pal[py], n, use_max, INFINITY, NULL, NULL);
     uint64_t candidates = 1;
@@ -1825,6 +1933,11 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
         for (int p = 1; p < 16; ++p)
             all_equal &= memcmp(n[0], n[p], sizeof n[p]) == 0;
         size_t pairs_before = nx + ny;
+        /* rim-only blocks (no pixel pointing away) skip it: measured (issue 13, survey of rim arcs, rims
+         * with pixels a hair off, equal rim normals, and the alternating +-x axis block), it leaves the
+         * same candidates to within a few % (rim-arc 2 rad: 212440 vs 219070 before the work bound)
+         * and proves nothing more, while its value table and filter passes over the 33k pairs holding
+         * -1 or +1 cost ~2M work units (the axis block: 2.0M instead of 58k in all) */
         if (aw.mask && !all_equal && nx > 1 && ny > 1 && nx * ny > 4096) /* pixels pointing away */
             valued = value_reduce(n, &aw, use_max, best, pal, precision, ws, ws->x, &nx, ws->y, &ny, tx, ty, loose, &work);
         /* the floor of every objective (hemisphere bounds), and the incumbent at which the value-level
@@ -1835,7 +1948,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             floor_all = use_max ? (aw.off[p] > floor_all ? aw.off[p] : floor_all) : floor_all + aw.off[p];
         if (valued)
             reduce_at = floor_all + (10 * (nx + ny) > 9 * pairs_before ? 1.0 / 64 : 0.5) * (best - floor_all);
-        if (!valued && nx > 1 && ny > 1 && nx * ny > 256) { /* merging pays only for long lists */
+        /* merging pays only for long lists; one list may be a single pair: a rim block near an axis
+         * (x = -1 or +1) has one y pair left and the 33151 x pairs holding -1 or +1, exact ties */
+        if (!valued && (nx > 1 || ny > 1) && nx * ny > 256) {
             channel_key kx, ky;
             channel_key_init(&kx, tx, loose, room);
             channel_key_init(&ky, ty, loose, room);
@@ -2081,69 +2196,117 @@ static void sort_window_entries(window_entry *list, int count)
 
 /* Scores the window pairs of channel c (sum or max over pixels of the nearest entry's squared
  * distance: the tight per-channel bound) into list, in e0-major order, and returns the count; a
- * pair whose two extreme pixels (least and largest component) alone exceed budget is left out
- * (most pairs of smooth blocks). The full score: one pass over entries, all 16 pixels at a time
- * (a loop the compiler vectorises). */
+ * pair whose score exceeds budget is left out (no candidate can use it): first when its two extreme
+ * pixels (least and largest component) alone exceed it (most pairs of smooth blocks), else once the
+ * score's partial sum (pixels in order, 4 at a time; the terms are >= 0, so the partial sums never
+ * decrease) exceeds it. A pair kept has the full score, summed in pixel order. */
 #if SEARCH_AVX2
-/* m[p] = min_i (a_i - t_p)^2, 4 pixels at a time (_mm256_min_pd(d, m) is d < m ? d : m). */
-static AVX2_FN void nearest_distances_avx2(const double a[8], const double t[16], double m[16])
+/* m[q] = min_i (a_i - t_q)^2 for 4 targets (_mm256_min_pd(d, m) is d < m ? d : m). */
+static inline AVX2_FN void nearest4_avx2(const double a[8], const double t[4], double m[4])
 {
-    for (int p = 0; p < 16; p += 4) {
-        __m256d tp = _mm256_loadu_pd(t + p), d = _mm256_sub_pd(_mm256_set1_pd(a[0]), tp);
-        __m256d mp = _mm256_mul_pd(d, d);
-        for (int i = 1; i < 8; ++i) {
-            d = _mm256_sub_pd(_mm256_set1_pd(a[i]), tp);
-            mp = _mm256_min_pd(_mm256_mul_pd(d, d), mp);
-        }
-        _mm256_storeu_pd(m + p, mp);
+    __m256d tp = _mm256_loadu_pd(t), d = _mm256_sub_pd(_mm256_set1_pd(a[0]), tp);
+    __m256d mp = _mm256_mul_pd(d, d);
+    for (int i = 1; i < 8; ++i) {
+        d = _mm256_sub_pd(_mm256_set1_pd(a[i]), tp);
+        mp = _mm256_min_pd(_mm256_mul_pd(d, d), mp);
     }
+    _mm256_storeu_pd(m, mp);
+}
+
+/* The least squared distances of palette a to targets u and v (*du, *dv): the scalar loop's minima
+ * (a minimum of the same values, whatever the order). */
+static inline AVX2_FN void extreme_distances_avx2(const double a[8], double u, double v, double *du, double *dv)
+{
+    __m256d lo = _mm256_loadu_pd(a), hi = _mm256_loadu_pd(a + 4), tu = _mm256_set1_pd(u), tv = _mm256_set1_pd(v);
+    __m256d d0 = _mm256_sub_pd(lo, tu), d1 = _mm256_sub_pd(hi, tu), d2 = _mm256_sub_pd(lo, tv), d3 = _mm256_sub_pd(hi, tv);
+    __m256d mu = _mm256_min_pd(_mm256_mul_pd(d0, d0), _mm256_mul_pd(d1, d1));
+    __m256d mv = _mm256_min_pd(_mm256_mul_pd(d2, d2), _mm256_mul_pd(d3, d3));
+    __m256d x = _mm256_min_pd(_mm256_unpacklo_pd(mu, mv), _mm256_unpackhi_pd(mu, mv)); /* u0 v0 u2 v2 */
+    __m128d y = _mm_min_pd(_mm256_castpd256_pd128(x), _mm256_extractf128_pd(x, 1));
+    *du = _mm_cvtsd_f64(y);
+    *dv = _mm_cvtsd_f64(_mm_unpackhi_pd(y, y));
+}
+#endif
+
+/* window_channel's loop, t the pixels' components, lo and hi its least and largest; avx2: use the
+ * AVX2 helpers (inlined into window_channel_avx2). */
+static inline __attribute__((always_inline)) int window_channel_body(const double t[16], int lo, int hi,
+                                                                     const double (*pal)[8], int use_max, int e0_lo,
+                                                                     int e0_hi, int e1_lo, int e1_hi, double budget,
+                                                                     window_entry *list, int avx2)
+{
+    int count = 0;
+    (void)avx2;
+    for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
+        for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
+            const double *a = pal[e0 << 8 | e1];
+            double dlo = INFINITY, dhi = INFINITY;
+#if SEARCH_AVX2
+            if (avx2)
+                extreme_distances_avx2(a, t[lo], t[hi], &dlo, &dhi);
+            else
+#endif
+                for (int i = 0; i < 8; ++i) {
+                    double u = (a[i] - t[lo]) * (a[i] - t[lo]), v = (a[i] - t[hi]) * (a[i] - t[hi]);
+                    dlo = u < dlo ? u : dlo;
+                    dhi = v < dhi ? v : dhi;
+                }
+            if ((lo == hi ? dlo : combine(dlo, dhi, use_max)) > budget)
+                continue;
+            double score = 0.0;
+            int k = 0;
+            for (; k < 16; k += 4) {
+                double m[4];
+#if SEARCH_AVX2
+                if (avx2)
+                    nearest4_avx2(a, t + k, m);
+                else
+#endif
+                {
+                    for (int q = 0; q < 4; ++q)
+                        m[q] = (a[0] - t[k + q]) * (a[0] - t[k + q]);
+                    for (int i = 1; i < 8; ++i)
+                        for (int q = 0; q < 4; ++q) {
+                            double d = (a[i] - t[k + q]) * (a[i] - t[k + q]);
+                            m[q] = d < m[q] ? d : m[q];
+                        }
+                }
+                for (int q = 0; q < 4; ++q)
+                    score = use_max ? (m[q] > score ? m[q] : score) : score + m[q];
+                if (score > budget)
+                    break;
+            }
+            if (k < 16)
+                continue;
+            list[count] = (window_entry){score, (uint16_t)(e0 << 8 | e1)};
+            ++count;
+        }
+    return count;
+}
+
+#if SEARCH_AVX2
+static AVX2_FN int window_channel_avx2(const double t[16], int lo, int hi, const double (*pal)[8], int use_max,
+                                       int e0_lo, int e0_hi, int e1_lo, int e1_hi, double budget, window_entry *list)
+{
+    return window_channel_body(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list, 1);
 }
 #endif
 
 static int window_channel(const double n[16][3], int c, const double (*pal)[8], int use_max, int e0_lo, int e0_hi,
                           int e1_lo, int e1_hi, double budget, window_entry *list)
 {
-    int count = 0, lo = 0, hi = 0;
-    const int avx2 = search_avx2();
+    int lo = 0, hi = 0;
     double t[16];
     for (int p = 0; p < 16; ++p) {
         t[p] = n[p][c];
         lo = t[p] < t[lo] ? p : lo;
         hi = t[p] > t[hi] ? p : hi;
     }
-    for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
-        for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
-            const double *a = pal[e0 << 8 | e1];
-            double dlo = INFINITY, dhi = INFINITY;
-            for (int i = 0; i < 8; ++i) {
-                double u = (a[i] - t[lo]) * (a[i] - t[lo]), v = (a[i] - t[hi]) * (a[i] - t[hi]);
-                dlo = u < dlo ? u : dlo;
-                dhi = v < dhi ? v : dhi;
-            }
-            if ((lo == hi ? dlo : combine(dlo, dhi, use_max)) > budget)
-                continue;
-            double m[16];
 #if SEARCH_AVX2
-            if (avx2)
-                nearest_distances_avx2(a, t, m);
-            else
+    if (search_avx2())
+        return window_channel_avx2(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
 #endif
-            {
-                for (int p = 0; p < 16; ++p)
-                    m[p] = (a[0] - t[p]) * (a[0] - t[p]);
-                for (int i = 1; i < 8; ++i)
-                    for (int p = 0; p < 16; ++p) {
-                        double d = (a[i] - t[p]) * (a[i] - t[p]);
-                        m[p] = d < m[p] ? d : m[p];
-                    }
-            }
-            double score = 0.0;
-            for (int p = 0; p < 16; ++p)
-                score = use_max ? (m[p] > score ? m[p] : score) : score + m[p];
-            list[count] = (window_entry){score, (uint16_t)(e0 << 8 | e1)};
-            ++count;
-        }
-    return count;
+    return window_channel_body(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list, 0);
 }
 
 /* Keeps the entries of score <= budget (in order); returns the count. */
@@ -2206,6 +2369,80 @@ static double joint_objective_checked(const double a[8], const double b[8], cons
     return s;
 }
 
+/* joint_objective_quick for the window search, whose pixels never point away (every away term 0),
+ * with the pixels' nz in visiting order (nz[k] = n[order[k]][2]): the same terms, the same sum in
+ * the same order and the same stop, so the same value and work; the AVX2 form computes the terms 4
+ * pixels at a time, and only up to the stop (most candidates stop within the first pixels, visited
+ * worst first). */
+#if SEARCH_AVX2
+static AVX2_FN double window_quick_avx2(const channel_side *xs, const channel_side *ys, const double nz[16],
+                                        int use_max, double budget, uint64_t *work)
+{
+    const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+    const __m256d lower = _mm256_set1_pd(1.0 - 3e-6), absolute = _mm256_set1_pd(5e-15);
+    double s = 0.0, e2[4];
+    for (int k = 0; k < 16; k += 4) { /* quick_terms_avx2's operations, its away term 0 */
+        __m256d a = _mm256_loadu_pd(xs->v + k), b = _mm256_loadu_pd(ys->v + k), z = _mm256_loadu_pd(nz + k);
+        __m256d m1x = _mm256_loadu_pd(xs->m1 + k), m1y = _mm256_loadu_pd(ys->m1 + k);
+        __m256d nz2 = _mm256_mul_pd(z, z);
+        __m256d lb = _mm256_min_pd(_mm256_add_pd(_mm256_loadu_pd(xs->m2 + k), m1y),
+                                   _mm256_add_pd(m1x, _mm256_loadu_pd(ys->m2 + k)));
+        lb = _mm256_min_pd(nz2, lb);
+        __m256d zz = _mm256_sub_pd(_mm256_sub_pd(one, _mm256_mul_pd(a, a)), _mm256_mul_pd(b, b));
+        __m256d up = _mm256_cmp_pd(zz, zero, _CMP_GT_OQ);
+        __m256d dz = _mm256_sub_pd(_mm256_sqrt_pd(_mm256_and_pd(zz, up)), z);
+        __m256d c2 = _mm256_blendv_pd(nz2, _mm256_add_pd(_mm256_add_pd(m1x, m1y), _mm256_mul_pd(dz, dz)), up);
+        lb = _mm256_min_pd(c2, lb);
+        _mm256_storeu_pd(e2, _mm256_max_pd(_mm256_sub_pd(_mm256_mul_pd(lb, lower), absolute), zero));
+        for (int q = 0; q < 4; ++q) {
+            ++*work;
+            s = use_max ? (e2[q] > s ? e2[q] : s) : s + e2[q];
+            if (s >= budget)
+                return s;
+        }
+    }
+    return s;
+}
+#endif
+
+static double window_quick(const channel_side *xs, const channel_side *ys, const double n[16][3], const int order[16],
+                           const double nz[16], int use_max, double budget, uint64_t *work)
+{
+#if SEARCH_AVX2
+    if (search_avx2())
+        return window_quick_avx2(xs, ys, nz, use_max, budget, work);
+#endif
+    static const double away_off[16] = {0};
+    return joint_objective_quick(xs, ys, n, order, away_off, use_max, budget, work);
+}
+
+/* channel_side_init for the window search: no pixel points away (lt = 0), t the channel's
+ * components in visiting order. */
+static void window_side_init(const double pal[8], const double t[16], channel_side *s)
+{
+    memset(s->lt, 0, sizeof s->lt);
+#if SEARCH_AVX2
+    if (search_avx2()) {
+        channel_side_nearest_avx2(pal, t, s);
+        return;
+    }
+#endif
+    channel_side_nearest(pal, t, s);
+}
+
+/* order_worst_first's order (pixels by decreasing err, equal errors in pixel order: a stable sort),
+ * from each pixel's rank (how many pixels come before it) instead of insertion: no data-dependent
+ * branches. */
+static void window_order(const double err[16], int order[16])
+{
+    for (int p = 0; p < 16; ++p) {
+        int rank = 0;
+        for (int q = 0; q < 16; ++q)
+            rank += err[q] > err[p] || (q < p && err[q] == err[p]);
+        order[rank] = p;
+    }
+}
+
 /* Returns 0 (and leaves everything untouched) when the block needs search_unit (see above). */
 static int window_search(const double n[16][3], const sol_bc5_range *r, int base_x, int base_y,
                          const search_request *rq, search_workspace *ws, sol_bc5_block *out, sol_bc5_info *info)
@@ -2238,12 +2475,16 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
     if (best > 0.0) {
         window_scratch *w = ws->win;
         double least_x = INFINITY, least_y = INFINITY, room = best * (1.0 + BOUND_SLACK);
-        int nx = window_channel(n, 0, pal, use_max, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi, room, w->list[0]);
+        /* y first: an x pair above room - least_y (sum metric) is dropped by the filter below, so
+         * window_channel leaves it out at once. If the pair of least x score is left out, no x pair
+         * passes the filter and there is no candidate, whatever least_x then is. */
         int ny = window_channel(n, 1, pal, use_max, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi, room, w->list[1]);
-        for (int k = 0; k < nx; ++k)
-            least_x = w->list[0][k].score < least_x ? w->list[0][k].score : least_x;
         for (int k = 0; k < ny; ++k)
             least_y = w->list[1][k].score < least_y ? w->list[1][k].score : least_y;
+        int nx = window_channel(n, 0, pal, use_max, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi,
+                                use_max ? room : room - least_y * (1.0 - BOUND_SLACK), w->list[0]);
+        for (int k = 0; k < nx; ++k)
+            least_x = w->list[0][k].score < least_x ? w->list[0][k].score : least_x;
         /* a pair can only pair up under the incumbent if its score leaves room for the other channel's least */
         nx = window_filter(w->list[0], nx, use_max ? room : room - least_y * (1.0 - BOUND_SLACK));
         ny = window_filter(w->list[1], ny, use_max ? room : room - least_x * (1.0 - BOUND_SLACK));
@@ -2265,22 +2506,19 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
             nx = (int)merge_equivalent(w->list[0], (size_t)nx, &kx, pal, ws->slots);
             ny = (int)merge_equivalent(w->list[1], (size_t)ny, &ky, pal, ws->slots);
         }
-        /* visit pixels worst-first (by the incumbent's per-pixel error) when rejecting candidates */
-        int order[16];
-        for (int p = 0; p < 16; ++p)
-            order[p] = p;
-        order_worst_first(pixel_err, order);
-        memset(w->ready, 0, (size_t)ny); /* y sides are computed when first needed */
-        away_info aw; /* no pixel points away here (every nz > 0): no away terms */
-        away_info_init(&aw, n, 0u);
-        const double away_off[16] = {0};
+        /* Set up when the first candidate needs it (most searched blocks of smooth maps have none):
+         * the pixels' visiting order, worst first (by the incumbent's per-pixel error) when rejecting
+         * candidates, and the y sides' marks (each y side is computed when first needed), the x
+         * side per x pair. */
+        int order[16], prepared = 0;
+        double nz[16], tord[2][16]; /* nz and the components in visiting order */
         channel_side xside;
         for (int i = 0; i < nx && ny > 0 && !bounded; ++i) {
             const window_entry *ex = &w->list[0][i];
             if (combine(ex->score, w->list[1][0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                 break;
             const double *a = pal[ex->pair];
-            channel_side_init(a, n, order, 0, &aw, &xside);
+            int x_ready = 0;
             for (int j = 0; j < ny; ++j) {
                 const window_entry *ey = &w->list[1][j];
                 if (combine(ex->score, ey->score, use_max) * (1.0 - BOUND_SLACK) >= best)
@@ -2292,13 +2530,27 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                     break;
                 }
                 ++candidates;
+                if (!prepared) {
+                    window_order(pixel_err, order);
+                    for (int k = 0; k < 16; ++k) {
+                        nz[k] = n[order[k]][2];
+                        tord[0][k] = n[order[k]][0];
+                        tord[1][k] = n[order[k]][1];
+                    }
+                    memset(w->ready, 0, (size_t)ny);
+                    prepared = 1;
+                }
+                if (!x_ready) {
+                    window_side_init(a, tord[0], &xside);
+                    x_ready = 1;
+                }
                 const double *b = pal[ey->pair];
                 if (!w->ready[j]) {
-                    channel_side_init(b, n, order, 1, &aw, &w->yside[j]);
+                    window_side_init(b, tord[1], &w->yside[j]);
                     w->ready[j] = 1;
                 }
                 double margin = best * (1.0 + BOUND_SLACK);
-                if (joint_objective_quick(&xside, &w->yside[j], n, order, away_off, use_max, margin, &work) >= margin)
+                if (window_quick(&xside, &w->yside[j], n, order, nz, use_max, margin, &work) >= margin)
                     continue;
                 double v = INFINITY, angle[16];
                 if (joint_objective_checked(a, b, n, order, use_max, margin, best, &inc, &work, &v, cx, cy, angle) >=
@@ -2399,14 +2651,11 @@ sol_status sol_bc5_search_block(const double normals[16][3], const sol_bc5_range
 
 /* ---- the three encoders ---- */
 
-/* Common encoder: two independent least-squares BC4 blocks, indices by nearest component (T10). */
-static void encode_common(const double n[16][3], sol_bc4_precision precision, sol_bc5_block *out)
+/* Common encoder: two independent least-squares BC4 blocks, indices by nearest component (T10).
+ * tx, ty: the x and y components of the unit normals. */
+static void encode_common(const double tx[16], const double ty[16], sol_bc4_precision precision, sol_bc5_block *out)
 {
-    double tx[16], ty[16], s;
-    for (int p = 0; p < 16; ++p) {
-        tx[p] = n[p][0];
-        ty[p] = n[p][1];
-    }
+    double s;
     int px = sol_nm_bc4_common(tx, precision, &s), py = sol_nm_bc4_common(ty, precision, &s);
     const double(*pal)[8] = sol_nm_palettes(precision);
     out->x.e0 = (uint8_t)(px >> 8);
@@ -2417,18 +2666,6 @@ static void encode_common(const double n[16][3], sol_bc4_precision precision, so
         out->x.index[p] = (uint8_t)sol_nm_nearest_index(pal[px], tx[p]);
         out->y.index[p] = (uint8_t)sol_nm_nearest_index(pal[py], ty[p]);
     }
-}
-
-/* The usual fast encoder: two independent one-pass alpha blocks (bc4_fast.c). */
-static void encode_fast(const double n[16][3], sol_bc5_block *out)
-{
-    double tx[16], ty[16];
-    for (int p = 0; p < 16; ++p) {
-        tx[p] = n[p][0];
-        ty[p] = n[p][1];
-    }
-    sol_nm_bc4_fast(tx, &out->x);
-    sol_nm_bc4_fast(ty, &out->y);
 }
 
 static double own_index_objective(const sol_bc5_block *b, const double n[16][3], sol_bc4_precision precision,
@@ -2449,38 +2686,45 @@ static uint8_t clamp_code(int v)
     return (uint8_t)(v < 0 ? 0 : (v > 255 ? 255 : v));
 }
 
-/* One block with validated options and unit normals. */
-static void encode_unit(const double n[16][3], const sol_bc5_options *o, search_workspace *ws,
-                        sol_bc5_block *out, sol_bc5_info *info)
+/* One block with validated options and unit normals n (t[c][p] = n[p][c], the per-channel view). info may
+ * be NULL; with want_error 0, info->error is left NAN where the block is not searched (the image
+ * encoders need no error: the adaptive threshold is then decided from chord bounds,
+ * sol_nm_threshold_test, and the angles computed only where the bounds cannot decide; the blocks
+ * and the searched / candidates / bounded counts are the same either way). */
+static void encode_unit(const double n[16][3], const double t[3][16], const sol_bc5_options *o, search_workspace *ws,
+                        sol_bc5_block *out, sol_bc5_info *info, int want_error)
 {
     int use_max = o->metric == SOL_BC5_MAX;
-    if (o->encoder == SOL_BC5_FAST) {
-        encode_fast(n, out);
-        if (info) {
-            info->error = metric_value(own_index_objective(out, n, o->precision, use_max), o->metric);
-            info->searched = 0;
-            info->candidates = 1;
-            info->bounded = 0;
-        }
-        return;
-    }
     if (o->encoder == SOL_BC5_OPTIMAL) {
         search_request rq = {&full_range, o->precision, use_max, work_limit(o)};
         search_unit(n, &rq, ws, out, info);
         return;
     }
-    sol_bc5_block common;
-    if (o->encoder == SOL_BC5_ADAPTIVE && o->base == SOL_BC5_BASE_FAST)
-        encode_fast(n, &common);
-    else
-        encode_common(n, o->precision, &common);
-    double err = own_index_objective(&common, n, o->precision, use_max);
-    /* adaptive: RMS (or max) angle in degrees against the threshold (T13) */
-    double level = (use_max ? sqrt(err) : sqrt(err / 16.0)) * (180.0 / M_PI);
-    if (o->encoder == SOL_BC5_COMMON || level <= o->threshold_deg) {
-        *out = common;
+    sol_bc5_block base;
+    if (o->encoder == SOL_BC5_FAST || (o->encoder == SOL_BC5_ADAPTIVE && o->base == SOL_BC5_BASE_FAST)) {
+        sol_nm_bc4_fast(t[0], &base.x);
+        sol_nm_bc4_fast(t[1], &base.y);
+    } else
+        encode_common(t[0], t[1], o->precision, &base);
+    double err = NAN;
+    int search = 0;
+    if (o->encoder == SOL_BC5_ADAPTIVE) {
+        /* adaptive: RMS (or max) angle in degrees against the threshold (T13) */
+        if (!want_error) {
+            const double(*pal)[8] = sol_nm_palettes(o->precision);
+            search = sol_nm_threshold_test(pal[base.x.e0 << 8 | base.x.e1], pal[base.y.e0 << 8 | base.y.e1], &base,
+                                           t, use_max, o->threshold_deg);
+        }
+        if (want_error || search < 0) {
+            err = own_index_objective(&base, n, o->precision, use_max);
+            search = !(sol_nm_threshold_level(err, use_max) <= o->threshold_deg);
+        }
+    } else if (want_error)
+        err = own_index_objective(&base, n, o->precision, use_max);
+    if (!search) {
+        *out = base;
         if (info) {
-            info->error = metric_value(err, o->metric);
+            info->error = want_error ? metric_value(err, o->metric) : NAN;
             info->searched = 0;
             info->candidates = 1;
             info->bounded = 0;
@@ -2488,11 +2732,11 @@ static void encode_unit(const double n[16][3], const sol_bc5_options *o, search_
         return;
     }
     int w = o->window == 0 ? 4 : (o->window < 0 ? 0 : o->window > 255 ? 255 : o->window); /* 255: all codes */
-    sol_bc5_range r = {clamp_code(common.x.e0 - w), clamp_code(common.x.e0 + w), clamp_code(common.x.e1 - w),
-                       clamp_code(common.x.e1 + w), clamp_code(common.y.e0 - w), clamp_code(common.y.e0 + w),
-                       clamp_code(common.y.e1 - w), clamp_code(common.y.e1 + w)};
+    sol_bc5_range r = {clamp_code(base.x.e0 - w), clamp_code(base.x.e0 + w), clamp_code(base.x.e1 - w),
+                       clamp_code(base.x.e1 + w), clamp_code(base.y.e0 - w), clamp_code(base.y.e0 + w),
+                       clamp_code(base.y.e1 - w), clamp_code(base.y.e1 + w)};
     search_request rq = {&r, o->precision, use_max, work_limit(o)};
-    if (!window_search(n, &r, common.x.e0 << 8 | common.x.e1, common.y.e0 << 8 | common.y.e1, &rq, ws, out, info))
+    if (!window_search(n, &r, base.x.e0 << 8 | base.x.e1, base.y.e0 << 8 | base.y.e1, &rq, ws, out, info))
         search_unit(n, &rq, ws, out, info);
 }
 
@@ -2512,7 +2756,11 @@ sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_optio
     search_workspace ws = {0};
     if (o->encoder != SOL_BC5_COMMON && o->encoder != SOL_BC5_FAST && (st = workspace_alloc(&ws)) != SOL_OK)
         return st;
-    encode_unit(n, o, &ws, out, info);
+    double t[3][16];
+    for (int p = 0; p < 16; ++p)
+        for (int c = 0; c < 3; ++c)
+            t[c][p] = n[p][c];
+    encode_unit(n, (const double(*)[16])t, o, &ws, out, info, info != NULL);
     workspace_free(&ws);
     return SOL_OK;
 }
@@ -2644,11 +2892,10 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
                 my_max = 1;
                 continue;
             }
-            double raw[16][3], n[16][3];
-            gather_block(normals, b % bw, b / bw, raw);
-            sol_nm_unit_normals(raw, n);
+            double n[16][3], t[3][16];
+            sol_nm_unit_pixels(normals, b % bw, b / bw, n, t);
             sol_bc5_info info = {0.0, 0, 1, 0};
-            encode_unit(n, o, &ws, &block, &info);
+            encode_unit(n, (const double(*)[16])t, o, &ws, &block, &info, 0);
             pack_block(&block, blocks + 16 * (size_t)b);
             searched += (uint64_t)info.searched;
             bounded += (uint64_t)info.bounded;

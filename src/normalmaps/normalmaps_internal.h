@@ -3,6 +3,9 @@
 #define SOL_NORMALMAPS_INTERNAL_H
 
 #include "sol_normalmaps.h"
+#include <math.h>
+
+#include <math.h>
 
 /* Palette of every ordered anchor pair in DECODED units (2 v - 1, in [-1, 1]): table[e0 << 8 | e1].
  * Built once per precision (thread-safe); precision must be valid. */
@@ -60,6 +63,44 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
 #define SOL_NM_SPAN_LANES 4
 void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_LANES], double delta,
                         double out[SOL_NM_SPAN_LANES]);
+/* The same bound at one phase (bc4_span_bound.c): for a span's step, the 16 cut sequences of the
+ * targets' phases (v: sum of squares about the mean, mean: relative to base = the least target), of
+ * which n are kept; floor: at most every dropped cut's v (INFINITY: none dropped; 0: no bound).
+ * sol_nm_span_cuts4 fills four (a lane of step <= 0 gives the bound 0); sol_nm_span_cuts_keep drops
+ * the cuts whose v exceeds limit (any limit: the bound stays valid); sol_nm_span_phase_bound is a
+ * lower bound of sum_p min_j (e_j - t_p)^2 over every palette whose lattice entries lie within delta
+ * of phase + step Z (the ends and fixed entries ignored): a pair (L, L + span) at phase A(L). */
+typedef struct sol_nm_span_cuts {
+    double step, inv, base, floor, slack;
+    int n;
+    double v[16], mean[16];
+} sol_nm_span_cuts;
+/* The part of the bound before the decoder rounding: at most min_c [v_c + 16 cd(mean_c - psi)^2]
+ * with psi = phase - base and cd the distance to the nearest multiple of step, less the rounding of
+ * the cut sums (slack) and of the phases (1e-14 on cd); the bound is F - 8 delta sqrt(F). Inline: the
+ * search calls it for every low anchor of a span it visits. */
+static inline double sol_nm_span_phase_f(const sol_nm_span_cuts *cu, double phase)
+{
+    const double s = cu->step, psi = phase - cu->base;
+    double f = cu->floor;
+    for (int c = 0; c < cu->n; ++c) {
+        double x = cu->mean[c] - psi;
+        /* x - s round(x / s), round to nearest by the 1.5 2^52 addition (|x / s| < 2^51) */
+        double m = (x * cu->inv + 0x1.8p52) - 0x1.8p52;
+        double cd = fabs(x - s * m) - 1e-14;
+        cd = cd > 0.0 ? cd : 0.0;
+        double v = cu->v[c] + 16.0 * cd * cd;
+        f = v < f ? v : f;
+    }
+    return f - cu->slack;
+}
+void sol_nm_span_cuts4(const double sorted[16], const double step[SOL_NM_SPAN_LANES],
+                       sol_nm_span_cuts out[SOL_NM_SPAN_LANES]);
+void sol_nm_span_cuts_keep(sol_nm_span_cuts *cu, double limit);
+/* sol_nm_span_phase_f (below) at the phases A(l) = 2 l / 255 - 1, l = l1 .. l1 + count - 1 (count <=
+ * 256), into out[0 .. count): the same values, computed four at a time. */
+void sol_nm_span_phase_fs(const sol_nm_span_cuts *cu, int l1, int count, double out[256]);
+double sol_nm_span_phase_bound(const sol_nm_span_cuts *cu, double delta, double phase);
 /* Every palette entry of the 65536 pairs indexed by value (bc4_entries.c): value[0..count) the
  * distinct decoded entries, ascending; the pairs holding value[i] are pair[start[i] .. start[i+1]),
  * ascending, and gap[j] is at most the distance from value[i] to the nearest other entry of pair[j]
@@ -104,6 +145,24 @@ double sol_nm_away_cosine(const double a[8], const double b[8], const double n[3
 /* A cheaper, looser form (bc5_away.c): at least the largest (a_i nx + b_j ny) / max(1, |(a_i, b_j)|)
  * (the z term, <= 0 for nz < 0, dropped; no roots per decode), less than 1e-15 above it. */
 double sol_nm_away_cosine_rim(const double a[8], const double b[8], const double n[3]);
+/* The adaptive encoder's threshold level of an objective err (sum of dN^2, or max dN^2 when
+ * use_max): the RMS angle sqrt(err / 16) (or the max angle sqrt(err)) in degrees. The block is
+ * searched when it exceeds options.threshold_deg. Monotone in err. */
+static inline double sol_nm_threshold_level(double err, int use_max)
+{
+    return (use_max ? sqrt(err) : sqrt(err / 16.0)) * (180.0 / M_PI);
+}
+/* The adaptive encoder's threshold test (bc5_adaptive.c) of block b (palettes palx, paly of its
+ * anchors, decoded units) against unit normals t (t[c][p]: component c of pixel p) from chord
+ * bounds of the angles, without atan2: 0 if the exact objective's level is <= threshold_deg, 1 if
+ * it is above, -1 if the bounds cannot tell (then compute the exact objective). Never contradicts
+ * the exact test. */
+int sol_nm_threshold_test(const double palx[8], const double paly[8], const sol_bc5_block *b, const double t[3][16],
+                          int use_max, double threshold_deg);
+/* The unit normals of block (bx, by) of a 3-channel image whose pixels sol_nm_unit_normals accepts,
+ * bit for bit as it computes them (the same length and quotients; a finite non-zero float pixel
+ * never takes its rescaling path), as n[p][c] and again as t[c][p]. */
+void sol_nm_unit_pixels(const sol_image *img, int bx, int by, double n[16][3], double t[3][16]);
 
 /* Validates and normalises 16 source normals. */
 sol_status sol_nm_unit_normals(const double in[16][3], double out[16][3]);

@@ -117,13 +117,17 @@ typedef struct sol_bc5_options {
      * anchor (clamped to 0..255), exactly (the error equals the brute force over that box). 0 = default
      * 4 (the talk's [v-4/255, v+4/255]); negative = 0, i.e. only the base anchors, with joint index
      * choice; 255 or more = every code (no int overflow). Windows up to 8 take a dedicated path (about
-     * 5-50 us of one core per searched block on the 1024^2 benchmark maps, the most on the rough
-     * terrain-derived map; exactly tied anchor pairs of nearly flat blocks are evaluated once per
+     * 3-20 us of one core per searched block on the 1024^2 benchmark maps with the common base, the
+     * most on the rough terrain-derived map; exactly tied anchor pairs of nearly flat blocks are evaluated once per
      * class); wider ones, and blocks with normals at or near the rim (z^2 not
      * above the block's error), the optimal encoder's search restricted to it. */
     int window;
     /* Adaptive: search only blocks whose base RMS angular error (sqrt(mean dN^2), or max dN for
-     * SOL_BC5_MAX, of the base encoder's block) exceeds this many degrees. 0 = search every block. */
+     * SOL_BC5_MAX, of the base encoder's block) exceeds this many degrees. 0 = search every block.
+     * Where the caller asks for no error (sol_bc5_encode_image, or info NULL) the test is decided from
+     * chord bounds of the angles (c <= dN <= c / sqrt(1 - c^2 / 4), chord c, with rounding slack) and
+     * the angles are computed only when the bounds straddle the threshold: the same decision as the
+     * exact angles, at a fraction of their cost. SOL_BC5_THRESHOLD_ARGB8_DEG is a physical choice. */
     double threshold_deg;
     /* Optimal and adaptive: work bound per block, in work units: one pixel of one candidate through
      * the quick bound counts 1, through the joint index-pair bound 32, an exact evaluation of a
@@ -137,6 +141,16 @@ typedef struct sol_bc5_options {
 } sol_bc5_options;
 
 #define SOL_BC5_DEFAULT_WORK_LIMIT (UINT64_C(1) << 26)
+
+/* A threshold_deg with a physical meaning: the RMS angle (degrees) that storing unit normals at 8 bits
+ * per component (ARGB8, the format the talk measures 3Dc's precision against) leaves. Each component
+ * is rounded to a step of 2/255 (units of the component in [-1, 1]), an error uniform on +-1/255,
+ * variance (1/255)^2 / 3; of the error vector only the two components perpendicular to the normal turn
+ * it (the radial one changes its length), so the mean squared angle is 2 (1/255)^2 / 3 and the RMS
+ * angle 2 / (255 sqrt(6)) rad = 0.18346 degrees, for every direction (small-angle limit; a Monte-Carlo
+ * check over the hemisphere gives 0.1836). A block whose base encoding is already within it is as
+ * close to its source as an 8-bit normal map would be. (At 16 bits per component: 0.00071 degrees.) */
+#define SOL_BC5_THRESHOLD_ARGB8_DEG ((2.0 / (255.0 * 2.4494897427831781)) * (180.0 / 3.14159265358979323846))
 
 /* Anchor ranges for sol_bc5_search_block: each anchor code in [lo, hi] (inclusive). */
 typedef struct sol_bc5_range {
