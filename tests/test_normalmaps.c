@@ -1802,3 +1802,116 @@ Test(normalmaps, fast_bc4_encoder_takes_the_extremes_T10)
     cr_assert_eq(memcmp(a, c, sizeof a), 0);
     sol_image_free(&img);
 }
+
+/* The coupled bound of pixels pointing away (bc5_away.c): the largest cosine between n (nz < 0) and
+ * the 64 decodes of two palettes, and its cheaper rim form (an upper bound too). Checked against every
+ * decode as the objective measures it (the
+ * decoder's z, sol_angle3): acos of the bound, raised and lowered as bc5.c does, never exceeds a
+ * decode's angle, and the bound is attained (to rounding) by some decode. Scalar and AVX2 forms give
+ * the same bits. Normals: random heights, near the rim (z = -1e-9), straight away, and palettes
+ * reaching the rim (full-span pairs, 6-value mode's -1 and +1). */
+Test(normalmaps, away_cosine_bounds_every_decode_and_forms_agree)
+{
+    for (int trial = 0; trial < 400; ++trial) {
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        int pa = trial % 5 == 0 ? 0x00ff : (int)(uniform() * 65536) & 0xffff;
+        int pb = trial % 7 == 0 ? 0xff00 : (int)(uniform() * 65536) & 0xffff;
+        double phi = 2 * M_PI * uniform(), h = trial % 11 == 0 ? 1e-9 : (trial % 13 == 0 ? 1.0 : uniform());
+        double rho = sqrt(fmax(0.0, 1.0 - h * h)), n[3] = {rho * cos(phi), rho * sin(phi), -h};
+        sol_nm_simd_disable = 1;
+        double scalar = sol_nm_away_cosine(pal[pa], pal[pb], n);
+        sol_nm_simd_disable = 0;
+        double simd = sol_nm_away_cosine(pal[pa], pal[pb], n);
+        cr_assert(memcmp(&scalar, &simd, sizeof scalar) == 0, "trial %d: %.17g vs %.17g", trial, scalar, simd);
+        sol_nm_simd_disable = 1;
+        double rim = sol_nm_away_cosine_rim(pal[pa], pal[pb], n);
+        sol_nm_simd_disable = 0;
+        double rim_simd = sol_nm_away_cosine_rim(pal[pa], pal[pb], n);
+        cr_assert(memcmp(&rim, &rim_simd, sizeof rim) == 0, "trial %d: rim %.17g vs %.17g", trial, rim, rim_simd);
+        double c = scalar + 1e-14, bound = acos(c < 1.0 ? c : 1.0) * (1.0 - 1e-12), least = INFINITY, top = -2.0;
+        for (int i = 0; i < 8; ++i)
+            for (int j = 0; j < 8; ++j) {
+                double a = pal[pa][i], b = pal[pb][j], zz = 1.0 - a * a - b * b;
+                double u[3] = {a, b, zz > 0.0 ? sqrt(zz) : 0.0};
+                least = fmin(least, sol_angle3(u, n));
+                double len = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+                top = fmax(top, (u[0] * n[0] + u[1] * n[1] + u[2] * n[2]) / len);
+            }
+        cr_assert(bound <= least, "trial %d: bound %.17g above the least angle %.17g", trial, bound, least);
+        cr_assert(scalar + 1e-14 >= top && scalar <= top + 1e-7, "trial %d: %.17g vs %.17g", trial, scalar, top);
+        cr_assert(rim + 1e-14 >= top, "trial %d: rim form %.17g below %.17g", trial, rim, top);
+    }
+}
+
+/* Blocks of the issue 13 survey (families of normals pointing away; generator below) that the
+ * search used to leave bounded (stopped by the default work limit, ~0.5 s): now proven, by the
+ * coupled bound of bc5_away.c (an arc of 1 rad) and the separable decision of bc5.c (a narrow cone,
+ * a column of normals at one azimuth, sum and max metric; a cone of 0.3 rad, max metric, decided
+ * through the holders of its dominant pixel's decode), and an 8-bit equal block whose incumbent
+ * meets the equal-block floor. Reference: the previous search with an unlimited work_limit (error and anchors,
+ * 0.7-21 s per block); and literal brute force in a +-2 window around the result. */
+static void survey_block(int family, double spread, double n[16][3])
+{
+    unsigned long long s = 88172645463325252ULL + 1000003ULL * (unsigned)(family * 100) +
+                           (unsigned long long)(spread * 1e6);
+#define SURVEY_U() (s ^= s << 13, s ^= s >> 7, s ^= s << 17, (s >> 11) * (1.0 / 9007199254740992.0))
+    double phi = 2 * M_PI * SURVEY_U(), h = 0.05 + 0.9 * SURVEY_U(), rho = sqrt(1 - h * h);
+    double cx = rho * cos(phi), cy = rho * sin(phi), cz = -h;
+    for (int p = 0; p < 16; ++p) {
+        double fa = phi + spread * (p / 15.0 - 0.5);
+        if (family == 0) { /* an arc pointing away */
+            n[p][0] = rho * cos(fa), n[p][1] = rho * sin(fa), n[p][2] = -h;
+        } else if (family == 5) { /* one azimuth, heights varied */
+            double hh = h * (1 + spread * (SURVEY_U() - 0.5) * 0.5);
+            hh = hh > 1 ? 1 : hh;
+            double r = sqrt(1 - hh * hh);
+            n[p][0] = r * cos(phi), n[p][1] = r * sin(phi), n[p][2] = -hh;
+        } else { /* a cone of radius spread around (cx, cy, cz) */
+            double a = spread * sqrt(SURVEY_U()), b = 2 * M_PI * SURVEY_U();
+            double ux = -sin(phi), uy = cos(phi), uz = 0;
+            double wx = cy * uz - cz * uy, wy = cz * ux - cx * uz, wz = cx * uy - cy * ux;
+            n[p][0] = cos(a) * cx + sin(a) * (cos(b) * ux + sin(b) * wx);
+            n[p][1] = cos(a) * cy + sin(a) * (cos(b) * uy + sin(b) * wy);
+            n[p][2] = cos(a) * cz + sin(a) * (cos(b) * uz + sin(b) * wz);
+        }
+    }
+#undef SURVEY_U
+}
+
+Test(normalmaps, pointing_away_survey_blocks_are_proven_exactly)
+{
+    static const struct {
+        int family;
+        double spread;
+        sol_bc5_metric metric;
+        sol_bc4_precision precision;
+        double error;
+        int anchors[4];
+    } cases[] = {
+        {0, 0.0, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 0.63801834251637657, {0, 4, 0, 148}},
+        {6, 0.01, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 0.31456252637523008, {1, 9, 174, 179}},
+        {0, 1.0, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 2.3668588813894837, {2, 20, 210, 87}},
+        {5, 0.03, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 1.6865172249719649, {0, 1, 0, 173}},
+        {5, 2.0, SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, 1.4635153193691703, {0, 6, 0, 171}},
+        {6, 0.3, SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, 0.67999088723525014, {0, 4, 7, 194}},
+        {5, 0.1, SOL_BC5_MAX, SOL_BC4_INTERP_FLOAT, 0.53836304517094469, {0, 0, 174, 169}},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        double n[16][3];
+        survey_block(cases[c].family, cases[c].spread, n);
+        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = cases[c].metric, .precision = cases[c].precision};
+        sol_bc5_block b;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+        cr_assert(!info.bounded, "case %zu: stopped by the work bound", c);
+        cr_assert_eq(info.error, cases[c].error, "case %zu: %.17g, reference %.17g", c, info.error, cases[c].error);
+        cr_assert(b.x.e0 == cases[c].anchors[0] && b.x.e1 == cases[c].anchors[1] && b.y.e0 == cases[c].anchors[2] &&
+                      b.y.e1 == cases[c].anchors[3],
+                  "case %zu: anchors %d,%d,%d,%d", c, b.x.e0, b.x.e1, b.y.e0, b.y.e1);
+        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
+                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
+                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "case %zu", c);
+    }
+}

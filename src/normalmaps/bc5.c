@@ -528,6 +528,72 @@ static double joint_objective_quick(const channel_side *xs, const channel_side *
     return s;
 }
 
+/* The coupled bound of the pixels pointing away (bc5_away.c), between the quick bound and
+ * joint_objective_lower: per pixel (in `order`) the quick bound's term (the same formula as
+ * joint_objective_quick's), and for a pixel pointing away dN >= acos(cos_max), cos_max the largest
+ * cosine of the 64 decodes to n: one decode must point close to n with both components at once (the
+ * channel scores and the quick bound let x and y reach the rim direction separately). The cosine is
+ * raised by 1e-14 absolute (its rounding, see bc5_away.c) and the angle lowered by 1e-12 relative
+ * (acos's), so the bound stays below the angle joint_objective computes for the chosen decode.
+ * Two passes, each stopping once the value reaches budget: first with the cheaper rim form of the
+ * cosine (sol_nm_away_cosine_rim: the z term, <= 0, dropped; one division per decode, no roots),
+ * which rejects nearly every candidate of the arcs pointing away, then with the full cosine (the
+ * unclamped decodes' z counted) for the candidates left. Work: 1 per pixel as the quick bound, plus
+ * 5 per pixel pointing away in the first pass (~25 ns, measured) and 16 in the second (~100 ns,
+ * half of joint_objective_lower's per-pixel cost, measured on the survey's arcs pointing away). */
+static double joint_objective_away(const double a[8], const double b[8], const channel_side *xs,
+                                   const channel_side *ys, const double n[16][3], const int order[16],
+                                   const double away_off[16], const away_info *aw, int use_max, double budget,
+                                   uint64_t *work)
+{
+    double s = 0.0, e2s[16];
+    for (int k = 0; k < 16; ++k) {
+        ++*work;
+        const int p = order[k];
+        const double *np = n[p];
+        double va = xs->v[k], vb = ys->v[k], nz2 = np[2] * np[2];
+        double alt = xs->m2[k] + ys->m1[k], alt2 = xs->m1[k] + ys->m2[k];
+        double lb = alt < alt2 ? alt : alt2;
+        lb = nz2 < lb ? nz2 : lb;
+        double zz = 1.0 - va * va - vb * vb, c2;
+        if (zz > 0.0) {
+            double dz = sqrt(zz) - np[2];
+            c2 = xs->m1[k] + ys->m1[k] + dz * dz;
+        } else {
+            c2 = nz2;
+        }
+        lb = c2 < lb ? c2 : lb;
+        double e2 = lb * (1.0 - 3e-6) - 5e-15;
+        double away = (away_off[k] + xs->lt[k] + ys->lt[k]) * (1.0 - 1e-12);
+        e2 = e2 > away ? e2 : away;
+        if ((aw->mask >> p) & 1) {
+            *work += 5;
+            double cosine = sol_nm_away_cosine_rim(a, b, np) + 1e-14;
+            double angle = acos(cosine < 1.0 ? cosine : 1.0) * (1.0 - 1e-12);
+            e2 = e2 > angle * angle ? e2 : angle * angle;
+        }
+        e2s[k] = e2;
+        s = use_max ? (e2 > s ? e2 : s) : s + e2;
+        if (s >= budget)
+            return s;
+    }
+    s = 0.0; /* second pass: the full cosines of the pixels pointing away */
+    for (int k = 0; k < 16; ++k) {
+        const int p = order[k];
+        double e2 = e2s[k];
+        if ((aw->mask >> p) & 1) {
+            *work += 16;
+            double cosine = sol_nm_away_cosine(a, b, n[p]) + 1e-14;
+            double angle = acos(cosine < 1.0 ? cosine : 1.0) * (1.0 - 1e-12);
+            e2 = e2 > angle * angle ? e2 : angle * angle;
+        }
+        s = use_max ? (e2 > s ? e2 : s) : s + e2;
+        if (s >= budget)
+            return s;
+    }
+    return s;
+}
+
 static sol_status check_options(const sol_bc5_options *o)
 {
     if ((unsigned)o->precision >= SOL_BC4_PRECISION_COUNT || (unsigned)o->metric > SOL_BC5_MAX ||
@@ -1361,7 +1427,8 @@ static size_t merge_usable(sol_nm_pair *list, size_t count, const double (*pal)[
  * objective of 16 pixels of error e* (computed in the same floating-point order: exact). The first
  * x pair and the first y pair of the lists holding a* and b* are the answer if their objective is
  * L (it is unless their grid holds another decode of larger cosine but not smaller angle, a
- * rounding-level tie; then the candidate loop runs as usual). */
+ * rounding-level tie; then the candidate loop runs as usual). If L is not below the incumbent, no
+ * candidate beats it and the incumbent is the answer (px, py untouched), as in the enumeration. */
 static int equal_block_solve(const double n[16][3], const sol_nm_pair *xl, size_t nx, const sol_nm_pair *yl,
                              size_t ny, const double (*pal)[8], const y_index *yix, const away_info *aw,
                              int use_max, double best, uint32_t *slots, int *px, int *py, double *value,
@@ -1427,12 +1494,270 @@ static int equal_block_solve(const double n[16][3], const sol_nm_pair *xl, size_
     double v = joint_objective(pal[ax], pal[by], n, use_max, INFINITY, NULL, NULL), floor = 0.0;
     for (int p = 0; p < 16; ++p) /* the objective of 16 pixels of error e*, as joint_objective sums it */
         floor = use_max ? (e_best * e_best > floor ? e_best * e_best : floor) : floor + e_best * e_best;
+    if (best <= floor) { /* no candidate beats the incumbent: it stays (as in the enumeration) */
+        *value = best;
+        return 1;
+    }
     if (!(v <= floor) || !(v < best))
         return 0;
     *px = ax;
     *py = by;
     *value = v;
     return 1;
+}
+
+/* ---- blocks decided by their pixels one at a time (pixels pointing away) ----
+ *
+ * Every candidate gives pixel p the angle of one decode (a, b), a a value of the x list and b one
+ * of the y list, so e*_p = the least angle decoded_angle(a, b, n_p) over those value pairs is a lower
+ * bound of pixel p's error in every candidate, and L = sum_p e*_p^2 (pixels in order 0..15, as
+ * joint_objective sums them; rounded addition is monotone, so no candidate's computed objective is
+ * below the computed L) or max_p e*_p^2 (max metric) bounds every candidate's objective. If one
+ * candidate attains L it is optimal. Blocks whose pixels share a rim direction (normals pointing
+ * away at one azimuth, different heights) or that one pixel dominates (max metric) have such a
+ * candidate: the decode nearest to the shared rim direction serves every pixel. (The sum metric
+ * tries it only when the pixels share one azimuth.)
+ *
+ * e*_p (pixel_least_decode) is found as in equal_block_solve: per distinct value a of the x list,
+ * only the b of the y list inside the coupling filter's intervals for a budget T (the incumbent less
+ * the other pixels' hemisphere bounds theta0_q^2 for the sum, the incumbent for the max; shrinking
+ * to e*_p^2 as it is found) can be below it, and those are evaluated. The cosine of the angle
+ * decoded_angle measures (the decoder's vector (a, b, z) with rebuild_z's z, or (a, b, 0) / r when z
+ * is clamped) is computed with an error of a few 1e-16; a decode whose cosine is below the largest
+ * met so far by more than 1e-13 has a true angle larger by more than 1e-13 - 1e-15 than that
+ * decode's (|d cos / d angle| <= 1), far beyond the rounding of either computed angle (~1e-15), so
+ * its atan2 is skipped: the least computed angle, and the first decode in scan order reaching it,
+ * are those of the plain scan. The scans stop (undecided) after `cap` work units.
+ *
+ * Max metric: only the largest e*_p matters. Pixels are taken by decreasing theta0^2 (then index);
+ * after the first, a pixel is scanned with the budget of the largest e*^2 so far, L, and stops as
+ * soon as one decode has angle^2 <= L (its own e* cannot raise the max); a pixel with no decode
+ * within that budget is scanned again with the full budget and raises L. The rule that decides the
+ * ties: the candidates tried are the pairs of the lists holding every a*_p (x; max metric: the a* of
+ * the pixel that set L) and every matching b* (y), (a*_p, b*_p) being the first least decode of p's
+ * scan, x pairs in list order and with each the y pairs in list order; the first whose objective is
+ * L is the answer. If none is (no pair holds them all, another pixel served worse than L in their
+ * grids, or a rounding-level tie; at most SEPARABLE_TRIES evaluations), the candidate loop runs as
+ * usual. Max metric: before its scan a pixel is tried with the decode of the pixel that set L, and
+ * needs no scan if that one serves it within L.
+ * If L is not below the incumbent, or some pixel has no decode within its budget, no candidate beats
+ * the incumbent, which is the answer (px, py untouched), as in the enumeration. */
+static void order_worst_first(const double err[16], int order[16]);
+enum { SEPARABLE_TRIES = 4096 };
+
+typedef struct least_scan {
+    const double (*pal)[8];
+    const sol_nm_pair *xl;
+    const uint32_t *distinct; /* 8 i + e of the first x-list entry of each distinct value */
+    size_t nd;
+    const y_index *yix;
+    const away_info *aw;
+    uint64_t evals, work, cap; /* work: 8 per interval computed, 1 per entry met, 32 per atan2 */
+} least_scan;
+
+/* Pixel p's least decode under budget t (see above): 1 with *e, *a, *b if one has angle^2 <= t (the
+ * least, or with stop >= 0 the first with angle^2 <= stop), 0 if none, -1 if the pixel constrains
+ * nothing (too costly to scan). */
+static int pixel_least_decode(least_scan *ls, const double n[3], int p, double t, double stop, double *e, double *a_out,
+                              double *b_out)
+{
+    const away_info *aw = ls->aw;
+    const int away = (aw->mask >> p) & 1;
+    const double q[3] = {away ? aw->m[0][p] : n[0], away ? aw->m[1][p] : n[1], away ? 0.0 : n[2]};
+    double eb = INFINITY, cb = -INFINITY, tb = t * (1.0 + 1e-9);
+    for (size_t d = 0; d < ls->nd; ++d) {
+        double a = ls->pal[ls->xl[ls->distinct[d] >> 3].pair][ls->distinct[d] & 7];
+        double r2 = away ? (tb - aw->off[p]) / aw->w[p] : tb;
+        if (r2 < 0.0)
+            break;
+        double a8[8] = {a, a, a, a, a, a, a, a}, lo[16], hi[16];
+        int cnt = pixel_y_intervals(a8, q, r2 * (1.0 + 1e-9) + 1e-15, 1e-9, lo, hi);
+        ls->work += 8;
+        if (cnt < 0 || ls->work + 32 * ls->evals > ls->cap)
+            return -1;
+        for (int k = 0; k < cnt; ++k) {
+            uint32_t s0 = ls->yix->start[y_bucket(lo[k])], s1 = ls->yix->start[y_bucket(hi[k]) + 1];
+            ls->work += s1 - s0;
+            for (uint32_t u = s0; u < s1; ++u) {
+                double b = ls->yix->items[u].v;
+                if (b < lo[k] || b > hi[k])
+                    continue;
+                double zz = 1.0 - a * a - b * b; /* rebuild_z's */
+                double c = zz > 0.0 ? a * n[0] + b * n[1] + sqrt(zz) * n[2] : (a * n[0] + b * n[1]) / sqrt(a * a + b * b);
+                if (c < cb - 1e-13)
+                    continue; /* clearly farther than a decode met already */
+                cb = c > cb ? c : cb;
+                ++ls->evals;
+                double ang = decoded_angle(a, b, n);
+                if (ang < eb) {
+                    eb = ang;
+                    *a_out = a;
+                    *b_out = b;
+                    tb = ang * ang * (1.0 + 1e-9);
+                    if (stop >= 0.0 && ang * ang <= stop) {
+                        *e = eb;
+                        return 1;
+                    }
+                }
+            }
+        }
+    }
+    if (!(eb * eb <= t * (1.0 + 1e-9)))
+        return 0;
+    *e = eb;
+    return 1;
+}
+
+static int separable_solve(const double n[16][3], const int group[16], const sol_nm_pair *xl, size_t nx,
+                           const sol_nm_pair *yl, size_t ny, const double (*pal)[8], const y_index *yix,
+                           const away_info *aw, int use_max, double best, uint64_t cap, uint32_t *slots, int *px,
+                           int *py, double *value, uint64_t *evals, uint64_t *work)
+{
+    for (int p = 0; p < 16; ++p)
+        if (((aw->mask >> p) & 1) && !(aw->w[p] > 0.0))
+            return 0; /* (0, 0, -1): every rim decode ties */
+    if (!use_max) /* the sum: only blocks whose pixels share one azimuth (within 0.05 rad): else the scans
+                   * cost much and the bound is rarely attained */
+        for (int p = 1; p < 16; ++p) {
+            double r0 = hypot(n[0][0], n[0][1]), rp = hypot(n[p][0], n[p][1]);
+            if (!(n[0][0] * n[p][0] + n[0][1] * n[p][1] >= cos(0.05) * r0 * rp) || !(r0 * rp > 0.0))
+                return 0;
+        }
+    const size_t size = 2 * 65536; /* slots: a hash set of the distinct values of a */
+    uint32_t *distinct = malloc(65536 * sizeof *distinct);
+    if (!distinct)
+        return 0;
+    memset(slots, 0, size * sizeof *slots);
+    size_t nd = 0;
+    for (size_t i = 0; i < nx; ++i)
+        for (int e = 0; e < 8; ++e) {
+            uint64_t key = value_bits(pal[xl[i].pair][e]);
+            size_t h = (size_t)mix64(0, key) & (size - 1);
+            int seen = 0;
+            for (; slots[h] && !seen; h = (h + 1) & (size - 1))
+                seen = value_bits(pal[xl[(slots[h] - 1) >> 3].pair][(slots[h] - 1) & 7]) == key;
+            if (seen)
+                continue;
+            if (nd == 65536) {
+                free(distinct);
+                return 0;
+            }
+            slots[h] = (uint32_t)(8 * i + (size_t)e + 1);
+            distinct[nd++] = (uint32_t)(8 * i + (size_t)e);
+        }
+    least_scan ls = {pal, xl, distinct, nd, yix, aw, 0, 8 * nx, cap};
+    double total = 0.0, e_star[16], a_star[16], b_star[16];
+    for (int p = 0; p < 16; ++p)
+        total += aw->off[p];
+    int order[16], top = -1, ok = 1, kept = 0; /* kept: no candidate can beat the incumbent */
+    for (int p = 0; p < 16; ++p) /* by decreasing theta0^2, then index */
+        order[p] = p;
+    order_worst_first(aw->off, order);
+    double L = 0.0;
+    for (int k = 0; k < 16 && ok; ++k) {
+        int p = order[k];
+        if (group[p] != p)
+            continue; /* equal normals: the first one's scan serves them */
+        if (!use_max) {
+            int r = pixel_least_decode(&ls, n[p], p, best - (total - aw->off[p]) * (1.0 - 1e-9), -1.0, &e_star[p],
+                                       &a_star[p], &b_star[p]);
+            kept = r == 0;
+            ok = r == 1;
+            continue;
+        }
+        if (top >= 0) { /* the decode of the pixel that set L may serve this one within L: no scan */
+            double ang = decoded_angle(a_star[top], b_star[top], n[p]);
+            ++ls.evals;
+            if (ang * ang <= L)
+                continue;
+        }
+        int r = top < 0 ? 0 : pixel_least_decode(&ls, n[p], p, L, L, &e_star[p], &a_star[p], &b_star[p]);
+        if (r == 1 && e_star[p] * e_star[p] <= L)
+            continue; /* at most L */
+        if (r == 1) { /* the scan was complete: its least decode, above L */
+            L = e_star[p] * e_star[p];
+            top = p;
+            continue;
+        }
+        if (r >= 0)
+            r = pixel_least_decode(&ls, n[p], p, best, -1.0, &e_star[p], &a_star[p], &b_star[p]);
+        if (r != 1) {
+            kept = r == 0;
+            ok = 0;
+            break;
+        }
+        L = e_star[p] * e_star[p];
+        top = p;
+    }
+    free(distinct);
+    *evals += ls.evals;
+    *work += ls.work;
+    if (kept) { /* a pixel has no decode within its budget: nothing beats the incumbent */
+        *value = best;
+        return 1;
+    }
+    if (!ok)
+        return 0;
+    if (use_max) {
+        for (int p = 0; p < 16; ++p)
+            if (group[p] != p)
+                e_star[p] = e_star[group[p]];
+    } else {
+        L = 0.0;
+        for (int p = 0; p < 16; ++p) {
+            if (group[p] != p) {
+                e_star[p] = e_star[group[p]];
+                a_star[p] = a_star[group[p]];
+                b_star[p] = b_star[group[p]];
+            }
+            L += e_star[p] * e_star[p];
+        }
+    }
+    if (best <= L) { /* no candidate beats the incumbent: it stays (as in the enumeration) */
+        *value = best;
+        return 1;
+    }
+    /* the pairs holding every needed a* (x) and b* (y), in list order; then the first x pair, and
+     * with it the first y pair, whose objective is L (at most SEPARABLE_TRIES evaluations) */
+    uint32_t *holders = malloc((nx + ny) * sizeof *holders);
+    if (!holders)
+        return 0;
+    size_t count[2] = {0, 0};
+    for (int c = 0; c < 2; ++c) {
+        const sol_nm_pair *list = c ? yl : xl;
+        const double *want = c ? b_star : a_star;
+        uint32_t *out = holders + (c ? nx : 0);
+        for (size_t i = 0; i < (c ? ny : nx); ++i) {
+            const double *v = pal[list[i].pair];
+            int all = 1;
+            for (int p = 0; p < 16 && all; ++p) {
+                if (use_max && p != top)
+                    continue;
+                int hit = 0;
+                for (int e = 0; e < 8 && !hit; ++e)
+                    hit = value_bits(v[e]) == value_bits(want[p]);
+                all = hit;
+            }
+            if (all)
+                out[count[c]++] = list[i].pair;
+        }
+        *work += 8 * (c ? ny : nx);
+    }
+    int tries = 0, done = 0;
+    for (size_t i = 0; i < count[0] && !done && tries < SEPARABLE_TRIES; ++i)
+        for (size_t j = 0; j < count[1] && !done && tries < SEPARABLE_TRIES; ++j, ++tries) {
+            int ax = (int)holders[i], by = (int)holders[nx + j];
+            double v = joint_objective(pal[ax], pal[by], n, use_max, L * (1.0 + 1e-15), NULL, NULL);
+            *work += 512;
+            if (v <= L && v < best) {
+                *px = ax;
+                *py = by;
+                *value = v;
+                done = 1;
+            }
+        }
+    free(holders);
+    return done;
 }
 
 /* The value-level filter and merge of both lists (see "value-level usability"); 0 if it could not
@@ -1701,6 +2026,11 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                                            &py, &v, &evals)) {
                 best = v;
                 solved = 1;
+            } else if (!equal && aw.mask &&
+                       separable_solve(n, group, ws->x, nx, ws->y, ny, pal, &yix, &aw, use_max, best,
+                                       rq->work_limit / 8, ws->slots, &px, &py, &v, &evals, &work)) {
+                best = v;
+                solved = 1;
             } else if (equal && aw.mask && !valued) {
                 valued = 1; /* not decided (e.g. coarse 8-bit values): the value-level reduction, at once */
                 reduce_at = INFINITY;
@@ -1710,6 +2040,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
         }
         channel_side xside;
         y_filter yf;
+        /* joint_objective_away's use: while it rejects at least 1 in 8 candidates it meets (after 1024;
+         * else on every 16th candidate only, which keeps the count current) */
+        uint64_t away_tried = 0, away_hits = 0;
         for (size_t i = 0; i < nx && ny > 0 && !bounded && !solved; ++i) {
             if (combine(ws->x[i].score, ws->y[0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                 break;
@@ -1791,6 +2124,14 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 double margin = best * (1.0 + (valued ? 1e-12 : BOUND_SLACK));
                 if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, away_off, use_max, margin, &work) >= margin)
                     continue;
+                if (quick && aw.mask && (away_tried < 1024 || 8 * away_hits >= away_tried || (candidates & 15) == 0)) {
+                    ++away_tried;
+                    if (joint_objective_away(a, pal[ws->y[j].pair], &xside, &ws->yside[j], n, order, away_off, &aw,
+                                             use_max, margin, &work) >= margin) {
+                        ++away_hits;
+                        continue;
+                    }
+                }
                 if (joint_objective_lower(a, pal[ws->y[j].pair], n, order, away_off, use_max, best, margin, &work) >= margin)
                     continue;
                 work += 512;

@@ -137,6 +137,14 @@ void sol_nm_bc4_fast_anchors(const double t[16], int *lo, int *hi, int *lo6, int
  * results are bit-identical either way, the tests compare them). Zero (the default) otherwise. */
 extern int sol_nm_simd_disable;
 
+/* At least the largest cosine between unit n (nz < 0: a pixel pointing away) and the 64 decodes
+ * (a_i, b_j, z rebuilt or clamped) of x palette a and y palette b, less than 1e-15 above it
+ * (bc5_away.c): the coupled bound of pixels pointing away. Bit-identical in its scalar and AVX2
+ * forms (sol_nm_simd_disable picks scalar). */
+double sol_nm_away_cosine(const double a[8], const double b[8], const double n[3]);
+/* A cheaper, looser form (bc5_away.c): at least the largest (a_i nx + b_j ny) / max(1, |(a_i, b_j)|)
+ * (the z term, <= 0 for nz < 0, dropped; no roots per decode), less than 1e-15 above it. */
+double sol_nm_away_cosine_rim(const double a[8], const double b[8], const double n[3]);
 /* The adaptive encoder's threshold level of an objective err (sum of dN^2, or max dN^2 when
  * use_max): the RMS angle sqrt(err / 16) (or the max angle sqrt(err)) in degrees. The block is
  * searched when it exceeds options.threshold_deg. Monotone in err. */
