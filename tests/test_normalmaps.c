@@ -225,6 +225,44 @@ Test(normalmaps, bc4_common_ties_go_to_the_least_pair_on_map_blocks)
         }
 }
 
+/* The span-bound tests' block for a trial: 16 targets t (random, narrow to full-range by trial % 4,
+ * on the code grid when trial % 3 == 2), the same sorted ascending, and the trial's decoder
+ * precision (trial % 3) with its rounding allowance delta (as bc4_common.c passes it). */
+static sol_bc4_precision span_test_block(int trial, double t[16], double sorted[16], double *delta)
+{
+    double c = 2.0 * uniform() - 1.0, w = trial % 4 == 0 ? 0.05 : trial % 4 == 1 ? 0.3 : trial % 4 == 2 ? 0.8 : 2.0;
+    for (int p = 0; p < 16; ++p) {
+        double v = c + w * (uniform() - 0.5);
+        if (trial % 3 == 2)
+            v = round((v + 1.0) * 127.5) / 127.5 - 1.0; /* on the code grid */
+        t[p] = sorted[p] = fmin(1.0, fmax(-1.0, v));
+    }
+    for (int p = 1; p < 16; ++p)
+        for (int q = p; q > 0 && sorted[q - 1] > sorted[q]; --q) {
+            double x = sorted[q];
+            sorted[q] = sorted[q - 1];
+            sorted[q - 1] = x;
+        }
+    sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+    *delta = (prec == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : prec == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) + 1e-12;
+    return prec;
+}
+
+/* The lattice score of pair (l, l + d) of a mode (six: the 6-value mode, its lattice entries only),
+ * summed in pixel order as the brute force does. */
+static double span_test_score(const double (*pal)[8], int six, int l, int d, const double t[16])
+{
+    const double *e = pal[six ? (l << 8 | (l + d)) : ((l + d) << 8 | l)];
+    double s = 0.0;
+    for (int p = 0; p < 16; ++p) {
+        double m = INFINITY;
+        for (int i = 0; i < (six ? 6 : 8); ++i)
+            m = fmin(m, (e[i] - t[p]) * (e[i] - t[p]));
+        s += m;
+    }
+    return s;
+}
+
 /* bc4_span_bound.c's lattice bound is below the score of every pair of its span, taken over the
  * lattice entries only (8-value: all eight; 6-value: the six without the fixed -1, +1), for random
  * blocks narrow to full-range, on and off the code grid, the three decoder precisions, and spans
@@ -232,26 +270,11 @@ Test(normalmaps, bc4_common_ties_go_to_the_least_pair_on_map_blocks)
 Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
 {
     for (int trial = 0; trial < 24; ++trial) {
-        double t[16], sorted[16];
-        double c = 2.0 * uniform() - 1.0, w = trial % 4 == 0 ? 0.05 : trial % 4 == 1 ? 0.3 : trial % 4 == 2 ? 0.8 : 2.0;
-        for (int p = 0; p < 16; ++p) {
-            double v = c + w * (uniform() - 0.5);
-            if (trial % 3 == 2)
-                v = round((v + 1.0) * 127.5) / 127.5 - 1.0; /* on the code grid */
-            t[p] = sorted[p] = fmin(1.0, fmax(-1.0, v));
-        }
-        for (int p = 1; p < 16; ++p)
-            for (int q = p; q > 0 && sorted[q - 1] > sorted[q]; --q) {
-                double x = sorted[q];
-                sorted[q] = sorted[q - 1];
-                sorted[q - 1] = x;
-            }
-        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        double t[16], sorted[16], delta;
+        sol_bc4_precision prec = span_test_block(trial, t, sorted, &delta);
         const double(*pal)[8] = sol_nm_palettes(prec);
-        double delta = (prec == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : prec == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) +
-                       1e-12;
         for (int six = 0; six < 2; ++six) {
-            int den = six ? 5 : 7, entries = six ? 6 : 8;
+            int den = six ? 5 : 7;
             for (int d0 = 0; d0 < 256; d0 += SOL_NM_SPAN_LANES) {
                 double step[SOL_NM_SPAN_LANES], lb[SOL_NM_SPAN_LANES];
                 for (int k = 0; k < SOL_NM_SPAN_LANES; ++k)
@@ -264,17 +287,8 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
                     if (!six && d == 0)
                         continue;
                     double least = INFINITY;
-                    for (int l = 0; l + d < 256; ++l) {
-                        const double *e = pal[six ? (l << 8 | (l + d)) : ((l + d) << 8 | l)];
-                        double s = 0.0;
-                        for (int p = 0; p < 16; ++p) {
-                            double m = INFINITY;
-                            for (int i = 0; i < entries; ++i)
-                                m = fmin(m, (e[i] - t[p]) * (e[i] - t[p]));
-                            s += m;
-                        }
-                        least = fmin(least, s);
-                    }
+                    for (int l = 0; l + d < 256; ++l)
+                        least = fmin(least, span_test_score(pal, six, l, d, t));
                     cr_assert(lb[k] <= least, "trial %d, mode %d, span %d: bound %.17g above the span's least score %.17g",
                               trial, six, d, lb[k], least);
                 }
@@ -291,27 +305,12 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
 Test(normalmaps, bc4_span_phase_bound_is_below_every_pair_of_its_span)
 {
     for (int trial = 0; trial < 24; ++trial) {
-        double t[16], sorted[16];
-        double c = 2.0 * uniform() - 1.0, w = trial % 4 == 0 ? 0.05 : trial % 4 == 1 ? 0.3 : trial % 4 == 2 ? 0.8 : 2.0;
-        for (int p = 0; p < 16; ++p) {
-            double v = c + w * (uniform() - 0.5);
-            if (trial % 3 == 2)
-                v = round((v + 1.0) * 127.5) / 127.5 - 1.0; /* on the code grid */
-            t[p] = sorted[p] = fmin(1.0, fmax(-1.0, v));
-        }
-        for (int p = 1; p < 16; ++p)
-            for (int q = p; q > 0 && sorted[q - 1] > sorted[q]; --q) {
-                double x = sorted[q];
-                sorted[q] = sorted[q - 1];
-                sorted[q - 1] = x;
-            }
-        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        double t[16], sorted[16], delta;
+        sol_bc4_precision prec = span_test_block(trial, t, sorted, &delta);
         const double(*pal)[8] = sol_nm_palettes(prec);
-        double delta = (prec == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : prec == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) +
-                       1e-12;
         int checked = 0;
         for (int six = 0; six < 2; ++six) {
-            int den = six ? 5 : 7, entries = six ? 6 : 8;
+            int den = six ? 5 : 7;
             for (int d0 = 0; d0 < 256; d0 += SOL_NM_SPAN_LANES) {
                 double step[SOL_NM_SPAN_LANES];
                 sol_nm_span_cuts cuts[SOL_NM_SPAN_LANES];
@@ -327,16 +326,8 @@ Test(normalmaps, bc4_span_phase_bound_is_below_every_pair_of_its_span)
                     }
                     double score[256], least = INFINITY;
                     for (int l = 0; l + d < 256; ++l) {
-                        const double *e = pal[six ? (l << 8 | (l + d)) : ((l + d) << 8 | l)];
-                        double s = 0.0;
-                        for (int p = 0; p < 16; ++p) {
-                            double m = INFINITY;
-                            for (int i = 0; i < entries; ++i)
-                                m = fmin(m, (e[i] - t[p]) * (e[i] - t[p]));
-                            s += m;
-                        }
-                        score[l] = s;
-                        least = fmin(least, s);
+                        score[l] = span_test_score(pal, six, l, d, t);
+                        least = fmin(least, score[l]);
                     }
                     const double limits[3] = {INFINITY, least, -1.0};
                     for (int li = 0; li < 3; ++li) {

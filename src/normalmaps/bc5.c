@@ -455,27 +455,34 @@ static void channel_side_init(const double pal[8], const double n[16][3], const 
  * the rounding allowance of angle2_lower_bound; the chord of (v_x, v_y) is computed with the decoder's
  * z = sqrt(1 - a^2 - b^2). */
 #if SEARCH_AVX2
-/* joint_objective_quick's per-pixel terms e2[k], 4 pixels at a time (the square root of a clamped
- * argument, its result selected only where zz > 0, as the scalar branch). */
-static AVX2_FN void quick_terms_avx2(const channel_side *xs, const channel_side *ys, const double nz[16],
-                                     const double away_off[16], double e2[16])
+/* joint_objective_quick's tight per-pixel terms for pixels k..k+3 (before the away term and the
+ * clamp at 0): the square root of a clamped argument, its result selected only where zz > 0, as the
+ * scalar branch. Shared by quick_terms_avx2 and the window's window_quick_avx2. */
+static inline AVX2_FN __m256d quick_tight4(const channel_side *xs, const channel_side *ys, const double nz[16], int k)
 {
     const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
     const __m256d lower = _mm256_set1_pd(1.0 - 3e-6), absolute = _mm256_set1_pd(5e-15);
+    __m256d a = _mm256_loadu_pd(xs->v + k), b = _mm256_loadu_pd(ys->v + k), z = _mm256_loadu_pd(nz + k);
+    __m256d m1x = _mm256_loadu_pd(xs->m1 + k), m1y = _mm256_loadu_pd(ys->m1 + k);
+    __m256d nz2 = _mm256_mul_pd(z, z);
+    __m256d lb = _mm256_min_pd(_mm256_add_pd(_mm256_loadu_pd(xs->m2 + k), m1y),
+                               _mm256_add_pd(m1x, _mm256_loadu_pd(ys->m2 + k)));
+    lb = _mm256_min_pd(nz2, lb);
+    __m256d zz = _mm256_sub_pd(_mm256_sub_pd(one, _mm256_mul_pd(a, a)), _mm256_mul_pd(b, b));
+    __m256d up = _mm256_cmp_pd(zz, zero, _CMP_GT_OQ);
+    __m256d dz = _mm256_sub_pd(_mm256_sqrt_pd(_mm256_and_pd(zz, up)), z);
+    __m256d c2 = _mm256_blendv_pd(nz2, _mm256_add_pd(_mm256_add_pd(m1x, m1y), _mm256_mul_pd(dz, dz)), up);
+    lb = _mm256_min_pd(c2, lb);
+    return _mm256_sub_pd(_mm256_mul_pd(lb, lower), absolute);
+}
+
+/* joint_objective_quick's per-pixel terms e2[k], 4 pixels at a time. */
+static AVX2_FN void quick_terms_avx2(const channel_side *xs, const channel_side *ys, const double nz[16],
+                                     const double away_off[16], double e2[16])
+{
     const __m256d away_lower = _mm256_set1_pd(1.0 - 1e-12);
     for (int k = 0; k < 16; k += 4) {
-        __m256d a = _mm256_loadu_pd(xs->v + k), b = _mm256_loadu_pd(ys->v + k), z = _mm256_loadu_pd(nz + k);
-        __m256d m1x = _mm256_loadu_pd(xs->m1 + k), m1y = _mm256_loadu_pd(ys->m1 + k);
-        __m256d nz2 = _mm256_mul_pd(z, z);
-        __m256d lb = _mm256_min_pd(_mm256_add_pd(_mm256_loadu_pd(xs->m2 + k), m1y),
-                                   _mm256_add_pd(m1x, _mm256_loadu_pd(ys->m2 + k)));
-        lb = _mm256_min_pd(nz2, lb);
-        __m256d zz = _mm256_sub_pd(_mm256_sub_pd(one, _mm256_mul_pd(a, a)), _mm256_mul_pd(b, b));
-        __m256d up = _mm256_cmp_pd(zz, zero, _CMP_GT_OQ);
-        __m256d dz = _mm256_sub_pd(_mm256_sqrt_pd(_mm256_and_pd(zz, up)), z);
-        __m256d c2 = _mm256_blendv_pd(nz2, _mm256_add_pd(_mm256_add_pd(m1x, m1y), _mm256_mul_pd(dz, dz)), up);
-        lb = _mm256_min_pd(c2, lb);
-        __m256d e = _mm256_sub_pd(_mm256_mul_pd(lb, lower), absolute);
+        __m256d e = quick_tight4(xs, ys, nz, k);
         __m256d away = _mm256_add_pd(_mm256_add_pd(_mm256_loadu_pd(away_off + k), _mm256_loadu_pd(xs->lt + k)),
                                      _mm256_loadu_pd(ys->lt + k));
         _mm256_storeu_pd(e2 + k, _mm256_max_pd(e, _mm256_mul_pd(away, away_lower)));
@@ -2378,22 +2385,9 @@ static double joint_objective_checked(const double a[8], const double b[8], cons
 static AVX2_FN double window_quick_avx2(const channel_side *xs, const channel_side *ys, const double nz[16],
                                         int use_max, double budget, uint64_t *work)
 {
-    const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
-    const __m256d lower = _mm256_set1_pd(1.0 - 3e-6), absolute = _mm256_set1_pd(5e-15);
     double s = 0.0, e2[4];
-    for (int k = 0; k < 16; k += 4) { /* quick_terms_avx2's operations, its away term 0 */
-        __m256d a = _mm256_loadu_pd(xs->v + k), b = _mm256_loadu_pd(ys->v + k), z = _mm256_loadu_pd(nz + k);
-        __m256d m1x = _mm256_loadu_pd(xs->m1 + k), m1y = _mm256_loadu_pd(ys->m1 + k);
-        __m256d nz2 = _mm256_mul_pd(z, z);
-        __m256d lb = _mm256_min_pd(_mm256_add_pd(_mm256_loadu_pd(xs->m2 + k), m1y),
-                                   _mm256_add_pd(m1x, _mm256_loadu_pd(ys->m2 + k)));
-        lb = _mm256_min_pd(nz2, lb);
-        __m256d zz = _mm256_sub_pd(_mm256_sub_pd(one, _mm256_mul_pd(a, a)), _mm256_mul_pd(b, b));
-        __m256d up = _mm256_cmp_pd(zz, zero, _CMP_GT_OQ);
-        __m256d dz = _mm256_sub_pd(_mm256_sqrt_pd(_mm256_and_pd(zz, up)), z);
-        __m256d c2 = _mm256_blendv_pd(nz2, _mm256_add_pd(_mm256_add_pd(m1x, m1y), _mm256_mul_pd(dz, dz)), up);
-        lb = _mm256_min_pd(c2, lb);
-        _mm256_storeu_pd(e2, _mm256_max_pd(_mm256_sub_pd(_mm256_mul_pd(lb, lower), absolute), zero));
+    for (int k = 0; k < 16; k += 4) { /* quick_terms_avx2's terms, its away term 0 */
+        _mm256_storeu_pd(e2, _mm256_max_pd(quick_tight4(xs, ys, nz, k), _mm256_setzero_pd()));
         for (int q = 0; q < 4; ++q) {
             ++*work;
             s = use_max ? (e2[q] > s ? e2[q] : s) : s + e2[q];
