@@ -61,6 +61,13 @@ sol_status sol_nm_unit_normals(const double in[16][3], double out[16][3])
 }
 
 /* The decoded normal for components a, b: z = sqrt(max(0, 1 - a^2 - b^2)) (talk: z reconstructed). */
+/* One pixel's term folded into a block objective: their sum (SOL_BC5_SUM_SQUARED) or their max
+ * (SOL_BC5_MAX), the later term kept only if strictly larger. */
+static inline double fold_term(double s, double term, int use_max)
+{
+    return use_max ? (term > s ? term : s) : s + term;
+}
+
 static inline double rebuild_z(double a, double b)
 {
     double zz = 1.0 - a * a - b * b;
@@ -239,7 +246,7 @@ static double joint_objective(const double a[8], const double b[8], const double
     for (int p = 0; p < 16; ++p) {
         int i, j;
         double e = best_pixel(a, b, n[p], &i, &j);
-        s = use_max ? (e * e > s ? e * e : s) : s + e * e;
+        s = fold_term(s, e * e, use_max);
         if (ix) {
             ix[p] = (uint8_t)i;
             iy[p] = (uint8_t)j;
@@ -305,7 +312,7 @@ static double joint_objective_lower(const double a[8], const double b[8], const 
             if (e * e >= best)
                 return budget;
         }
-        s = use_max ? (e2 > s ? e2 : s) : s + e2;
+        s = fold_term(s, e2, use_max);
         if (s >= budget)
             return s;
     }
@@ -502,7 +509,7 @@ static double joint_objective_quick(const channel_side *xs, const channel_side *
         quick_terms_avx2(xs, ys, nz, away_off, e2);
         for (int k = 0; k < 16; ++k) {
             ++*work;
-            s = use_max ? (e2[k] > s ? e2[k] : s) : s + e2[k];
+            s = fold_term(s, e2[k], use_max);
             if (s >= budget)
                 return s;
         }
@@ -528,7 +535,7 @@ static double joint_objective_quick(const channel_side *xs, const channel_side *
         double e2 = lb * (1.0 - 3e-6) - 5e-15;
         double away = (away_off[k] + xs->lt[k] + ys->lt[k]) * (1.0 - 1e-12); /* 0 unless pointing away */
         e2 = e2 > away ? e2 : away;
-        s = use_max ? (e2 > s ? e2 : s) : s + e2;
+        s = fold_term(s, e2, use_max);
         if (s >= budget)
             return s;
     }
@@ -580,7 +587,7 @@ static double joint_objective_away(const double a[8], const double b[8], const c
             e2 = e2 > angle * angle ? e2 : angle * angle;
         }
         e2s[k] = e2;
-        s = use_max ? (e2 > s ? e2 : s) : s + e2;
+        s = fold_term(s, e2, use_max);
         if (s >= budget)
             return s;
     }
@@ -594,7 +601,7 @@ static double joint_objective_away(const double a[8], const double b[8], const c
             double angle = acos(cosine < 1.0 ? cosine : 1.0) * (1.0 - 1e-12);
             e2 = e2 > angle * angle ? e2 : angle * angle;
         }
-        s = use_max ? (e2 > s ? e2 : s) : s + e2;
+        s = fold_term(s, e2, use_max);
         if (s >= budget)
             return s;
     }
@@ -899,7 +906,7 @@ static double hemisphere_bound(const double n[16][3], int use_max)
     double s = 0.0;
     for (int p = 0; p < 16; ++p) {
         double e = n[p][2] < 0.0 ? asin(-n[p][2]) : 0.0;
-        s = use_max ? (e * e > s ? e * e : s) : s + e * e;
+        s = fold_term(s, e * e, use_max);
     }
     return s;
 }
@@ -1500,7 +1507,7 @@ static int equal_block_solve(const double n[16][3], const sol_nm_pair *xl, size_
                 by = yl[j].pair;
     double v = joint_objective(pal[ax], pal[by], n, use_max, INFINITY, NULL, NULL), floor = 0.0;
     for (int p = 0; p < 16; ++p) /* the objective of 16 pixels of error e*, as joint_objective sums it */
-        floor = use_max ? (e_best * e_best > floor ? e_best * e_best : floor) : floor + e_best * e_best;
+        floor = fold_term(floor, e_best * e_best, use_max);
     if (best <= floor) { /* no candidate beats the incumbent: it stays (as in the enumeration) */
         *value = best;
         return 1;
@@ -1952,7 +1959,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
          * or fell by 64 if the last reduction kept over 90% of the pairs (coarse values: it rarely pays) */
         double floor_all = 0.0, reduce_at = -1.0;
         for (int p = 0; p < 16; ++p)
-            floor_all = use_max ? (aw.off[p] > floor_all ? aw.off[p] : floor_all) : floor_all + aw.off[p];
+            floor_all = fold_term(floor_all, aw.off[p], use_max);
         if (valued)
             reduce_at = floor_all + (10 * (nx + ny) > 9 * pairs_before ? 1.0 / 64 : 0.5) * (best - floor_all);
         /* merging pays only for long lists; one list may be a single pair: a rim block near an axis
@@ -2279,7 +2286,7 @@ static inline __attribute__((always_inline)) int window_channel_body(const doubl
                         }
                 }
                 for (int q = 0; q < 4; ++q)
-                    score = use_max ? (m[q] > score ? m[q] : score) : score + m[q];
+                    score = fold_term(score, m[q], use_max);
                 if (score > budget)
                     break;
             }
@@ -2358,7 +2365,7 @@ static double joint_objective_checked(const double a[8], const double b[8], cons
         ix[p] = (uint8_t)i;
         iy[p] = (uint8_t)j;
         double e2 = angle2_lower_bound(a[i], b[j], n[p]);
-        s = use_max ? (e2 > s ? e2 : s) : s + e2;
+        s = fold_term(s, e2, use_max);
         if (s >= margin)
             return s;
     }
@@ -2368,7 +2375,7 @@ static double joint_objective_checked(const double a[8], const double b[8], cons
         double u = a[ix[p]], w = b[iy[p]];
         double d = same_bits(u, inc->a[p]) && same_bits(w, inc->b[p]) ? inc->angle[p] : decoded_angle(u, w, n[p]);
         angle[p] = d;
-        e = use_max ? (d * d > e ? d * d : e) : e + d * d;
+        e = fold_term(e, d * d, use_max);
         if (e >= budget)
             break;
     }
@@ -2390,7 +2397,7 @@ static AVX2_FN double window_quick_avx2(const channel_side *xs, const channel_si
         _mm256_storeu_pd(e2, _mm256_max_pd(quick_tight4(xs, ys, nz, k), _mm256_setzero_pd()));
         for (int q = 0; q < 4; ++q) {
             ++*work;
-            s = use_max ? (e2[q] > s ? e2[q] : s) : s + e2[q];
+            s = fold_term(s, e2[q], use_max);
             if (s >= budget)
                 return s;
         }
@@ -2459,7 +2466,7 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
         inc.a[p] = pal[px][i];
         inc.b[p] = pal[py][j];
         inc.angle[p] = e;
-        best = use_max ? (e * e > best ? e * e : best) : best + e * e;
+        best = fold_term(best, e * e, use_max);
     }
     for (int p = 0; p < 16; ++p)
         if (!(n[p][2] > 0.0) || n[p][2] * n[p][2] <= best * (1.0 + BOUND_SLACK))
@@ -2670,7 +2677,7 @@ static double own_index_objective(const sol_bc5_block *b, const double n[16][3],
     double s = 0.0;
     for (int p = 0; p < 16; ++p) {
         double e = decoded_angle(a[b->x.index[p]], c[b->y.index[p]], n[p]);
-        s = use_max ? (e * e > s ? e * e : s) : s + e * e;
+        s = fold_term(s, e * e, use_max);
     }
     return s;
 }
