@@ -138,11 +138,28 @@ static HOT_CLONES double quantisation_bound(common_ctx *c, int m)
     v = base + g;                                                                                                      \
     lt = v < bq;                                                                                                       \
     bq = (v4d)(((v4l)v & lt) | ((v4l)bq & ~lt))
-            for (int i = r - 1; i < 16; ++i) {
+            /* gcost[i][j] is infinite for j < i: lanes wholly below i are skipped */
+            int i = r - 1;
+            for (; i < 4; ++i) {
                 const v4d base = zero + c->dp[r - 1][i - 1];
                 DP_LANE(b0, 0);
                 DP_LANE(b1, 1);
                 DP_LANE(b2, 2);
+                DP_LANE(b3, 3);
+            }
+            for (; i < 8; ++i) {
+                const v4d base = zero + c->dp[r - 1][i - 1];
+                DP_LANE(b1, 1);
+                DP_LANE(b2, 2);
+                DP_LANE(b3, 3);
+            }
+            for (; i < 12; ++i) {
+                const v4d base = zero + c->dp[r - 1][i - 1];
+                DP_LANE(b2, 2);
+                DP_LANE(b3, 3);
+            }
+            for (; i < 16; ++i) {
+                const v4d base = zero + c->dp[r - 1][i - 1];
                 DP_LANE(b3, 3);
             }
 #undef DP_LANE
@@ -395,6 +412,19 @@ static HOT_CLONES void try_pair(common_ctx *c, int pair)
     }
 }
 
+/* try_pair on pairs[0 .. n), in that order, their palettes fetched from memory first: the 4 MB
+ * palette table is read at scattered pairs, and the reads of a list overlap instead of waiting one
+ * by one. */
+static void try_pairs(common_ctx *c, const int *pairs, int n)
+{
+    for (int i = 0; i < n; ++i) {
+        __builtin_prefetch(c->pal[pairs[i]]);
+        __builtin_prefetch(c->pal[pairs[i]] + 7);
+    }
+    for (int i = 0; i < n; ++i)
+        try_pair(c, pairs[i]);
+}
+
 /* Boxes of at most this many pairs are scored pair by pair (exact scores exit early; cheaper than
  * splitting further, measured on the benchmark maps). */
 #define SMALL_BOX 16
@@ -587,9 +617,11 @@ static void span_search(common_ctx *c, int six)
             continue;
         double f[256];
         sol_nm_span_phase_fs(cu, l1, l2 - l1 + 1, f);
+        int pairs[256], np = 0;
         for (int l = l1; l <= l2; ++l)
             if (f[l - l1] <= fstar)
-                try_pair(c, make_pair(six, l, l + d));
+                pairs[np++] = make_pair(six, l, l + d);
+        try_pairs(c, pairs, np);
     }
 }
 
@@ -788,6 +820,36 @@ static size_t walk_work(const common_ctx *c, const sol_nm_entry_index *ix, const
     return ix->start[first_above(ix, w->val[i] + r)] - ix->start[first_above(ix, w->val[i] - r)];
 }
 
+/* The least float at least x (x finite, well inside the float range): for a float g, g >= x exactly
+ * when g >= float_at_least(x), so the walk compares the index's float gaps in floats. */
+static float float_at_least(double x)
+{
+    float f = (float)x;
+    return (double)f < x ? nextafterf(f, INFINITY) : f;
+}
+
+/* The first j in [j, b) with gap[j] < far (b if none), eight gaps at a time (most holders of a
+ * value are far from every other entry: the walk skips them). */
+typedef float v4f __attribute__((vector_size(4 * sizeof(float))));
+typedef int v4i __attribute__((vector_size(4 * sizeof(int))));
+static uint32_t next_near(const float *gap, uint32_t j, uint32_t b, float far)
+{
+    const v4f farv = {far, far, far, far};
+    for (; j + 8 <= b; j += 8) {
+        v4f g0, g1;
+        memcpy(&g0, gap + j, sizeof g0);
+        memcpy(&g1, gap + j + 4, sizeof g1);
+        const v4i near = (g0 < farv) | (g1 < farv);
+        uint64_t w[2];
+        memcpy(w, &near, sizeof w);
+        if (w[0] | w[1])
+            break;
+    }
+    while (j < b && gap[j] >= far)
+        ++j;
+    return j;
+}
+
 static int narrow_walk(common_ctx *c, const sol_nm_entry_index *ix, const walk_plan *w, int iu, size_t max_work)
 {
     const double u = w->val[iu];
@@ -808,13 +870,16 @@ static int narrow_walk(common_ctx *c, const sol_nm_entry_index *ix, const walk_p
         if (work > max_work)
             return 0;
         int alone = 0; /* the least pair whose other entries are all far has been scored */
-        for (uint32_t j = a; j < b; ++j) {
-            if (ix->gap[j] >= far) {
-                if (alone)
+        const float far_f = float_at_least(far);
+        for (uint32_t j = a; j < b;) {
+            if (ix->gap[j] >= far_f) {
+                if (alone) {
+                    j = next_near(ix->gap, j + 1, b, far_f);
                     continue;
+                }
                 alone = 1;
             }
-            try_pair(c, ix->pair[j]);
+            try_pair(c, ix->pair[j++]);
         }
     }
     return 1;
