@@ -275,12 +275,12 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
         const double(*pal)[8] = sol_nm_palettes(prec);
         for (int six = 0; six < 2; ++six) {
             int den = six ? 5 : 7;
-            for (int d0 = 0; d0 < 256; d0 += SOL_NM_SPAN_LANES) {
-                double step[SOL_NM_SPAN_LANES], lb[SOL_NM_SPAN_LANES];
-                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k)
+            for (int d0 = 0; d0 < 256; d0 += SOL_NM_SPAN_BOUND_LANES) {
+                double step[SOL_NM_SPAN_BOUND_LANES], lb[SOL_NM_SPAN_BOUND_LANES];
+                for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES; ++k)
                     step[k] = (2.0 * (d0 + k) / 255.0) / den;
-                sol_nm_span_bounds(sorted, step, delta, lb);
-                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k) {
+                sol_nm_span_bounds(sorted, step, delta, INFINITY, lb);
+                for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES; ++k) {
                     int d = d0 + k;
                     if (d == 0)
                         cr_assert(lb[k] == 0.0, "span 0: %g", lb[k]);
@@ -295,6 +295,61 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
             }
         }
     }
+}
+
+/* The same lattice bound is tight where it should be, and its limit test is safe: targets on the
+ * lattice entries of a pair (L, L + d) moved by +-e (e = 0.15 step, in pairs, so that their mean stays
+ * on the lattice) have the span's least score 16 e^2 up to the palette rounding, and the bound is
+ * within 2% of it (float and 16-bit decoders; the 8-bit decoder's 1/255 allowance is far looser, so
+ * there only the bound's validity is checked); with limit = the span's least score a lane answers
+ * the same bound, and with limit 2% below the bound it answers INFINITY (the span dismissed). A bound
+ * or a limit test raised by 2% fails here. */
+Test(normalmaps, bc4_span_bound_is_tight_on_lattice_blocks_and_its_limit_is_safe)
+{
+    int tight = 0;
+    for (int trial = 0; trial < 48; ++trial) {
+        const int six = trial & 1, den = six ? 5 : 7, d = 12 + (int)(100.0 * uniform());
+        const int l = (int)((255 - d) * uniform());
+        const sol_bc4_precision prec = (sol_bc4_precision)(trial / 2 % 3);
+        const double delta =
+            (prec == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : prec == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) + 1e-12;
+        const double a = 2.0 * l / 255.0 - 1.0, s = (2.0 * (l + d) / 255.0 - 1.0 - a) / den, e = 0.15 * s;
+        double t[16], sorted[16];
+        for (int p = 0; p < 16; ++p) {
+            int j = (p >> 1) % (den + 1);
+            t[p] = a + j * s + (p & 1 ? e : -e);
+            t[p] = fmin(1.0, fmax(-1.0, t[p]));
+        }
+        memcpy(sorted, t, sizeof sorted);
+        for (int p = 1; p < 16; ++p)
+            for (int q = p; q > 0 && sorted[q - 1] > sorted[q]; --q) {
+                double x = sorted[q];
+                sorted[q] = sorted[q - 1];
+                sorted[q - 1] = x;
+            }
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        double least = INFINITY;
+        for (int l2 = 0; l2 + d < 256; ++l2)
+            least = fmin(least, span_test_score(pal, six, l2, d, t));
+        double step[SOL_NM_SPAN_BOUND_LANES], lb[SOL_NM_SPAN_BOUND_LANES], at[SOL_NM_SPAN_BOUND_LANES],
+            below[SOL_NM_SPAN_BOUND_LANES];
+        for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES; ++k)
+            step[k] = (2.0 * d / 255.0) / den;
+        sol_nm_span_bounds(sorted, step, delta, INFINITY, lb);
+        sol_nm_span_bounds(sorted, step, delta, least, at);
+        sol_nm_span_bounds(sorted, step, delta, lb[0] * 0.98, below);
+        cr_assert(lb[0] <= least, "trial %d: bound %.17g above the span's least score %.17g", trial, lb[0], least);
+        cr_assert(at[0] == lb[0], "trial %d: with the limit at the least score, %.17g instead of %.17g", trial, at[0],
+                  lb[0]);
+        if (prec != SOL_BC4_INTERP_8BIT) {
+            cr_assert(lb[0] * 1.02 > least, "trial %d (mode %d, span %d, precision %d): bound %.17g, least %.17g", trial,
+                      six, d, prec, lb[0], least);
+            cr_assert(below[0] == INFINITY, "trial %d: limit 2%% below the bound %.17g gave %.17g", trial, lb[0],
+                      below[0]);
+            ++tight;
+        }
+    }
+    cr_assert(tight >= 24, "only %d tight trials", tight);
 }
 
 /* bc4_span_bound.c's bound at a phase (the low anchor's) is below the score of the pair (L, L + span)

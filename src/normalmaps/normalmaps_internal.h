@@ -55,14 +55,17 @@ size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pa
  * score as sol_nm_channel_argmin on the full range with use_max = 0 and no loose pixels (least
  * score, then least e0 << 8 | e1), by branch and bound over boxes of anchor codes. */
 int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score);
-/* Lower bounds (bc4_span_bound.c), for SOL_NM_SPAN_LANES steps at once, of sum_p min_j (e_j - t_p)^2
- * over every palette whose lattice entries e_j lie within delta of a lattice phi + step Z (any
- * phase phi; the ends and fixed entries ignored): the least circular sum of squares of the targets
- * modulo step, less the rounding. sorted: the 16 targets in ascending order; out[k] = 0 when
- * step[k] <= 0. */
+/* Lower bounds (bc4_span_bound.c), for SOL_NM_SPAN_BOUND_LANES steps at once, of sum_p min_j
+ * (e_j - t_p)^2 over every palette whose lattice entries e_j lie within delta of a lattice phi + step
+ * Z (any phase phi; the ends and fixed entries ignored): the least circular sum of squares of the
+ * targets modulo step, computed in single precision, less an allowance for that rounding. sorted:
+ * the 16 targets in ascending order; out[k] = 0 when step[k] <= 0, and INFINITY when the bound is
+ * above limit (then it is not computed: the search only compares it with limit; limit = INFINITY
+ * gives every bound). */
 #define SOL_NM_SPAN_LANES 4
-void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_LANES], double delta,
-                        double out[SOL_NM_SPAN_LANES]);
+#define SOL_NM_SPAN_BOUND_LANES 8
+void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_BOUND_LANES], double delta,
+                        double limit, double out[SOL_NM_SPAN_BOUND_LANES]);
 /* The same bound at one phase (bc4_span_bound.c): for a span's step, the 16 cut sequences of the
  * targets' phases (v: sum of squares about the mean, mean: relative to base = the least target), of
  * which n are kept; floor: at most every dropped cut's v (INFINITY: none dropped; 0: no bound).
