@@ -2478,14 +2478,38 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
         double least_x = INFINITY, least_y = INFINITY, room = best * (1.0 + BOUND_SLACK);
         /* y first: an x pair above room - least_y (sum metric) is dropped by the filter below, so
          * window_channel leaves it out at once. If the pair of least x score is left out, no x pair
-         * passes the filter and there is no candidate, whatever least_x then is. */
-        int ny = window_channel(n, 1, pal, use_max, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi, room, w->list[1]);
+         * passes the filter and there is no candidate, whatever least_x then is.
+         * The y pairs kept in the end are those within room - least_x (sum metric), least_x the
+         * least x score, which is at most the base x pair's score sx (the base is in the window; if
+         * the base pair is filtered out, every x pair kept scores below it). So the y pairs are
+         * first scored against room - sx (with the base's common anchors, usually the least x pair
+         * itself): scores within that budget are the ones room - least_x keeps whenever least_x is
+         * sx, and their least is the least y score whenever any is kept (that pair scores within
+         * every budget a y pair is kept in). Where least_x turns out below sx, or no y pair is kept,
+         * the y pairs are scored again against the original budget: the same lists as scoring y
+         * against room and filtering, without scoring most of the pairs the filter drops. */
+        int ny = 0, y_final = 0;
+        if (!use_max) {
+            window_entry bx;
+            window_channel(n, 0, pal, 0, base_x >> 8, base_x >> 8, base_x & 255, base_x & 255, INFINITY, &bx);
+            least_x = bx.score;
+            ny = window_channel(n, 1, pal, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi,
+                                room - least_x * (1.0 - BOUND_SLACK), w->list[1]);
+            y_final = ny > 0;
+        }
+        if (!y_final)
+            ny = window_channel(n, 1, pal, use_max, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi, room, w->list[1]);
         for (int k = 0; k < ny; ++k)
             least_y = w->list[1][k].score < least_y ? w->list[1][k].score : least_y;
         int nx = window_channel(n, 0, pal, use_max, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi,
                                 use_max ? room : room - least_y * (1.0 - BOUND_SLACK), w->list[0]);
+        double guess_x = least_x;
+        least_x = INFINITY;
         for (int k = 0; k < nx; ++k)
             least_x = w->list[0][k].score < least_x ? w->list[0][k].score : least_x;
+        if (y_final && nx > 0 && value_bits(least_x) != value_bits(guess_x))
+            ny = window_channel(n, 1, pal, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi,
+                                room - least_x * (1.0 - BOUND_SLACK), w->list[1]);
         /* a pair can only pair up under the incumbent if its score leaves room for the other channel's least */
         nx = window_filter(w->list[0], nx, use_max ? room : room - least_y * (1.0 - BOUND_SLACK));
         ny = window_filter(w->list[1], ny, use_max ? room : room - least_x * (1.0 - BOUND_SLACK));
