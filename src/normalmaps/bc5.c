@@ -2193,6 +2193,9 @@ struct window_scratch {
     window_entry list[2][WINDOW_PAIRS];
     channel_side yside[WINDOW_PAIRS];    /* the sorted y list's channel sides, */
     unsigned char ready[WINDOW_PAIRS];   /* each computed when first needed */
+    /* the y sides' v, m1, m2 by pixel, then position in the y list (window_chunk_quick's lanes); 4
+     * columns of padding read by its unused lanes (zeroed at allocation, so always defined) */
+    double yt[3][16][WINDOW_PAIRS + 4];
 };
 
 /* Sorts by increasing (score, pair): insertion sort, the lists are short (<= WINDOW_PAIRS). */
@@ -2417,6 +2420,78 @@ static double window_quick(const channel_side *xs, const channel_side *ys, const
     return joint_objective_quick(xs, ys, n, order, away_off, use_max, budget, work);
 }
 
+/* The quick bound of up to 4 consecutive candidates of one x pair (y list positions j..j+lanes-1)
+ * at once, one per lane, pixel by pixel: the same terms as window_quick (quick_tight4's operations
+ * on the same values, 1 - a^2 computed once per pixel of the x side, as the scalar 1.0 - a * a
+ * gives the same bits) folded in the same order, so every lane's partial value after each pixel is
+ * bit for bit the one window_quick reaches there. The partial values never decrease (the terms are
+ * >= 0), so window_quick with budget M stops at pixel count(M) (the number of partial values below
+ * M; 16: it does not stop): below[q] for the margin given, kept in prefix for a lower margin (an
+ * improved incumbent within the chunk; margins only decrease). Pixels are computed until every lane
+ * has reached the margin (the later partial values are then above any lower margin's stop too). */
+typedef struct window_chunk {
+    double prefix[16][4]; /* partial values by pixel and lane */
+    double margin;        /* the margin of below */
+    int below[4];         /* partial values below margin, per lane */
+    int pixels;           /* pixels computed */
+} window_chunk;
+
+#if SEARCH_AVX2
+static AVX2_FN void window_chunk_quick(const channel_side *xs, const double xa2[16], const window_scratch *w, int j,
+                                       int lanes, const double nz[16], int use_max, double margin, window_chunk *c)
+{
+    const __m256d zero = _mm256_setzero_pd(), lower = _mm256_set1_pd(1.0 - 3e-6), absolute = _mm256_set1_pd(5e-15);
+    const __m256d mm = _mm256_set1_pd(margin);
+    const __m256d active = _mm256_castsi256_pd(
+        _mm256_cmpgt_epi64(_mm256_set1_epi64x(lanes), _mm256_setr_epi64x(0, 1, 2, 3)));
+    __m256d s = zero;
+    __m256i count = _mm256_setzero_si256();
+    int k = 0;
+    while (k < 16) {
+        __m256d lt = zero;
+        for (int g = 0; g < 4; ++g, ++k) {
+            __m256d m1x = _mm256_broadcast_sd(xs->m1 + k), m2x = _mm256_broadcast_sd(xs->m2 + k);
+            __m256d z = _mm256_broadcast_sd(nz + k);
+            __m256d b = _mm256_loadu_pd(&w->yt[0][k][j]), m1y = _mm256_loadu_pd(&w->yt[1][k][j]);
+            __m256d m2y = _mm256_loadu_pd(&w->yt[2][k][j]);
+            __m256d nz2 = _mm256_mul_pd(z, z);
+            __m256d lb = _mm256_min_pd(_mm256_add_pd(m2x, m1y), _mm256_add_pd(m1x, m2y));
+            lb = _mm256_min_pd(nz2, lb);
+            __m256d zz = _mm256_sub_pd(_mm256_broadcast_sd(xa2 + k), _mm256_mul_pd(b, b));
+            __m256d up = _mm256_cmp_pd(zz, zero, _CMP_GT_OQ);
+            __m256d dz = _mm256_sub_pd(_mm256_sqrt_pd(_mm256_and_pd(zz, up)), z);
+            __m256d c2 = _mm256_blendv_pd(nz2, _mm256_add_pd(_mm256_add_pd(m1x, m1y), _mm256_mul_pd(dz, dz)), up);
+            lb = _mm256_min_pd(c2, lb);
+            __m256d e = _mm256_max_pd(_mm256_sub_pd(_mm256_mul_pd(lb, lower), absolute), zero);
+            s = use_max ? _mm256_max_pd(e, s) : _mm256_add_pd(s, e);
+            _mm256_storeu_pd(c->prefix[k], s);
+            lt = _mm256_and_pd(_mm256_cmp_pd(s, mm, _CMP_LT_OQ), active);
+            count = _mm256_sub_epi64(count, _mm256_castpd_si256(lt));
+        }
+        if (!_mm256_movemask_pd(lt))
+            break; /* every lane has reached the margin */
+    }
+    long long below[4];
+    _mm256_storeu_si256((__m256i *)below, count);
+    for (int q = 0; q < 4; ++q)
+        c->below[q] = (int)below[q];
+    c->pixels = k;
+    c->margin = margin;
+}
+#endif
+
+/* window_quick's stop for lane q of c with budget margin (<= c->margin): the number of partial
+ * values below it (16: no stop). */
+static int window_chunk_below(const window_chunk *c, int q, double margin)
+{
+    if (same_bits(margin, c->margin))
+        return c->below[q];
+    int k = 0;
+    while (k < c->pixels && c->prefix[k][q] < margin)
+        ++k;
+    return k;
+}
+
 /* channel_side_init for the window search: no pixel points away (lt = 0), t the channel's
  * components in visiting order. */
 static void window_side_init(const double pal[8], const double t[16], channel_side *s)
@@ -2535,15 +2610,19 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
          * the pixels' visiting order, worst first (by the incumbent's per-pixel error) when rejecting
          * candidates, and the y sides' marks (each y side is computed when first needed), the x
          * side per x pair. */
-        int order[16], prepared = 0;
-        double nz[16], tord[2][16]; /* nz and the components in visiting order */
+        int order[16], prepared = 0, chunked = 0;
+        double nz[16], tord[2][16], xa2[16]; /* nz and the components in visiting order; 1 - x^2 */
         channel_side xside;
+        window_chunk chunk;
+#if SEARCH_AVX2
+        chunked = search_avx2(); /* the quick bound 4 y pairs at a time (window_chunk_quick) */
+#endif
         for (int i = 0; i < nx && ny > 0 && !bounded; ++i) {
             const window_entry *ex = &w->list[0][i];
             if (combine(ex->score, w->list[1][0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                 break;
             const double *a = pal[ex->pair];
-            int x_ready = 0;
+            int x_ready = 0, chunk_start = 0, chunk_end = 0;
             for (int j = 0; j < ny; ++j) {
                 const window_entry *ey = &w->list[1][j];
                 if (combine(ex->score, ey->score, use_max) * (1.0 - BOUND_SLACK) >= best)
@@ -2567,16 +2646,46 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                 }
                 if (!x_ready) {
                     window_side_init(a, tord[0], &xside);
+                    for (int k = 0; k < 16; ++k)
+                        xa2[k] = 1.0 - xside.v[k] * xside.v[k];
                     x_ready = 1;
                 }
                 const double *b = pal[ey->pair];
-                if (!w->ready[j]) {
-                    window_side_init(b, tord[1], &w->yside[j]);
-                    w->ready[j] = 1;
-                }
                 double margin = best * (1.0 + BOUND_SLACK);
-                if (window_quick(&xside, &w->yside[j], n, order, nz, use_max, margin, &work) >= margin)
-                    continue;
+                if (chunked) {
+#if SEARCH_AVX2
+                    if (j >= chunk_end) { /* the next candidates of this x pair under the incumbent */
+                        int lanes = 1;
+                        while (lanes < 4 && j + lanes < ny &&
+                               combine(ex->score, w->list[1][j + lanes].score, use_max) * (1.0 - BOUND_SLACK) < best)
+                            ++lanes;
+                        for (int q = j; q < j + lanes; ++q)
+                            if (!w->ready[q]) {
+                                window_side_init(pal[w->list[1][q].pair], tord[1], &w->yside[q]);
+                                for (int k = 0; k < 16; ++k) {
+                                    w->yt[0][k][q] = w->yside[q].v[k];
+                                    w->yt[1][k][q] = w->yside[q].m1[k];
+                                    w->yt[2][k][q] = w->yside[q].m2[k];
+                                }
+                                w->ready[q] = 1;
+                            }
+                        window_chunk_quick(&xside, xa2, w, j, lanes, nz, use_max, margin, &chunk);
+                        chunk_start = j;
+                        chunk_end = j + lanes;
+                    }
+#endif
+                    int below = window_chunk_below(&chunk, j - chunk_start, margin);
+                    work += (uint64_t)(below < 16 ? below + 1 : 16);
+                    if (below < 16)
+                        continue;
+                } else {
+                    if (!w->ready[j]) {
+                        window_side_init(b, tord[1], &w->yside[j]);
+                        w->ready[j] = 1;
+                    }
+                    if (window_quick(&xside, &w->yside[j], n, order, nz, use_max, margin, &work) >= margin)
+                        continue;
+                }
                 double v = INFINITY, angle[16];
                 if (joint_objective_checked(a, b, n, order, use_max, margin, best, &inc, &work, &v, cx, cy, angle) >=
                     margin)
@@ -2624,7 +2733,7 @@ static sol_status workspace_alloc(search_workspace *ws)
     ws->vset = NULL;
     ws->vtab = NULL;
     ws->vgen = 0;
-    ws->win = malloc(sizeof *ws->win);
+    ws->win = calloc(1, sizeof *ws->win); /* zeroed: window_scratch's padding columns */
     if (!ws->x || !ws->y || !ws->slots || !ws->win) {
         free(ws->x);
         free(ws->y);
