@@ -2216,10 +2216,12 @@ static void sort_window_entries(window_entry *list, int count)
  * pair whose score exceeds budget is left out (no candidate can use it): first when its two extreme
  * pixels (least and largest component) alone exceed it (most pairs of smooth blocks), else once the
  * score's partial sum (pixels in order, 4 at a time; the terms are >= 0, so the partial sums never
- * decrease) exceeds it. A pair kept has the full score, summed in pixel order. */
+ * decrease) exceeds it. A pair kept has the full score, summed in pixel order. (window_channel_scalar;
+ * window_channel_avx2 keeps the same pairs with the same scores by other early exits.) */
 #if SEARCH_AVX2
-/* m[q] = min_i (a_i - t_q)^2 for 4 targets (_mm256_min_pd(d, m) is d < m ? d : m). */
-static inline AVX2_FN void nearest4_avx2(const double a[8], const double t[4], double m[4])
+/* min_i (a_i - t_q)^2 for 4 targets t_q (_mm256_min_pd(d, m) is d < m ? d : m: the scalar loop's
+ * minimum, a minimum of the same values). */
+static inline AVX2_FN __m256d nearest4_avx2(const double a[8], const double t[4])
 {
     __m256d tp = _mm256_loadu_pd(t), d = _mm256_sub_pd(_mm256_set1_pd(a[0]), tp);
     __m256d mp = _mm256_mul_pd(d, d);
@@ -2227,67 +2229,37 @@ static inline AVX2_FN void nearest4_avx2(const double a[8], const double t[4], d
         d = _mm256_sub_pd(_mm256_set1_pd(a[i]), tp);
         mp = _mm256_min_pd(_mm256_mul_pd(d, d), mp);
     }
-    _mm256_storeu_pd(m, mp);
-}
-
-/* The least squared distances of palette a to targets u and v (*du, *dv): the scalar loop's minima
- * (a minimum of the same values, whatever the order). */
-static inline AVX2_FN void extreme_distances_avx2(const double a[8], double u, double v, double *du, double *dv)
-{
-    __m256d lo = _mm256_loadu_pd(a), hi = _mm256_loadu_pd(a + 4), tu = _mm256_set1_pd(u), tv = _mm256_set1_pd(v);
-    __m256d d0 = _mm256_sub_pd(lo, tu), d1 = _mm256_sub_pd(hi, tu), d2 = _mm256_sub_pd(lo, tv), d3 = _mm256_sub_pd(hi, tv);
-    __m256d mu = _mm256_min_pd(_mm256_mul_pd(d0, d0), _mm256_mul_pd(d1, d1));
-    __m256d mv = _mm256_min_pd(_mm256_mul_pd(d2, d2), _mm256_mul_pd(d3, d3));
-    __m256d x = _mm256_min_pd(_mm256_unpacklo_pd(mu, mv), _mm256_unpackhi_pd(mu, mv)); /* u0 v0 u2 v2 */
-    __m128d y = _mm_min_pd(_mm256_castpd256_pd128(x), _mm256_extractf128_pd(x, 1));
-    *du = _mm_cvtsd_f64(y);
-    *dv = _mm_cvtsd_f64(_mm_unpackhi_pd(y, y));
+    return mp;
 }
 #endif
 
-/* window_channel's loop, t the pixels' components, lo and hi its least and largest; avx2: use the
- * AVX2 helpers (inlined into window_channel_avx2). */
-static inline __attribute__((always_inline)) int window_channel_body(const double t[16], int lo, int hi,
-                                                                     const double (*pal)[8], int use_max, int e0_lo,
-                                                                     int e0_hi, int e1_lo, int e1_hi, double budget,
-                                                                     window_entry *list, int avx2)
+/* window_channel's scalar loop, t the pixels' components, lo and hi its least and largest. */
+static int window_channel_scalar(const double t[16], int lo, int hi, const double (*pal)[8], int use_max, int e0_lo,
+                                 int e0_hi, int e1_lo, int e1_hi, double budget, window_entry *list)
 {
     int count = 0;
-    (void)avx2;
     for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
         for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
             const double *a = pal[e0 << 8 | e1];
             double dlo = INFINITY, dhi = INFINITY;
-#if SEARCH_AVX2
-            if (avx2)
-                extreme_distances_avx2(a, t[lo], t[hi], &dlo, &dhi);
-            else
-#endif
-                for (int i = 0; i < 8; ++i) {
-                    double u = (a[i] - t[lo]) * (a[i] - t[lo]), v = (a[i] - t[hi]) * (a[i] - t[hi]);
-                    dlo = u < dlo ? u : dlo;
-                    dhi = v < dhi ? v : dhi;
-                }
+            for (int i = 0; i < 8; ++i) {
+                double u = (a[i] - t[lo]) * (a[i] - t[lo]), v = (a[i] - t[hi]) * (a[i] - t[hi]);
+                dlo = u < dlo ? u : dlo;
+                dhi = v < dhi ? v : dhi;
+            }
             if ((lo == hi ? dlo : combine(dlo, dhi, use_max)) > budget)
                 continue;
             double score = 0.0;
             int k = 0;
             for (; k < 16; k += 4) {
                 double m[4];
-#if SEARCH_AVX2
-                if (avx2)
-                    nearest4_avx2(a, t + k, m);
-                else
-#endif
-                {
-                    for (int q = 0; q < 4; ++q)
-                        m[q] = (a[0] - t[k + q]) * (a[0] - t[k + q]);
-                    for (int i = 1; i < 8; ++i)
-                        for (int q = 0; q < 4; ++q) {
-                            double d = (a[i] - t[k + q]) * (a[i] - t[k + q]);
-                            m[q] = d < m[q] ? d : m[q];
-                        }
-                }
+                for (int q = 0; q < 4; ++q)
+                    m[q] = (a[0] - t[k + q]) * (a[0] - t[k + q]);
+                for (int i = 1; i < 8; ++i)
+                    for (int q = 0; q < 4; ++q) {
+                        double d = (a[i] - t[k + q]) * (a[i] - t[k + q]);
+                        m[q] = d < m[q] ? d : m[q];
+                    }
                 for (int q = 0; q < 4; ++q)
                     score = fold_term(score, m[q], use_max);
                 if (score > budget)
@@ -2302,28 +2274,91 @@ static inline __attribute__((always_inline)) int window_channel_body(const doubl
 }
 
 #if SEARCH_AVX2
-static AVX2_FN int window_channel_avx2(const double t[16], int lo, int hi, const double (*pal)[8], int use_max,
+/* window_channel_scalar's list by other means (the same pairs, the same scores): a pair is kept iff its
+ * score (the terms summed in pixel order) is <= budget, as there (its early exits only drop pairs
+ * whose full score exceeds budget: the partial sums of non-negative terms never decrease, and a sum
+ * that includes the two extreme terms is at least their sum). Here the pixels are visited 4 at a
+ * time in the order `visit` (window_targets: the least and largest first), each pixel's term the
+ * same least squared distance (a minimum of the same values), without the separate extreme test;
+ * a pair is dropped once the visited terms' sum (added in the lanes' order, so rounded differently
+ * from the pixel-order sum, by a relative 16 * 2^-53 at most) lowered by a relative 1e-12 exceeds
+ * budget (the max metric: their max, exact, exceeds it). A pair left has its score summed in pixel
+ * order from its terms (fold_term, as window_channel_scalar) and is kept iff that is <= budget. */
+static AVX2_FN int window_channel_avx2(const double tv[16], const int visit[16], const double (*pal)[8], int use_max,
                                        int e0_lo, int e0_hi, int e1_lo, int e1_hi, double budget, window_entry *list)
 {
-    return window_channel_body(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list, 1);
+    int count = 0;
+    for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
+        for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
+            const double *a = pal[e0 << 8 | e1];
+            double m[16];
+            __m256d acc = _mm256_setzero_pd();
+            int k = 0;
+            for (; k < 16; k += 4) {
+                __m256d mk = nearest4_avx2(a, tv + k);
+                _mm256_storeu_pd(m + k, mk);
+                acc = use_max ? _mm256_max_pd(mk, acc) : _mm256_add_pd(acc, mk);
+                __m128d h = use_max ? _mm_max_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1))
+                                    : _mm_add_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1));
+                h = use_max ? _mm_max_sd(h, _mm_unpackhi_pd(h, h)) : _mm_add_sd(h, _mm_unpackhi_pd(h, h));
+                double part = _mm_cvtsd_f64(h);
+                if (use_max ? part > budget : part * (1.0 - 1e-12) > budget)
+                    break;
+            }
+            if (k < 16)
+                continue;
+            double score = 0.0, term[16];
+            for (int q = 0; q < 16; ++q)
+                term[visit[q]] = m[q];
+            for (int p = 0; p < 16; ++p)
+                score = fold_term(score, term[p], use_max);
+            if (score > budget)
+                continue;
+            list[count] = (window_entry){score, (uint16_t)(e0 << 8 | e1)};
+            ++count;
+        }
+    return count;
 }
 #endif
 
-static int window_channel(const double n[16][3], int c, const double (*pal)[8], int use_max, int e0_lo, int e0_hi,
-                          int e1_lo, int e1_hi, double budget, window_entry *list)
+/* One channel's pixel components for window_channel: t by pixel, lo and hi the first pixels of least
+ * and largest component; for window_channel_avx2 the visiting order (lo, hi, then the other pixels
+ * in pixel order: the extreme pixels first, as window_channel_scalar's extreme test) and the
+ * components in that order. */
+typedef struct window_targets {
+    double t[16], tv[16];
+    int visit[16], lo, hi;
+} window_targets;
+
+static void window_targets_init(const double n[16][3], int c, window_targets *wt)
 {
     int lo = 0, hi = 0;
-    double t[16];
     for (int p = 0; p < 16; ++p) {
-        t[p] = n[p][c];
-        lo = t[p] < t[lo] ? p : lo;
-        hi = t[p] > t[hi] ? p : hi;
+        wt->t[p] = n[p][c];
+        lo = wt->t[p] < wt->t[lo] ? p : lo;
+        hi = wt->t[p] > wt->t[hi] ? p : hi;
     }
+    wt->lo = lo;
+    wt->hi = hi;
+    int v = 0;
+    wt->visit[v++] = lo;
+    if (hi != lo)
+        wt->visit[v++] = hi;
+    for (int p = 0; p < 16; ++p)
+        if (p != lo && p != hi)
+            wt->visit[v++] = p;
+    for (int q = 0; q < 16; ++q)
+        wt->tv[q] = wt->t[wt->visit[q]];
+}
+
+static int window_channel(const window_targets *wt, const double (*pal)[8], int use_max, int e0_lo, int e0_hi,
+                          int e1_lo, int e1_hi, double budget, window_entry *list)
+{
 #if SEARCH_AVX2
     if (search_avx2())
-        return window_channel_avx2(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
+        return window_channel_avx2(wt->tv, wt->visit, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
 #endif
-    return window_channel_body(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list, 0);
+    return window_channel_scalar(wt->t, wt->lo, wt->hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
 }
 
 /* Keeps the entries of score <= budget (in order); returns the count. */
@@ -2564,26 +2599,29 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
          * the y pairs are scored again against the original budget: the same lists as scoring y
          * against room and filtering, without scoring most of the pairs the filter drops. */
         int ny = 0, y_final = 0;
+        window_targets wtx, wty;
+        window_targets_init(n, 0, &wtx);
+        window_targets_init(n, 1, &wty);
         if (!use_max) {
             window_entry bx;
-            window_channel(n, 0, pal, 0, base_x >> 8, base_x >> 8, base_x & 255, base_x & 255, INFINITY, &bx);
+            window_channel(&wtx, pal, 0, base_x >> 8, base_x >> 8, base_x & 255, base_x & 255, INFINITY, &bx);
             least_x = bx.score;
-            ny = window_channel(n, 1, pal, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi,
+            ny = window_channel(&wty, pal, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi,
                                 room - least_x * (1.0 - BOUND_SLACK), w->list[1]);
             y_final = ny > 0;
         }
         if (!y_final)
-            ny = window_channel(n, 1, pal, use_max, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi, room, w->list[1]);
+            ny = window_channel(&wty, pal, use_max, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi, room, w->list[1]);
         for (int k = 0; k < ny; ++k)
             least_y = w->list[1][k].score < least_y ? w->list[1][k].score : least_y;
-        int nx = window_channel(n, 0, pal, use_max, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi,
+        int nx = window_channel(&wtx, pal, use_max, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi,
                                 use_max ? room : room - least_y * (1.0 - BOUND_SLACK), w->list[0]);
         double guess_x = least_x;
         least_x = INFINITY;
         for (int k = 0; k < nx; ++k)
             least_x = w->list[0][k].score < least_x ? w->list[0][k].score : least_x;
         if (y_final && nx > 0 && value_bits(least_x) != value_bits(guess_x))
-            ny = window_channel(n, 1, pal, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi,
+            ny = window_channel(&wty, pal, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi,
                                 room - least_x * (1.0 - BOUND_SLACK), w->list[1]);
         /* a pair can only pair up under the incumbent if its score leaves room for the other channel's least */
         nx = window_filter(w->list[0], nx, use_max ? room : room - least_y * (1.0 - BOUND_SLACK));
