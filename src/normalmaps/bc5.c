@@ -2231,6 +2231,20 @@ static inline AVX2_FN __m256d nearest4_avx2(const double a[8], const double t[4]
     }
     return mp;
 }
+
+/* The least squared distances of palette a to targets u and v (*du, *dv): the scalar loop's minima
+ * (a minimum of the same values, whatever the order). */
+static inline AVX2_FN void extreme_distances_avx2(const double a[8], double u, double v, double *du, double *dv)
+{
+    __m256d lo = _mm256_loadu_pd(a), hi = _mm256_loadu_pd(a + 4), tu = _mm256_set1_pd(u), tv = _mm256_set1_pd(v);
+    __m256d d0 = _mm256_sub_pd(lo, tu), d1 = _mm256_sub_pd(hi, tu), d2 = _mm256_sub_pd(lo, tv), d3 = _mm256_sub_pd(hi, tv);
+    __m256d mu = _mm256_min_pd(_mm256_mul_pd(d0, d0), _mm256_mul_pd(d1, d1));
+    __m256d mv = _mm256_min_pd(_mm256_mul_pd(d2, d2), _mm256_mul_pd(d3, d3));
+    __m256d x = _mm256_min_pd(_mm256_unpacklo_pd(mu, mv), _mm256_unpackhi_pd(mu, mv)); /* u0 v0 u2 v2 */
+    __m128d y = _mm_min_pd(_mm256_castpd256_pd128(x), _mm256_extractf128_pd(x, 1));
+    *du = _mm_cvtsd_f64(y);
+    *dv = _mm_cvtsd_f64(_mm_unpackhi_pd(y, y));
+}
 #endif
 
 /* window_channel's scalar loop, t the pixels' components, lo and hi its least and largest. */
@@ -2274,16 +2288,17 @@ static int window_channel_scalar(const double t[16], int lo, int hi, const doubl
 }
 
 #if SEARCH_AVX2
-/* window_channel_scalar's list by other means (the same pairs, the same scores): a pair is kept iff its
- * score (the terms summed in pixel order) is <= budget, as there (its early exits only drop pairs
- * whose full score exceeds budget: the partial sums of non-negative terms never decrease, and a sum
- * that includes the two extreme terms is at least their sum). Here the pixels are visited 4 at a
- * time in the order `visit` (window_targets: the least and largest first), each pixel's term the
- * same least squared distance (a minimum of the same values), without the separate extreme test;
- * a pair is dropped once the visited terms' sum (added in the lanes' order, so rounded differently
- * from the pixel-order sum, by a relative 16 * 2^-53 at most) lowered by a relative 1e-12 exceeds
- * budget (the max metric: their max, exact, exceeds it). A pair left has its score summed in pixel
- * order from its terms (fold_term, as window_channel_scalar) and is kept iff that is <= budget. */
+/* window_channel_scalar's list by other means (the same pairs, the same scores): a pair is kept iff
+ * its score (the terms summed in pixel order) is <= budget, as there (its early exits only drop
+ * pairs whose full score exceeds budget: the partial sums of non-negative terms never decrease, and
+ * a sum that includes two pixels' terms is at least their sum). Here the pixels are visited in the
+ * order `visit` (window_targets: the least and largest first): first the two extreme pixels' terms
+ * (window_channel_scalar's extreme test), then 4 pixels at a time, each pixel's term the same least
+ * squared distance (a minimum of the same values); a pair is dropped once the visited terms' sum
+ * (added in the lanes' order, so rounded differently from the pixel-order sum, by a relative
+ * 16 * 2^-53 at most) lowered by a relative 1e-12 exceeds budget (the max metric: their max, exact,
+ * exceeds it). A pair left has its score summed in pixel order from its terms (fold_term, as
+ * window_channel_scalar) and is kept iff that is <= budget. */
 static AVX2_FN int window_channel_avx2(const double tv[16], const int visit[16], const double (*pal)[8], int use_max,
                                        int e0_lo, int e0_hi, int e1_lo, int e1_hi, double budget, window_entry *list)
 {
@@ -2291,7 +2306,10 @@ static AVX2_FN int window_channel_avx2(const double tv[16], const int visit[16],
     for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
         for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
             const double *a = pal[e0 << 8 | e1];
-            double m[16];
+            double m[16], dlo, dhi;
+            extreme_distances_avx2(a, tv[0], tv[1], &dlo, &dhi);
+            if (combine(dlo, dhi, use_max) > budget)
+                continue;
             __m256d acc = _mm256_setzero_pd();
             int k = 0;
             for (; k < 16; k += 4) {
@@ -2554,6 +2572,26 @@ static void window_order(const double err[16], int order[16])
     }
 }
 
+/* merge_equivalent's result (the first pair of each class, in list order): short lists (the
+ * window's, on nearly flat blocks, a few to a dozen pairs) compare each pair with the pairs kept so
+ * far (pair_key_equal: classes of an equality of keys, so a pair equal to no kept pair opens a class
+ * and one equal to a kept pair belongs to that pair's class), which costs less than hashing every
+ * pair's key over all its pixels: unequal pairs differ within the first pixels. */
+static int window_merge(window_entry *list, int count, const channel_key *k, const double (*pal)[8], uint32_t *slots)
+{
+    if (count > 16)
+        return (int)merge_equivalent(list, (size_t)count, k, pal, slots);
+    int kept = 0;
+    for (int i = 0; i < count; ++i) {
+        int dup = 0;
+        for (int q = 0; q < kept && !dup; ++q)
+            dup = pair_key_equal(k, pal[list[q].pair], pal[list[i].pair]);
+        if (!dup)
+            list[kept++] = list[i];
+    }
+    return kept;
+}
+
 /* Returns 0 (and leaves everything untouched) when the block needs search_unit (see above). */
 static int window_search(const double n[16][3], const sol_bc5_range *r, int base_x, int base_y,
                          const search_request *rq, search_workspace *ws, sol_bc5_block *out, sol_bc5_info *info)
@@ -2641,8 +2679,8 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
             channel_key kx, ky;
             channel_key_init(&kx, tx, 0, room);
             channel_key_init(&ky, ty, 0, room);
-            nx = (int)merge_equivalent(w->list[0], (size_t)nx, &kx, pal, ws->slots);
-            ny = (int)merge_equivalent(w->list[1], (size_t)ny, &ky, pal, ws->slots);
+            nx = window_merge(w->list[0], nx, &kx, pal, ws->slots);
+            ny = window_merge(w->list[1], ny, &ky, pal, ws->slots);
         }
         /* Set up when the first candidate needs it (most searched blocks of smooth maps have none):
          * the pixels' visiting order, worst first (by the incumbent's per-pixel error) when rejecting
