@@ -2299,8 +2299,10 @@ static int window_channel_scalar(const double t[16], int lo, int hi, const doubl
  * 16 * 2^-53 at most) lowered by a relative 1e-12 exceeds budget (the max metric: their max, exact,
  * exceeds it). A pair left has its score summed in pixel order from its terms (fold_term, as
  * window_channel_scalar) and is kept iff that is <= budget. */
-static AVX2_FN int window_channel_avx2(const double tv[16], const int visit[16], const double (*pal)[8], int use_max,
-                                       int e0_lo, int e0_hi, int e1_lo, int e1_hi, double budget, window_entry *list)
+static inline AVX2_FN __attribute__((always_inline)) int window_channel_avx2_body(const double tv[16], const int pos[16],
+                                                                          const double (*pal)[8], int use_max,
+                                                                          int e0_lo, int e0_hi, int e1_lo, int e1_hi,
+                                                                          double budget, window_entry *list)
 {
     int count = 0;
     for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
@@ -2325,17 +2327,24 @@ static AVX2_FN int window_channel_avx2(const double tv[16], const int visit[16],
             }
             if (k < 16)
                 continue;
-            double score = 0.0, term[16];
-            for (int q = 0; q < 16; ++q)
-                term[visit[q]] = m[q];
+            double score = 0.0;
             for (int p = 0; p < 16; ++p)
-                score = fold_term(score, term[p], use_max);
+                score = fold_term(score, m[pos[p]], use_max);
             if (score > budget)
                 continue;
             list[count] = (window_entry){score, (uint16_t)(e0 << 8 | e1)};
             ++count;
         }
     return count;
+}
+
+/* (pos[p]: pixel p's place in the visiting order; the body specialised for either metric) */
+static AVX2_FN int window_channel_avx2(const double tv[16], const int pos[16], const double (*pal)[8], int use_max,
+                                       int e0_lo, int e0_hi, int e1_lo, int e1_hi, double budget, window_entry *list)
+{
+    if (use_max)
+        return window_channel_avx2_body(tv, pos, pal, 1, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
+    return window_channel_avx2_body(tv, pos, pal, 0, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
 }
 #endif
 
@@ -2345,7 +2354,7 @@ static AVX2_FN int window_channel_avx2(const double tv[16], const int visit[16],
  * components in that order. */
 typedef struct window_targets {
     double t[16], tv[16];
-    int visit[16], lo, hi;
+    int visit[16], pos[16], lo, hi;
 } window_targets;
 
 static void window_targets_init(const double n[16][3], int c, window_targets *wt)
@@ -2365,8 +2374,10 @@ static void window_targets_init(const double n[16][3], int c, window_targets *wt
     for (int p = 0; p < 16; ++p)
         if (p != lo && p != hi)
             wt->visit[v++] = p;
-    for (int q = 0; q < 16; ++q)
+    for (int q = 0; q < 16; ++q) {
         wt->tv[q] = wt->t[wt->visit[q]];
+        wt->pos[wt->visit[q]] = q;
+    }
 }
 
 static int window_channel(const window_targets *wt, const double (*pal)[8], int use_max, int e0_lo, int e0_hi,
@@ -2374,7 +2385,7 @@ static int window_channel(const window_targets *wt, const double (*pal)[8], int 
 {
 #if SEARCH_AVX2
     if (search_avx2())
-        return window_channel_avx2(wt->tv, wt->visit, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
+        return window_channel_avx2(wt->tv, wt->pos, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
 #endif
     return window_channel_scalar(wt->t, wt->lo, wt->hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
 }
@@ -2576,11 +2587,26 @@ static void window_order(const double err[16], int order[16])
  * window's, on nearly flat blocks, a few to a dozen pairs) compare each pair with the pairs kept so
  * far (pair_key_equal: classes of an equality of keys, so a pair equal to no kept pair opens a class
  * and one equal to a kept pair belongs to that pair's class), which costs less than hashing every
- * pair's key over all its pixels: unequal pairs differ within the first pixels. */
+ * pair's key over all its pixels: unequal pairs differ within the first pixels. Longer lists go
+ * through merge_classes as merge_equivalent does, with a hash of the seed values alone: any hash
+ * that gives equal keys equal values finds the same classes (merge_classes compares every pair
+ * met in the probe sequence with pair_key_equal), and the seeds cost a fraction of the usable
+ * entries' hashing. */
+static uint64_t window_key_hash(void *ctx, const double pal[8])
+{
+    const channel_key *k = ctx;
+    uint64_t h = 0;
+    for (int p = 0; p < k->count; ++p)
+        h = mix64(h, value_bits(pal[seed_entry(pal, k->t[p])]));
+    return h;
+}
+
 static int window_merge(window_entry *list, int count, const channel_key *k, const double (*pal)[8], uint32_t *slots)
 {
-    if (count > 16)
-        return (int)merge_equivalent(list, (size_t)count, k, pal, slots);
+    if (count > 16) { /* hashed by the seeds alone (a part of the key: equal keys, equal hashes) */
+        const pair_classes pc = {window_key_hash, key_equal_fn, (void *)k, NULL};
+        return (int)merge_classes(list, (size_t)count, pal, &pc, slots);
+    }
     int kept = 0;
     for (int i = 0; i < count; ++i) {
         int dup = 0;
@@ -2593,7 +2619,7 @@ static int window_merge(window_entry *list, int count, const channel_key *k, con
 }
 
 /* Returns 0 (and leaves everything untouched) when the block needs search_unit (see above). */
-static int window_search(const double n[16][3], const sol_bc5_range *r, int base_x, int base_y,
+static int window_search(const double n[16][3], const sol_bc5_range *r, int base_x, int base_y, int base_least,
                          const search_request *rq, search_workspace *ws, sol_bc5_block *out, sol_bc5_info *info)
 {
     if (r->x0_hi - r->x0_lo > 2 * WINDOW_PATH_MAX || r->x1_hi - r->x1_lo > 2 * WINDOW_PATH_MAX ||
@@ -2635,12 +2661,14 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
          * sx, and their least is the least y score whenever any is kept (that pair scores within
          * every budget a y pair is kept in). Where least_x turns out below sx, or no y pair is kept,
          * the y pairs are scored again against the original budget: the same lists as scoring y
-         * against room and filtering, without scoring most of the pairs the filter drops. */
+         * against room and filtering, without scoring most of the pairs the filter drops. Only
+         * where the base is likely the least x pair (base_least: the common base, least squares
+         * per channel); around the fast base's anchors least_x is nearly always below sx. */
         int ny = 0, y_final = 0;
         window_targets wtx, wty;
         window_targets_init(n, 0, &wtx);
         window_targets_init(n, 1, &wty);
-        if (!use_max) {
+        if (!use_max && base_least) {
             window_entry bx;
             window_channel(&wtx, pal, 0, base_x >> 8, base_x >> 8, base_x & 255, base_x & 255, INFINITY, &bx);
             least_x = bx.score;
@@ -2946,7 +2974,8 @@ static void encode_unit(const double n[16][3], const double t[3][16], const sol_
                        clamp_code(base.x.e1 + w), clamp_code(base.y.e0 - w), clamp_code(base.y.e0 + w),
                        clamp_code(base.y.e1 - w), clamp_code(base.y.e1 + w)};
     search_request rq = {&r, o->precision, use_max, work_limit(o)};
-    if (!window_search(n, &r, base.x.e0 << 8 | base.x.e1, base.y.e0 << 8 | base.y.e1, &rq, ws, out, info))
+    if (!window_search(n, &r, base.x.e0 << 8 | base.x.e1, base.y.e0 << 8 | base.y.e1, o->base != SOL_BC5_BASE_FAST,
+                       &rq, ws, out, info))
         search_unit(n, &rq, ws, out, info);
 }
 
