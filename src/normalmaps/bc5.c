@@ -2233,6 +2233,9 @@ struct window_scratch {
     window_entry list[2][WINDOW_PAIRS];
     channel_side yside[WINDOW_PAIRS];    /* the sorted y list's channel sides, */
     unsigned char ready[WINDOW_PAIRS];   /* each computed when first needed */
+    /* the y sides' v, m1, m2 by pixel, then position in the y list (window_chunk_quick's lanes); 4
+     * columns of padding read by its unused lanes (zeroed at allocation, so always defined) */
+    double yt[3][16][WINDOW_PAIRS + 4];
 };
 
 /* Sorts by increasing (score, pair): insertion sort, the lists are short (<= WINDOW_PAIRS). */
@@ -2253,10 +2256,12 @@ static void sort_window_entries(window_entry *list, int count)
  * pair whose score exceeds budget is left out (no candidate can use it): first when its two extreme
  * pixels (least and largest component) alone exceed it (most pairs of smooth blocks), else once the
  * score's partial sum (pixels in order, 4 at a time; the terms are >= 0, so the partial sums never
- * decrease) exceeds it. A pair kept has the full score, summed in pixel order. */
+ * decrease) exceeds it. A pair kept has the full score, summed in pixel order. (window_channel_scalar;
+ * window_channel_avx2 keeps the same pairs with the same scores by other early exits.) */
 #if SEARCH_AVX2
-/* m[q] = min_i (a_i - t_q)^2 for 4 targets (_mm256_min_pd(d, m) is d < m ? d : m). */
-static inline AVX2_FN void nearest4_avx2(const double a[8], const double t[4], double m[4])
+/* min_i (a_i - t_q)^2 for 4 targets t_q (_mm256_min_pd(d, m) is d < m ? d : m: the scalar loop's
+ * minimum, a minimum of the same values). */
+static inline AVX2_FN __m256d nearest4_avx2(const double a[8], const double t[4])
 {
     __m256d tp = _mm256_loadu_pd(t), d = _mm256_sub_pd(_mm256_set1_pd(a[0]), tp);
     __m256d mp = _mm256_mul_pd(d, d);
@@ -2264,7 +2269,7 @@ static inline AVX2_FN void nearest4_avx2(const double a[8], const double t[4], d
         d = _mm256_sub_pd(_mm256_set1_pd(a[i]), tp);
         mp = _mm256_min_pd(_mm256_mul_pd(d, d), mp);
     }
-    _mm256_storeu_pd(m, mp);
+    return mp;
 }
 
 /* The least squared distances of palette a to targets u and v (*du, *dv): the scalar loop's minima
@@ -2282,49 +2287,33 @@ static inline AVX2_FN void extreme_distances_avx2(const double a[8], double u, d
 }
 #endif
 
-/* window_channel's loop, t the pixels' components, lo and hi its least and largest; avx2: use the
- * AVX2 helpers (inlined into window_channel_avx2). */
-static inline __attribute__((always_inline)) int window_channel_body(const double t[16], int lo, int hi,
-                                                                     const double (*pal)[8], int use_max, int e0_lo,
-                                                                     int e0_hi, int e1_lo, int e1_hi, double budget,
-                                                                     window_entry *list, int avx2)
+/* window_channel's scalar loop, t the pixels' components, lo and hi its least and largest. */
+static int window_channel_scalar(const double t[16], int lo, int hi, const double (*pal)[8], int use_max, int e0_lo,
+                                 int e0_hi, int e1_lo, int e1_hi, double budget, window_entry *list)
 {
     int count = 0;
-    (void)avx2;
     for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
         for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
             const double *a = pal[e0 << 8 | e1];
             double dlo = INFINITY, dhi = INFINITY;
-#if SEARCH_AVX2
-            if (avx2)
-                extreme_distances_avx2(a, t[lo], t[hi], &dlo, &dhi);
-            else
-#endif
-                for (int i = 0; i < 8; ++i) {
-                    double u = (a[i] - t[lo]) * (a[i] - t[lo]), v = (a[i] - t[hi]) * (a[i] - t[hi]);
-                    dlo = u < dlo ? u : dlo;
-                    dhi = v < dhi ? v : dhi;
-                }
+            for (int i = 0; i < 8; ++i) {
+                double u = (a[i] - t[lo]) * (a[i] - t[lo]), v = (a[i] - t[hi]) * (a[i] - t[hi]);
+                dlo = u < dlo ? u : dlo;
+                dhi = v < dhi ? v : dhi;
+            }
             if ((lo == hi ? dlo : combine(dlo, dhi, use_max)) > budget)
                 continue;
             double score = 0.0;
             int k = 0;
             for (; k < 16; k += 4) {
                 double m[4];
-#if SEARCH_AVX2
-                if (avx2)
-                    nearest4_avx2(a, t + k, m);
-                else
-#endif
-                {
-                    for (int q = 0; q < 4; ++q)
-                        m[q] = (a[0] - t[k + q]) * (a[0] - t[k + q]);
-                    for (int i = 1; i < 8; ++i)
-                        for (int q = 0; q < 4; ++q) {
-                            double d = (a[i] - t[k + q]) * (a[i] - t[k + q]);
-                            m[q] = d < m[q] ? d : m[q];
-                        }
-                }
+                for (int q = 0; q < 4; ++q)
+                    m[q] = (a[0] - t[k + q]) * (a[0] - t[k + q]);
+                for (int i = 1; i < 8; ++i)
+                    for (int q = 0; q < 4; ++q) {
+                        double d = (a[i] - t[k + q]) * (a[i] - t[k + q]);
+                        m[q] = d < m[q] ? d : m[q];
+                    }
                 for (int q = 0; q < 4; ++q)
                     score = fold_term(score, m[q], use_max);
                 if (score > budget)
@@ -2339,28 +2328,106 @@ static inline __attribute__((always_inline)) int window_channel_body(const doubl
 }
 
 #if SEARCH_AVX2
-static AVX2_FN int window_channel_avx2(const double t[16], int lo, int hi, const double (*pal)[8], int use_max,
+/* window_channel_scalar's list by other means (the same pairs, the same scores): a pair is kept iff
+ * its score (the terms summed in pixel order) is <= budget, as there (its early exits only drop
+ * pairs whose full score exceeds budget: the partial sums of non-negative terms never decrease, and
+ * a sum that includes two pixels' terms is at least their sum). Here the pixels are visited in the
+ * order `visit` (window_targets: the least and largest first): first the two extreme pixels' terms
+ * (window_channel_scalar's extreme test), then 4 pixels at a time, each pixel's term the same least
+ * squared distance (a minimum of the same values); a pair is dropped once the visited terms' sum
+ * (added in the lanes' order, so rounded differently from the pixel-order sum, by a relative
+ * 16 * 2^-53 at most) lowered by a relative 1e-12 exceeds budget (the max metric: their max, exact,
+ * exceeds it). A pair left has its score summed in pixel order from its terms (fold_term, as
+ * window_channel_scalar) and is kept iff that is <= budget. */
+static inline AVX2_FN __attribute__((always_inline)) int window_channel_avx2_body(const double tv[16], const int pos[16],
+                                                                          const double (*pal)[8], int use_max,
+                                                                          int e0_lo, int e0_hi, int e1_lo, int e1_hi,
+                                                                          double budget, window_entry *list)
+{
+    int count = 0;
+    for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
+        for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
+            const double *a = pal[e0 << 8 | e1];
+            double m[16], dlo, dhi;
+            extreme_distances_avx2(a, tv[0], tv[1], &dlo, &dhi);
+            if (combine(dlo, dhi, use_max) > budget)
+                continue;
+            __m256d acc = _mm256_setzero_pd();
+            int k = 0;
+            for (; k < 16; k += 4) {
+                __m256d mk = nearest4_avx2(a, tv + k);
+                _mm256_storeu_pd(m + k, mk);
+                acc = use_max ? _mm256_max_pd(mk, acc) : _mm256_add_pd(acc, mk);
+                __m128d h = use_max ? _mm_max_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1))
+                                    : _mm_add_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1));
+                h = use_max ? _mm_max_sd(h, _mm_unpackhi_pd(h, h)) : _mm_add_sd(h, _mm_unpackhi_pd(h, h));
+                double part = _mm_cvtsd_f64(h);
+                if (use_max ? part > budget : part * (1.0 - 1e-12) > budget)
+                    break;
+            }
+            if (k < 16)
+                continue;
+            double score = 0.0;
+            for (int p = 0; p < 16; ++p)
+                score = fold_term(score, m[pos[p]], use_max);
+            if (score > budget)
+                continue;
+            list[count] = (window_entry){score, (uint16_t)(e0 << 8 | e1)};
+            ++count;
+        }
+    return count;
+}
+
+/* (pos[p]: pixel p's place in the visiting order; the body specialised for either metric) */
+static AVX2_FN int window_channel_avx2(const double tv[16], const int pos[16], const double (*pal)[8], int use_max,
                                        int e0_lo, int e0_hi, int e1_lo, int e1_hi, double budget, window_entry *list)
 {
-    return window_channel_body(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list, 1);
+    if (use_max)
+        return window_channel_avx2_body(tv, pos, pal, 1, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
+    return window_channel_avx2_body(tv, pos, pal, 0, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
 }
 #endif
 
-static int window_channel(const double n[16][3], int c, const double (*pal)[8], int use_max, int e0_lo, int e0_hi,
-                          int e1_lo, int e1_hi, double budget, window_entry *list)
+/* One channel's pixel components for window_channel: t by pixel, lo and hi the first pixels of least
+ * and largest component; for window_channel_avx2 the visiting order (lo, hi, then the other pixels
+ * in pixel order: the extreme pixels first, as window_channel_scalar's extreme test) and the
+ * components in that order. */
+typedef struct window_targets {
+    double t[16], tv[16];
+    int visit[16], pos[16], lo, hi;
+} window_targets;
+
+static void window_targets_init(const double n[16][3], int c, window_targets *wt)
 {
     int lo = 0, hi = 0;
-    double t[16];
     for (int p = 0; p < 16; ++p) {
-        t[p] = n[p][c];
-        lo = t[p] < t[lo] ? p : lo;
-        hi = t[p] > t[hi] ? p : hi;
+        wt->t[p] = n[p][c];
+        lo = wt->t[p] < wt->t[lo] ? p : lo;
+        hi = wt->t[p] > wt->t[hi] ? p : hi;
     }
+    wt->lo = lo;
+    wt->hi = hi;
+    int v = 0;
+    wt->visit[v++] = lo;
+    if (hi != lo)
+        wt->visit[v++] = hi;
+    for (int p = 0; p < 16; ++p)
+        if (p != lo && p != hi)
+            wt->visit[v++] = p;
+    for (int q = 0; q < 16; ++q) {
+        wt->tv[q] = wt->t[wt->visit[q]];
+        wt->pos[wt->visit[q]] = q;
+    }
+}
+
+static int window_channel(const window_targets *wt, const double (*pal)[8], int use_max, int e0_lo, int e0_hi,
+                          int e1_lo, int e1_hi, double budget, window_entry *list)
+{
 #if SEARCH_AVX2
     if (search_avx2())
-        return window_channel_avx2(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
+        return window_channel_avx2(wt->tv, wt->pos, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
 #endif
-    return window_channel_body(t, lo, hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list, 0);
+    return window_channel_scalar(wt->t, wt->lo, wt->hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
 }
 
 /* Keeps the entries of score <= budget (in order); returns the count. */
@@ -2457,6 +2524,78 @@ static double window_quick(const channel_side *xs, const channel_side *ys, const
     return joint_objective_quick(xs, ys, n, order, away_off, use_max, budget, work);
 }
 
+/* The quick bound of up to 4 consecutive candidates of one x pair (y list positions j..j+lanes-1)
+ * at once, one per lane, pixel by pixel: the same terms as window_quick (quick_tight4's operations
+ * on the same values, 1 - a^2 computed once per pixel of the x side, as the scalar 1.0 - a * a
+ * gives the same bits) folded in the same order, so every lane's partial value after each pixel is
+ * bit for bit the one window_quick reaches there. The partial values never decrease (the terms are
+ * >= 0), so window_quick with budget M stops at pixel count(M) (the number of partial values below
+ * M; 16: it does not stop): below[q] for the margin given, kept in prefix for a lower margin (an
+ * improved incumbent within the chunk; margins only decrease). Pixels are computed until every lane
+ * has reached the margin (the later partial values are then above any lower margin's stop too). */
+typedef struct window_chunk {
+    double prefix[16][4]; /* partial values by pixel and lane */
+    double margin;        /* the margin of below */
+    int below[4];         /* partial values below margin, per lane */
+    int pixels;           /* pixels computed */
+} window_chunk;
+
+#if SEARCH_AVX2
+static AVX2_FN void window_chunk_quick(const channel_side *xs, const double xa2[16], const window_scratch *w, int j,
+                                       int lanes, const double nz[16], int use_max, double margin, window_chunk *c)
+{
+    const __m256d zero = _mm256_setzero_pd(), lower = _mm256_set1_pd(1.0 - 3e-6), absolute = _mm256_set1_pd(5e-15);
+    const __m256d mm = _mm256_set1_pd(margin);
+    const __m256d active = _mm256_castsi256_pd(
+        _mm256_cmpgt_epi64(_mm256_set1_epi64x(lanes), _mm256_setr_epi64x(0, 1, 2, 3)));
+    __m256d s = zero;
+    __m256i count = _mm256_setzero_si256();
+    int k = 0;
+    while (k < 16) {
+        __m256d lt = zero;
+        for (int g = 0; g < 4; ++g, ++k) {
+            __m256d m1x = _mm256_broadcast_sd(xs->m1 + k), m2x = _mm256_broadcast_sd(xs->m2 + k);
+            __m256d z = _mm256_broadcast_sd(nz + k);
+            __m256d b = _mm256_loadu_pd(&w->yt[0][k][j]), m1y = _mm256_loadu_pd(&w->yt[1][k][j]);
+            __m256d m2y = _mm256_loadu_pd(&w->yt[2][k][j]);
+            __m256d nz2 = _mm256_mul_pd(z, z);
+            __m256d lb = _mm256_min_pd(_mm256_add_pd(m2x, m1y), _mm256_add_pd(m1x, m2y));
+            lb = _mm256_min_pd(nz2, lb);
+            __m256d zz = _mm256_sub_pd(_mm256_broadcast_sd(xa2 + k), _mm256_mul_pd(b, b));
+            __m256d up = _mm256_cmp_pd(zz, zero, _CMP_GT_OQ);
+            __m256d dz = _mm256_sub_pd(_mm256_sqrt_pd(_mm256_and_pd(zz, up)), z);
+            __m256d c2 = _mm256_blendv_pd(nz2, _mm256_add_pd(_mm256_add_pd(m1x, m1y), _mm256_mul_pd(dz, dz)), up);
+            lb = _mm256_min_pd(c2, lb);
+            __m256d e = _mm256_max_pd(_mm256_sub_pd(_mm256_mul_pd(lb, lower), absolute), zero);
+            s = use_max ? _mm256_max_pd(e, s) : _mm256_add_pd(s, e);
+            _mm256_storeu_pd(c->prefix[k], s);
+            lt = _mm256_and_pd(_mm256_cmp_pd(s, mm, _CMP_LT_OQ), active);
+            count = _mm256_sub_epi64(count, _mm256_castpd_si256(lt));
+        }
+        if (!_mm256_movemask_pd(lt))
+            break; /* every lane has reached the margin */
+    }
+    long long below[4];
+    _mm256_storeu_si256((__m256i *)below, count);
+    for (int q = 0; q < 4; ++q)
+        c->below[q] = (int)below[q];
+    c->pixels = k;
+    c->margin = margin;
+}
+#endif
+
+/* window_quick's stop for lane q of c with budget margin (<= c->margin): the number of partial
+ * values below it (16: no stop). */
+static int window_chunk_below(const window_chunk *c, int q, double margin)
+{
+    if (same_bits(margin, c->margin))
+        return c->below[q];
+    int k = 0;
+    while (k < c->pixels && c->prefix[k][q] < margin)
+        ++k;
+    return k;
+}
+
 /* channel_side_init for the window search: no pixel points away (lt = 0), t the channel's
  * components in visiting order. */
 static void window_side_init(const double pal[8], const double t[16], channel_side *s)
@@ -2484,8 +2623,43 @@ static void window_order(const double err[16], int order[16])
     }
 }
 
+/* merge_equivalent's result (the first pair of each class, in list order): short lists (the
+ * window's, on nearly flat blocks, a few to a dozen pairs) compare each pair with the pairs kept so
+ * far (pair_key_equal: classes of an equality of keys, so a pair equal to no kept pair opens a class
+ * and one equal to a kept pair belongs to that pair's class), which costs less than hashing every
+ * pair's key over all its pixels: unequal pairs differ within the first pixels. Longer lists go
+ * through merge_classes as merge_equivalent does, with a hash of the seed values alone: any hash
+ * that gives equal keys equal values finds the same classes (merge_classes compares every pair
+ * met in the probe sequence with pair_key_equal), and the seeds cost a fraction of the usable
+ * entries' hashing. */
+static uint64_t window_key_hash(void *ctx, const double pal[8])
+{
+    const channel_key *k = ctx;
+    uint64_t h = 0;
+    for (int p = 0; p < k->count; ++p)
+        h = mix64(h, value_bits(pal[seed_entry(pal, k->t[p])]));
+    return h;
+}
+
+static int window_merge(window_entry *list, int count, const channel_key *k, const double (*pal)[8], uint32_t *slots)
+{
+    if (count > 16) { /* hashed by the seeds alone (a part of the key: equal keys, equal hashes) */
+        const pair_classes pc = {window_key_hash, key_equal_fn, (void *)k, NULL};
+        return (int)merge_classes(list, (size_t)count, pal, &pc, slots);
+    }
+    int kept = 0;
+    for (int i = 0; i < count; ++i) {
+        int dup = 0;
+        for (int q = 0; q < kept && !dup; ++q)
+            dup = pair_key_equal(k, pal[list[q].pair], pal[list[i].pair]);
+        if (!dup)
+            list[kept++] = list[i];
+    }
+    return kept;
+}
+
 /* Returns 0 (and leaves everything untouched) when the block needs search_unit (see above). */
-static int window_search(const double n[16][3], const sol_bc5_range *r, int base_x, int base_y,
+static int window_search(const double n[16][3], const sol_bc5_range *r, int base_x, int base_y, int base_least,
                          const search_request *rq, search_workspace *ws, sol_bc5_block *out, sol_bc5_info *info)
 {
     if (r->x0_hi - r->x0_lo > 2 * WINDOW_PATH_MAX || r->x1_hi - r->x1_lo > 2 * WINDOW_PATH_MAX ||
@@ -2518,14 +2692,43 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
         double least_x = INFINITY, least_y = INFINITY, room = best * (1.0 + BOUND_SLACK);
         /* y first: an x pair above room - least_y (sum metric) is dropped by the filter below, so
          * window_channel leaves it out at once. If the pair of least x score is left out, no x pair
-         * passes the filter and there is no candidate, whatever least_x then is. */
-        int ny = window_channel(n, 1, pal, use_max, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi, room, w->list[1]);
+         * passes the filter and there is no candidate, whatever least_x then is.
+         * The y pairs kept in the end are those within room - least_x (sum metric), least_x the
+         * least x score, which is at most the base x pair's score sx (the base is in the window; if
+         * the base pair is filtered out, every x pair kept scores below it). So the y pairs are
+         * first scored against room - sx (with the base's common anchors, usually the least x pair
+         * itself): scores within that budget are the ones room - least_x keeps whenever least_x is
+         * sx, and their least is the least y score whenever any is kept (that pair scores within
+         * every budget a y pair is kept in). Where least_x turns out below sx, or no y pair is kept,
+         * the y pairs are scored again against the original budget: the same lists as scoring y
+         * against room and filtering, without scoring most of the pairs the filter drops. Only
+         * where the base is likely the least x pair (base_least: the common base, least squares
+         * per channel); around the fast base's anchors least_x is nearly always below sx. */
+        int ny = 0, y_final = 0;
+        window_targets wtx, wty;
+        window_targets_init(n, 0, &wtx);
+        window_targets_init(n, 1, &wty);
+        if (!use_max && base_least) {
+            window_entry bx;
+            window_channel(&wtx, pal, 0, base_x >> 8, base_x >> 8, base_x & 255, base_x & 255, INFINITY, &bx);
+            least_x = bx.score;
+            ny = window_channel(&wty, pal, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi,
+                                room - least_x * (1.0 - BOUND_SLACK), w->list[1]);
+            y_final = ny > 0;
+        }
+        if (!y_final)
+            ny = window_channel(&wty, pal, use_max, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi, room, w->list[1]);
         for (int k = 0; k < ny; ++k)
             least_y = w->list[1][k].score < least_y ? w->list[1][k].score : least_y;
-        int nx = window_channel(n, 0, pal, use_max, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi,
+        int nx = window_channel(&wtx, pal, use_max, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi,
                                 use_max ? room : room - least_y * (1.0 - BOUND_SLACK), w->list[0]);
+        double guess_x = least_x;
+        least_x = INFINITY;
         for (int k = 0; k < nx; ++k)
             least_x = w->list[0][k].score < least_x ? w->list[0][k].score : least_x;
+        if (y_final && nx > 0 && value_bits(least_x) != value_bits(guess_x))
+            ny = window_channel(&wty, pal, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi,
+                                room - least_x * (1.0 - BOUND_SLACK), w->list[1]);
         /* a pair can only pair up under the incumbent if its score leaves room for the other channel's least */
         nx = window_filter(w->list[0], nx, use_max ? room : room - least_y * (1.0 - BOUND_SLACK));
         ny = window_filter(w->list[1], ny, use_max ? room : room - least_x * (1.0 - BOUND_SLACK));
@@ -2544,22 +2747,26 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
             channel_key kx, ky;
             channel_key_init(&kx, tx, 0, room);
             channel_key_init(&ky, ty, 0, room);
-            nx = (int)merge_equivalent(w->list[0], (size_t)nx, &kx, pal, ws->slots);
-            ny = (int)merge_equivalent(w->list[1], (size_t)ny, &ky, pal, ws->slots);
+            nx = window_merge(w->list[0], nx, &kx, pal, ws->slots);
+            ny = window_merge(w->list[1], ny, &ky, pal, ws->slots);
         }
         /* Set up when the first candidate needs it (most searched blocks of smooth maps have none):
          * the pixels' visiting order, worst first (by the incumbent's per-pixel error) when rejecting
          * candidates, and the y sides' marks (each y side is computed when first needed), the x
          * side per x pair. */
-        int order[16], prepared = 0;
-        double nz[16], tord[2][16]; /* nz and the components in visiting order */
+        int order[16], prepared = 0, chunked = 0;
+        double nz[16], tord[2][16], xa2[16]; /* nz and the components in visiting order; 1 - x^2 */
         channel_side xside;
+        window_chunk chunk;
+#if SEARCH_AVX2
+        chunked = search_avx2(); /* the quick bound 4 y pairs at a time (window_chunk_quick) */
+#endif
         for (int i = 0; i < nx && ny > 0 && !bounded; ++i) {
             const window_entry *ex = &w->list[0][i];
             if (combine(ex->score, w->list[1][0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                 break;
             const double *a = pal[ex->pair];
-            int x_ready = 0;
+            int x_ready = 0, chunk_start = 0, chunk_end = 0;
             for (int j = 0; j < ny; ++j) {
                 const window_entry *ey = &w->list[1][j];
                 if (combine(ex->score, ey->score, use_max) * (1.0 - BOUND_SLACK) >= best)
@@ -2583,16 +2790,46 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                 }
                 if (!x_ready) {
                     window_side_init(a, tord[0], &xside);
+                    for (int k = 0; k < 16; ++k)
+                        xa2[k] = 1.0 - xside.v[k] * xside.v[k];
                     x_ready = 1;
                 }
                 const double *b = pal[ey->pair];
-                if (!w->ready[j]) {
-                    window_side_init(b, tord[1], &w->yside[j]);
-                    w->ready[j] = 1;
-                }
                 double margin = best * (1.0 + BOUND_SLACK);
-                if (window_quick(&xside, &w->yside[j], n, order, nz, use_max, margin, &work) >= margin)
-                    continue;
+                if (chunked) {
+#if SEARCH_AVX2
+                    if (j >= chunk_end) { /* the next candidates of this x pair under the incumbent */
+                        int lanes = 1;
+                        while (lanes < 4 && j + lanes < ny &&
+                               combine(ex->score, w->list[1][j + lanes].score, use_max) * (1.0 - BOUND_SLACK) < best)
+                            ++lanes;
+                        for (int q = j; q < j + lanes; ++q)
+                            if (!w->ready[q]) {
+                                window_side_init(pal[w->list[1][q].pair], tord[1], &w->yside[q]);
+                                for (int k = 0; k < 16; ++k) {
+                                    w->yt[0][k][q] = w->yside[q].v[k];
+                                    w->yt[1][k][q] = w->yside[q].m1[k];
+                                    w->yt[2][k][q] = w->yside[q].m2[k];
+                                }
+                                w->ready[q] = 1;
+                            }
+                        window_chunk_quick(&xside, xa2, w, j, lanes, nz, use_max, margin, &chunk);
+                        chunk_start = j;
+                        chunk_end = j + lanes;
+                    }
+#endif
+                    int below = window_chunk_below(&chunk, j - chunk_start, margin);
+                    work += (uint64_t)(below < 16 ? below + 1 : 16);
+                    if (below < 16)
+                        continue;
+                } else {
+                    if (!w->ready[j]) {
+                        window_side_init(b, tord[1], &w->yside[j]);
+                        w->ready[j] = 1;
+                    }
+                    if (window_quick(&xside, &w->yside[j], n, order, nz, use_max, margin, &work) >= margin)
+                        continue;
+                }
                 double v = INFINITY, angle[16];
                 if (joint_objective_checked(a, b, n, order, use_max, margin, best, &inc, &work, &v, cx, cy, angle) >=
                     margin)
@@ -2641,7 +2878,7 @@ static sol_status workspace_alloc(search_workspace *ws)
     ws->vtab = NULL;
     ws->couple = NULL;
     ws->vgen = 0;
-    ws->win = malloc(sizeof *ws->win);
+    ws->win = calloc(1, sizeof *ws->win); /* zeroed: window_scratch's padding columns */
     if (!ws->x || !ws->y || !ws->slots || !ws->win) {
         free(ws->x);
         free(ws->y);
@@ -2779,7 +3016,8 @@ static void encode_unit(const double n[16][3], const double t[3][16], const sol_
                        clamp_code(base.x.e1 + w), clamp_code(base.y.e0 - w), clamp_code(base.y.e0 + w),
                        clamp_code(base.y.e1 - w), clamp_code(base.y.e1 + w)};
     search_request rq = {&r, o->precision, use_max, work_limit(o)};
-    if (!window_search(n, &r, base.x.e0 << 8 | base.x.e1, base.y.e0 << 8 | base.y.e1, &rq, ws, out, info))
+    if (!window_search(n, &r, base.x.e0 << 8 | base.x.e1, base.y.e0 << 8 | base.y.e1, o->base != SOL_BC5_BASE_FAST,
+                       &rq, ws, out, info))
         search_unit(n, &rq, ws, out, info);
 }
 
