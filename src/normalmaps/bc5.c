@@ -1520,6 +1520,141 @@ static int equal_block_solve(const double n[16][3], const sol_nm_pair *xl, size_
     return 1;
 }
 
+/* ---- blocks of 16 equal normals on the full range, decided by their values (issue 13) ----
+ *
+ * Every pixel picks the same decode, and on the full range every value v of the index of distinct
+ * palette entries (bc4_entries.c) is an entry of some x pair and of some y pair, so e* = the least
+ * decoded_angle(a, b) over every value pair (a, b) bounds every candidate's pixel error, and
+ * L = the objective of 16 pixels of error e* (folded as joint_objective folds) every candidate's
+ * objective; a candidate whose objective is L is optimal. No lists of anchor pairs are built.
+ *
+ * The scan: as in equal_block_solve, target q (the normal, or its rim direction with weight and
+ * offset if it points away and is loose) and a chord^2 budget R2 from the per-pixel budget t (the
+ * incumbent's e^2, shrinking to e*^2 as it is found). A decode with value a has x component a
+ * (x^2 + y^2 <= 1) or, z clamped, a / r with r = sqrt(a^2 + b^2) in (1, sqrt(1 + a^2)], between
+ * f(a) = a / sqrt(1 + a^2) and a; its chord to q is at least |x - qx|, so only a with the interval
+ * [min(a, f(a)), max(a, f(a))] within R = sqrt(R2) of qx can be below the budget (just a within R
+ * when no clamped decode reaches the ball: qz^2 > R2): an interval of a, since a and f(a) increase.
+ * The values a are visited outward from qx (first above, then below, alternately), each
+ * with the b values inside pixel_y_intervals' intervals for it (a superset, widened against
+ * rounding) evaluated exactly; e* and (a*, b*), the first value pair reaching it in this order,
+ * are kept (strictly smaller replaces).
+ * The tie rule: the answer is the first (x pair, y pair), x pairs holding a* and y pairs holding b*
+ * each in ascending code order, x-major, whose objective is L (the first unless its 8 x 8 grid holds
+ * another decode of larger cosine but not smaller angle, a rounding-level tie: e.g. a 6-value pair's
+ * clamped (+-1, +-1) beside (a*, b*) at the rim; after EQUAL_TRIES evaluations 0, undecided, and the
+ * search runs as before). If L is not
+ * below the incumbent, nothing beats the incumbent, which stays (px, py untouched), as in the
+ * enumeration. The blocks are tied in thousands of candidates on their anchor pairs; this decides
+ * them in a few thousand angle evaluations (evals) instead. */
+static inline double unclamp_x(double y)
+{
+    /* f^-1(y) = y / sqrt(1 - y^2) for |y| < 1: the largest |a| whose clamped x can be y */
+    return y / sqrt((1.0 - y) * (1.0 + y));
+}
+
+static size_t value_lower(const double *v, size_t n, double x)
+{
+    size_t lo = 0, hi = n; /* first v[k] >= x */
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (v[mid] < x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+enum { EQUAL_TRIES = 256 };
+
+static int equal_value_solve(const double n[16][3], const away_info *aw, int use_max, double best,
+                             sol_bc4_precision precision, int *px, int *py, double *value, uint64_t *evals)
+{
+    const sol_nm_entry_index *ix = sol_nm_entry_index_get(precision);
+    const int away = aw->mask & 1;
+    if (!ix || (away && !(aw->w[0] > 0.0)))
+        return 0; /* (0, 0, -1): the hemisphere bound decides it */
+    const double q[3] = {away ? aw->m[0][0] : n[0][0], away ? aw->m[1][0] : n[0][1], away ? 0.0 : n[0][2]};
+    const double *val = ix->value;
+    const size_t nv = ix->count;
+    double e_best = INFINITY, a_star = 0.0, b_star = 0.0;
+    double t = (use_max ? best : best / 16.0) * (1.0 + 1e-9);
+    size_t up = value_lower(val, nv, q[0]), down = up;
+    int go_up = up < nv, go_down = down > 0;
+    for (int turn = 0; go_up || go_down; turn ^= 1) {
+        double r2 = away ? (t - aw->off[0]) / aw->w[0] : t;
+        if (r2 < 0.0)
+            return 0; /* cannot happen: the incumbent meets its own budget */
+        const double R2 = r2 * (1.0 + 1e-9) + 1e-15, R = sqrt(R2) * (1.0 + 1e-9) + 1e-9;
+        double a_lo = q[0] - R, a_hi = q[0] + R;
+        if (!(q[2] * q[2] > R2)) { /* clamped decodes may reach the ball */
+            a_lo = a_lo >= 0.0 ? a_lo : (a_lo > -1.0 ? unclamp_x(a_lo) * (1.0 + 1e-9) - 1e-9 : -INFINITY);
+            a_hi = a_hi <= 0.0 ? a_hi : (a_hi < 1.0 ? unclamp_x(a_hi) * (1.0 + 1e-9) + 1e-9 : INFINITY);
+        }
+        double a;
+        if (turn == 0 && go_up) {
+            if (val[up] > a_hi) {
+                go_up = 0;
+                continue;
+            }
+            a = val[up++];
+            go_up = up < nv;
+        } else if (turn == 1 && go_down) {
+            if (val[down - 1] < a_lo) {
+                go_down = 0;
+                continue;
+            }
+            a = val[--down];
+            go_down = down > 0;
+        } else {
+            continue;
+        }
+        double a8[8] = {a, a, a, a, a, a, a, a}, lo[16], hi[16];
+        int cnt = pixel_y_intervals(a8, q, R2, 1e-9, lo, hi);
+        if (cnt < 0)
+            return 0; /* a budget that constrains nothing: the search decides it */
+        for (int k = 0; k < cnt; ++k)
+            for (size_t j = value_lower(val, nv, lo[k]); j < nv && val[j] <= hi[k]; ++j) {
+                ++*evals;
+                double ang = decoded_angle(a, val[j], n[0]);
+                if (ang < e_best) {
+                    e_best = ang;
+                    a_star = a;
+                    b_star = val[j];
+                    t = ang * ang * (1.0 + 1e-9);
+                }
+            }
+    }
+    if (!(e_best < INFINITY))
+        return 0;
+    double floor = 0.0;
+    for (int p = 0; p < 16; ++p) /* the objective of 16 pixels of error e*, as joint_objective folds it */
+        floor = fold_term(floor, e_best * e_best, use_max);
+    if (best <= floor) { /* no candidate beats the incumbent: it stays (as in the enumeration) */
+        *value = best;
+        return 1;
+    }
+    const double(*pal)[8] = sol_nm_palettes(precision);
+    const size_t ka = value_lower(val, nv, a_star), kb = value_lower(val, nv, b_star);
+    int tries = 0;
+    for (uint32_t i = ix->start[ka]; i < ix->start[ka + 1]; ++i)
+        for (uint32_t j = ix->start[kb]; j < ix->start[kb + 1]; ++j) {
+            if (++tries > EQUAL_TRIES)
+                return 0;
+            ++*evals;
+            int ax = ix->pair[i], by = ix->pair[j];
+            double v = joint_objective(pal[ax], pal[by], n, use_max, INFINITY, NULL, NULL);
+            if (v <= floor && v < best) {
+                *px = ax;
+                *py = by;
+                *value = v;
+                return 1;
+            }
+        }
+    return 0;
+}
+
 /* ---- blocks decided by their pixels one at a time (pixels pointing away) ----
  *
  * Every candidate gives pixel p the angle of one decode (a, b), a a value of the x list and b one
@@ -1834,6 +1969,32 @@ typedef struct search_request {
     uint64_t work_limit;
 } search_request;
 
+/* search_unit's shortcut for blocks of 16 equal normals on the full range (equal_value_solve):
+ * those at a rim or pointing away, and those of the 8-bit decoder (whose lattice values tie
+ * thousands of anchor pairs exactly, also with z > 0); others keep the search (already fast).
+ * Returns 1 with *best, *px, *py, *candidates updated if it decided the block. */
+static int equal_shortcut(const double n[16][3], int full, const search_request *rq, double *best, int *px, int *py,
+                          uint64_t *candidates)
+{
+    if (!full)
+        return 0;
+    for (int p = 1; p < 16; ++p)
+        if (memcmp(n[0], n[p], sizeof n[p]) != 0)
+            return 0;
+    const int loose = n[0][2] * n[0][2] <= *best * (1.0 + BOUND_SLACK);
+    if (!loose && rq->precision != SOL_BC4_INTERP_8BIT)
+        return 0;
+    away_info aw;
+    away_info_init(&aw, n, loose ? 0xffffu : 0u);
+    double v;
+    uint64_t evals = 0;
+    int done = equal_value_solve(n, &aw, rq->use_max, *best, rq->precision, px, py, &v, &evals);
+    *candidates += evals;
+    if (done)
+        *best = v;
+    return done;
+}
+
 /* order[0..16) (a permutation) sorted by decreasing err, stable: the pixels most likely to reject a
  * candidate are visited first. Insertion sort: 16 items. */
 static void order_worst_first(const double err[16], int order[16])
@@ -1910,7 +2071,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     }
     int bounded = 0;
     uint64_t work = 0; /* pixel evaluations of candidates */
-    if (best > 0.0 && best > hemisphere_bound(n, use_max)) {
+    if (best > 0.0 && best > hemisphere_bound(n, use_max) && !equal_shortcut(n, full, rq, &best, &px, &py, &candidates)) {
         unsigned loose = 0;
         away_info aw;
         away_info_init(&aw, n, 0);
