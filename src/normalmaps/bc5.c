@@ -792,60 +792,86 @@ static inline uint64_t mix64(uint64_t h, uint64_t v)
     return h * UINT64_C(0xBF58476D1CE4E5B9);
 }
 
-static uint64_t pair_key_hash(const channel_key *k, const double pal[8])
+/* A palette's usable masks for the key's pixels (bit p of m[e]: entry e usable for key pixel p; a
+ * function of the entry's value) and its seed values. */
+static void key_masks(const channel_key *k, const double pal[8], uint16_t m[8], uint64_t seed[16])
 {
-    uint64_t h = 0;
-    for (int p = 0; p < k->count; ++p) {
-        int loose = k->loose[p];
-        h = mix64(h, value_bits(pal[seed_entry(pal, k->t[p])]));
-        for (int e = 0; e < 8; ++e)
-            if (usable_entry(pal[e], k->t[p], loose, k->budget))
-                h = mix64(h, value_bits(pal[e]));
-        h = mix64(h, 0x5eed);
+    /* usable_entry without branches: for a loose pixel max(lo - t, t - hi, 0) is its distance (both
+     * differences <= 0 inside [lo, hi]; at most one positive outside) */
+    for (int e = 0; e < 8; ++e) {
+        const double a = pal[e], b = a * (1.0 / M_SQRT2), lo = a < b ? a : b, hi = a < b ? b : a;
+        unsigned bits = 0;
+        for (int p = 0; p < k->count; ++p) {
+            double t = k->t[p], dl = lo - t > t - hi ? lo - t : t - hi, d = k->loose[p] ? (dl > 0.0 ? dl : 0.0) : a - t;
+            bits |= (unsigned)(d * d <= k->budget) << p;
+        }
+        m[e] = (uint16_t)bits;
     }
-    return h;
+    for (int p = 0; p < k->count; ++p)
+        seed[p] = value_bits(pal[seed_entry(pal, k->t[p])]);
 }
 
-/* 1 if the usable entries of two palettes for pixel p (usable(ctx, pal, e, p): entry e is), taken in
- * entry order, are the same values bit for bit: the two pairs serve that pixel alike. Entries are
- * tested lazily in that order (the table's test counts work: the same tests as a plain walk). */
-typedef int (*entry_usable_fn)(void *ctx, const double pal[8], int e, int p);
-
-static inline int usable_values_equal(const double pa[8], const double pb[8], int p, entry_usable_fn usable, void *ctx)
+/* The usable entries' values of two palettes for each pixel, in palette order, equal bit for bit. */
+static int mask_sequences_equal(const double pa[8], const uint16_t ma[8], const double pb[8], const uint16_t mb[8],
+                                int count)
 {
-    int ea = 0, eb = 0;
-    for (;;) {
-        while (ea < 8 && !usable(ctx, pa, ea, p))
-            ++ea;
-        while (eb < 8 && !usable(ctx, pb, eb, p))
-            ++eb;
-        if (ea == 8 || eb == 8)
-            return ea == eb;
-        if (value_bits(pa[ea++]) != value_bits(pb[eb++]))
-            return 0;
-    }
-}
-
-static int key_entry_usable(void *ctx, const double pal[8], int e, int p)
-{
-    const channel_key *k = ctx;
-    return usable_entry(pal[e], k->t[p], k->loose[p], k->budget);
-}
-
-static int pair_key_equal(const channel_key *k, const double pa[8], const double pb[8])
-{
-    for (int p = 0; p < k->count; ++p) {
-        if (value_bits(pa[seed_entry(pa, k->t[p])]) != value_bits(pb[seed_entry(pb, k->t[p])]))
-            return 0;
-        if (!usable_values_equal(pa, pb, p, key_entry_usable, (void *)k))
-            return 0;
+    for (int p = 0; p < count; ++p) {
+        int ea = 0, eb = 0;
+        for (;;) {
+            while (ea < 8 && !((ma[ea] >> p) & 1))
+                ++ea;
+            while (eb < 8 && !((mb[eb] >> p) & 1))
+                ++eb;
+            if (ea == 8 || eb == 8) {
+                if (ea != eb)
+                    return 0;
+                break;
+            }
+            if (value_bits(pa[ea++]) != value_bits(pb[eb++]))
+                return 0;
+        }
     }
     return 1;
 }
 
+/* A hash that is a function of the key (seeds, and per pixel the usable values in palette order)
+ * alone: the seeds in pixel order, and the sum over entries usable for some pixel of a mix of
+ * (value bits, mask); an entry's mask is that of its value, so that multiset is fixed by the key. */
+static uint64_t masks_hash(const double pal[8], const uint16_t m[8], const uint64_t seed[16], int count)
+{
+    uint64_t h = 0, sum = 0;
+    for (int p = 0; p < count; ++p)
+        h = mix64(h, seed[p]);
+    for (int e = 0; e < 8; ++e)
+        if (m[e])
+            sum += mix64(value_bits(pal[e]), m[e]);
+    return mix64(h, sum);
+}
+
+static uint64_t pair_key_hash(const channel_key *k, const double pal[8])
+{
+    uint16_t m[8];
+    uint64_t seed[16];
+    key_masks(k, pal, m, seed);
+    return masks_hash(pal, m, seed, k->count);
+}
+
+/* Two palettes serve every key pixel alike: equal seeds, and equal usable values in entry order. */
+static int pair_key_equal(const channel_key *k, const double pa[8], const double pb[8])
+{
+    uint16_t ma[8], mb[8];
+    uint64_t sa[16], sb[16];
+    key_masks(k, pa, ma, sa);
+    key_masks(k, pb, mb, sb);
+    return memcmp(sa, sb, (size_t)k->count * sizeof *sa) == 0 && mask_sequences_equal(pa, ma, pb, mb, k->count);
+}
+
 /* Keeps the first pair of each equivalence class of a sorted list (in place), classes given by a
  * hash and an equality of the pairs' palettes (open addressing in slots, at least 2 count + 64
- * entries); work (if not NULL) is charged 16 per pair before its hash. Returns the count kept. */
+ * entries; a slot holds the kept position + 1 in its low 17 bits and 15 bits of the hash above, so
+ * that equality is only tested where those agree: equal palettes have equal hashes); work (if not
+ * NULL) is charged 16 per pair before its hash. Returns the count kept (count <= 65536). */
+#define SLOT_POS ((UINT32_C(1) << 17) - 1)
 typedef struct pair_classes {
     uint64_t (*hash)(void *ctx, const double pal[8]);
     int (*equal)(void *ctx, const double pa[8], const double pb[8]);
@@ -865,17 +891,19 @@ static size_t merge_classes(sol_nm_pair *list, size_t count, const double (*pal)
         const double *a = pal[list[i].pair];
         if (pc->work)
             *pc->work += 16;
-        size_t h = (size_t)pc->hash(pc->ctx, a) & (size - 1);
+        uint64_t hash = pc->hash(pc->ctx, a);
+        size_t h = (size_t)hash & (size - 1);
+        uint32_t tag = (uint32_t)(hash >> 49) << 17; /* 15 bits of the hash beside the position */
         int dup = 0;
         for (; slots[h]; h = (h + 1) & (size - 1))
-            if (pc->equal(pc->ctx, pal[list[slots[h] - 1].pair], a)) {
+            if ((slots[h] & ~SLOT_POS) == tag && pc->equal(pc->ctx, pal[list[(slots[h] & SLOT_POS) - 1].pair], a)) {
                 dup = 1;
                 break;
             }
         if (dup)
             continue;
         list[kept] = list[i];
-        slots[h] = (uint32_t)++kept;
+        slots[h] = tag | (uint32_t)++kept;
     }
     return kept;
 }
@@ -1363,43 +1391,47 @@ static size_t usable_filter(sol_nm_pair *list, size_t count, const double (*pal)
     return kept;
 }
 
-/* The seed entry's value for pixel p if usable, else a marker: a seed that is not usable starts
- * best_pixel's scan from a decode outside the pixel's ball, which every usable decode beats, so
- * then only the usable entries' order decides the choice. (NaN bits: never a palette value.) */
-static uint64_t seed_key(value_table *t, const double pal[8], double target, int p)
+/* The usable masks of a palette's entries (bit p: usable for pixel p), every pixel of each entry's
+ * value made known (as the key below needs them all; the same tests and work as testing them one
+ * pixel at a time), and each pixel's seed key: the seed entry's value if usable, else a marker: a
+ * seed that is not usable starts best_pixel's scan from a decode outside the pixel's ball, which
+ * every usable decode beats, so then only the usable entries' order decides the choice. (NaN bits:
+ * never a palette value.) */
+static void usable_masks(value_table *t, const double pal[8], const double tc[16], uint16_t m[8], uint64_t seed[16])
 {
-    double v = pal[seed_entry(pal, target)];
-    return slot_usable(t, value_slot(t, v), v, p) ? value_bits(v) : UINT64_C(0x7ff8dead0000beef);
+    for (int e = 0; e < 8; ++e) {
+        value_mask *s = value_slot(t, pal[e]);
+        for (int p = 0; s->known != 0xffffu && p < 16; ++p)
+            slot_usable(t, s, pal[e], p);
+        m[e] = s->usable;
+    }
+    for (int p = 0; p < 16; ++p) {
+        int e = seed_entry(pal, tc[p]);
+        seed[p] = (m[e] >> p) & 1 ? value_bits(pal[e]) : UINT64_C(0x7ff8dead0000beef);
+    }
 }
 
+/* The key of a palette: per pixel its seed key and its usable entries' values in palette order.
+ * The hash is a function of the key alone: the seed keys in pixel order, and the sum over entries
+ * usable for some pixel of a mix of (value bits, mask), the mask being that of the value (so the
+ * multiset of those is fixed by the key: an entry's value appears in the sequence of every pixel of
+ * its mask). Equal keys give equal hashes; merge_classes keeps the first of each class whatever the
+ * hash, so the classes and the list kept are those of the per-pixel walk. */
 static uint64_t usable_key_hash(value_table *t, const double pal[8], const double tc[16])
 {
-    uint64_t h = 0;
-    for (int p = 0; p < 16; ++p) {
-        h = mix64(h, seed_key(t, pal, tc[p], p));
-        for (int e = 0; e < 8; ++e)
-            if (slot_usable(t, value_slot(t, pal[e]), pal[e], p))
-                h = mix64(h, value_bits(pal[e]));
-        h = mix64(h, 0x5eed);
-    }
-    return h;
-}
-
-static int table_entry_usable(void *ctx, const double pal[8], int e, int p)
-{
-    value_table *t = ctx;
-    return slot_usable(t, value_slot(t, pal[e]), pal[e], p);
+    uint16_t m[8];
+    uint64_t seed[16];
+    usable_masks(t, pal, tc, m, seed);
+    return masks_hash(pal, m, seed, 16);
 }
 
 static int usable_key_equal(value_table *t, const double pa[8], const double pb[8], const double tc[16])
 {
-    for (int p = 0; p < 16; ++p) {
-        if (seed_key(t, pa, tc[p], p) != seed_key(t, pb, tc[p], p))
-            return 0;
-        if (!usable_values_equal(pa, pb, p, table_entry_usable, t))
-            return 0;
-    }
-    return 1;
+    uint16_t ma[8], mb[8];
+    uint64_t sa[16], sb[16];
+    usable_masks(t, pa, tc, ma, sa);
+    usable_masks(t, pb, tc, mb, sb);
+    return memcmp(sa, sb, sizeof sa) == 0 && mask_sequences_equal(pa, ma, pb, mb, 16);
 }
 
 /* merge_equivalent with the usable entries of the table (targets tc: the channel's components of n). */
@@ -1969,6 +2001,44 @@ typedef struct search_request {
     uint64_t work_limit;
 } search_request;
 
+/* sol_nm_channel_argmin for a channel whose 16 pixels are all loose, with, in out, every pair of
+ * score <= cap from the same enumeration (*count; SIZE_MAX when not collected). Loose pixels prune
+ * no anchors (enumerate_pairs scores all 65536 pairs), so search_unit's argmin and its later collect
+ * (budget <= cap: the incumbent only falls) were two full passes; now one. The argmin is the least
+ * (score, pair) of the collected pairs: it has score <= cap (the incumbent's own pair scores at most
+ * the incumbent, the channel score being a lower bound of the objective), and a pair's score within
+ * the budget is its full sum in either enumeration, so the pair and *score are sol_nm_channel_argmin's
+ * (which it falls back to if nothing was collected, or for channels with tight pixels). */
+static int argmin_collect(const sol_nm_channel *ch, unsigned loose, double cap, sol_nm_pair *out, size_t *count,
+                          double *score)
+{
+    *count = SIZE_MAX;
+    if (loose != 0xffffu)
+        return sol_nm_channel_argmin(ch, score);
+    size_t n = sol_nm_channel_collect(ch, cap, out), b = 0;
+    if (n == 0)
+        return sol_nm_channel_argmin(ch, score);
+    for (size_t k = 1; k < n; ++k)
+        if (out[k].score < out[b].score || (out[k].score == out[b].score && out[k].pair < out[b].pair))
+            b = k;
+    *count = n;
+    *score = out[b].score;
+    return out[b].pair;
+}
+
+/* sol_nm_channel_collect(ch, budget, out), or, if argmin_collect collected `pre` pairs into out with
+ * a cap >= budget, those of them within budget (the same set; search_unit sorts it). */
+static size_t collect_within(const sol_nm_channel *ch, double budget, sol_nm_pair *out, size_t pre)
+{
+    if (pre == SIZE_MAX)
+        return sol_nm_channel_collect(ch, budget, out);
+    size_t n = 0;
+    for (size_t k = 0; k < pre; ++k)
+        if (out[k].score <= budget)
+            out[n++] = out[k];
+    return n;
+}
+
 /* search_unit's shortcut for blocks of 16 equal normals on the full range (equal_value_solve):
  * those at a rim or pointing away, and those of the 8-bit decoder (whose lattice values tie
  * thousands of anchor pairs exactly, also with z > 0); others keep the search (already fast).
@@ -2073,6 +2143,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     uint64_t work = 0; /* pixel evaluations of candidates */
     if (best > 0.0 && best > hemisphere_bound(n, use_max) && !equal_shortcut(n, full, rq, &best, &px, &py, &candidates)) {
         unsigned loose = 0;
+        size_t pre_x = SIZE_MAX, pre_y = SIZE_MAX; /* pairs collected with the argmins (argmin_collect) */
         away_info aw;
         away_info_init(&aw, n, 0);
         if (best * (1.0 + BOUND_SLACK) >= min_nz2) { /* rim pixels: loose bounds for them */
@@ -2088,7 +2159,8 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     sol_nm_channel_rim_weight(&cx, p, aw.w[p], off);
                     sol_nm_channel_rim_weight(&cy, p, aw.w[p], off);
                 }
-            int lx = sol_nm_channel_argmin(&cx, &sx_min), ly = sol_nm_channel_argmin(&cy, &sy_min);
+            int lx = argmin_collect(&cx, loose, best * (1.0 + BOUND_SLACK), ws->x, &pre_x, &sx_min);
+            int ly = argmin_collect(&cy, loose, best * (1.0 + BOUND_SLACK), ws->y, &pre_y, &sy_min);
             /* third incumbent: the pairs of least loose score, which aim at the rim directions */
             ++candidates;
             double v = joint_objective(pal[lx], pal[ly], n, use_max, best, NULL, NULL);
@@ -2099,8 +2171,8 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             }
         }
         double room = best * (1.0 + BOUND_SLACK);
-        size_t nx = sol_nm_channel_collect(&cx, use_max ? room : room - sy_min * (1.0 - BOUND_SLACK), ws->x);
-        size_t ny = sol_nm_channel_collect(&cy, use_max ? room : room - sx_min * (1.0 - BOUND_SLACK), ws->y);
+        size_t nx = collect_within(&cx, use_max ? room : room - sy_min * (1.0 - BOUND_SLACK), ws->x, pre_x);
+        size_t ny = collect_within(&cy, use_max ? room : room - sx_min * (1.0 - BOUND_SLACK), ws->y, pre_y);
         qsort(ws->x, nx, sizeof *ws->x, compare_pairs);
         qsort(ws->y, ny, sizeof *ws->y, compare_pairs);
         int valued = 0; /* the value-level filter and merge ran */
