@@ -8,6 +8,7 @@
  * a failed render leaves no partial output. */
 #include <errno.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -124,12 +125,25 @@ static const char *out_name(outputs *o, const char *dir, const char *name)
 
 /* Interrupted (SIGINT, SIGTERM, SIGHUP): the temporary files and a folder this run made are removed
  * before the signal's default action, so a killed render leaves nothing behind either. Only
- * async-signal-safe calls (unlink, rmdir, signal, raise). */
+ * async-signal-safe calls (unlink, rmdir, signal, raise; lock-free atomics).
+ *
+ * Two steps must not be cut in half: making the folder and recording it (a signal in between left
+ * the folder behind: the test cli_render_killed_leaves_nothing failed under heavy load), and
+ * renaming the finished files into place (a signal in between left a partial folder). Around them
+ * interrupt_hold is set; a signal that arrives then, on any thread (OpenMP's threads do not block
+ * signals), is only recorded in interrupt_pending and acted on by interrupt_release once the step
+ * is whole. The handler records the signal before it reads the hold, and the release clears the
+ * hold before it reads the record, so no signal is lost (at worst both act: the clean-up is
+ * idempotent and both end in the default action). */
 static outputs *volatile interrupt_out;
 static const char *volatile interrupt_dir;
+static atomic_int interrupt_hold, interrupt_pending;
 
 static void on_interrupt(int sig)
 {
+    atomic_store(&interrupt_pending, sig);
+    if (atomic_load(&interrupt_hold))
+        return;
     outputs *o = interrupt_out;
     for (int i = 0; o && i < o->count; ++i)
         unlink(o->tmp[i]);
@@ -137,6 +151,14 @@ static void on_interrupt(int sig)
         rmdir(interrupt_dir);
     signal(sig, SIG_DFL);
     raise(sig);
+}
+
+static void interrupt_release(void)
+{
+    atomic_store(&interrupt_hold, 0);
+    int sig = atomic_load(&interrupt_pending);
+    if (sig)
+        on_interrupt(sig);
 }
 
 /* A signal the caller ignores (e.g. SIGINT for a background job of a script, nohup's SIGHUP) stays
@@ -231,10 +253,14 @@ int cli_render_main(int argc, char **argv)
     catch_signal(SIGINT);
     catch_signal(SIGTERM);
     catch_signal(SIGHUP);
-    if (mkdir(dir, 0777) == 0) {
-        made_dir = 1;
+    atomic_store(&interrupt_hold, 1);
+    made_dir = mkdir(dir, 0777) == 0;
+    int mkdir_errno = errno;
+    if (made_dir)
         interrupt_dir = dir;
-    } else if (errno != EEXIST || stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode) || access(dir, W_OK | X_OK) != 0) {
+    interrupt_release();
+    errno = mkdir_errno;
+    if (!made_dir && (errno != EEXIST || stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode) || access(dir, W_OK | X_OK) != 0)) {
         int e = errno == EEXIST ? ENOTDIR : errno;
         fprintf(stderr, "sol render: --out %s: cannot create or write the folder: %s\n", dir, strerror(e));
         sol_scene_free(&scene);
@@ -337,6 +363,7 @@ int cli_render_main(int argc, char **argv)
         fclose(tsv);
     if (pf)
         fclose(pf);
+    atomic_store(&interrupt_hold, 1);
     if (st == SOL_OK && out_commit(&o) != 0)
         st = SOL_ERR_IO;
     interrupt_out = NULL; /* committed (or discarded just below): nothing left to clean */
@@ -345,6 +372,9 @@ int cli_render_main(int argc, char **argv)
         out_discard(&o);
         if (made_dir)
             rmdir(dir);
+    }
+    interrupt_release(); /* a signal during the renames ends the run here, its output whole or gone */
+    if (st != SOL_OK) {
         fprintf(stderr, "sol render: writing %s failed: %s\n", dir, sol_status_string(st));
     } else if (json) {
         printf("{\"scene\": ");
