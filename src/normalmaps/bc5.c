@@ -792,25 +792,6 @@ static inline uint64_t mix64(uint64_t h, uint64_t v)
     return h * UINT64_C(0xBF58476D1CE4E5B9);
 }
 
-/* A palette's usable masks for the key's pixels (bit p of m[e]: entry e usable for key pixel p; a
- * function of the entry's value) and its seed values. */
-static void key_masks(const channel_key *k, const double pal[8], uint16_t m[8], uint64_t seed[16])
-{
-    /* usable_entry without branches: for a loose pixel max(lo - t, t - hi, 0) is its distance (both
-     * differences <= 0 inside [lo, hi]; at most one positive outside) */
-    for (int e = 0; e < 8; ++e) {
-        const double a = pal[e], b = a * (1.0 / M_SQRT2), lo = a < b ? a : b, hi = a < b ? b : a;
-        unsigned bits = 0;
-        for (int p = 0; p < k->count; ++p) {
-            double t = k->t[p], dl = lo - t > t - hi ? lo - t : t - hi, d = k->loose[p] ? (dl > 0.0 ? dl : 0.0) : a - t;
-            bits |= (unsigned)(d * d <= k->budget) << p;
-        }
-        m[e] = (uint16_t)bits;
-    }
-    for (int p = 0; p < k->count; ++p)
-        seed[p] = value_bits(pal[seed_entry(pal, k->t[p])]);
-}
-
 /* The usable entries' values of two palettes for each pixel, in palette order, equal bit for bit. */
 static int mask_sequences_equal(const double pa[8], const uint16_t ma[8], const double pb[8], const uint16_t mb[8],
                                 int count)
@@ -850,20 +831,53 @@ static uint64_t masks_hash(const double pal[8], const uint16_t m[8], const uint6
 
 static uint64_t pair_key_hash(const channel_key *k, const double pal[8])
 {
-    uint16_t m[8];
-    uint64_t seed[16];
-    key_masks(k, pal, m, seed);
-    return masks_hash(pal, m, seed, k->count);
+    uint64_t h = 0;
+    for (int p = 0; p < k->count; ++p) {
+        int loose = k->loose[p];
+        h = mix64(h, value_bits(pal[seed_entry(pal, k->t[p])]));
+        for (int e = 0; e < 8; ++e)
+            if (usable_entry(pal[e], k->t[p], loose, k->budget))
+                h = mix64(h, value_bits(pal[e]));
+        h = mix64(h, 0x5eed);
+    }
+    return h;
 }
 
-/* Two palettes serve every key pixel alike: equal seeds, and equal usable values in entry order. */
+/* 1 if the usable entries of two palettes for pixel p (usable(ctx, pal, e, p): entry e is), taken in
+ * entry order, are the same values bit for bit: the two pairs serve that pixel alike. Entries are
+ * tested lazily in that order (the table's test counts work: the same tests as a plain walk). */
+typedef int (*entry_usable_fn)(void *ctx, const double pal[8], int e, int p);
+
+static inline int usable_values_equal(const double pa[8], const double pb[8], int p, entry_usable_fn usable, void *ctx)
+{
+    int ea = 0, eb = 0;
+    for (;;) {
+        while (ea < 8 && !usable(ctx, pa, ea, p))
+            ++ea;
+        while (eb < 8 && !usable(ctx, pb, eb, p))
+            ++eb;
+        if (ea == 8 || eb == 8)
+            return ea == eb;
+        if (value_bits(pa[ea++]) != value_bits(pb[eb++]))
+            return 0;
+    }
+}
+
+static int key_entry_usable(void *ctx, const double pal[8], int e, int p)
+{
+    const channel_key *k = ctx;
+    return usable_entry(pal[e], k->t[p], k->loose[p], k->budget);
+}
+
 static int pair_key_equal(const channel_key *k, const double pa[8], const double pb[8])
 {
-    uint16_t ma[8], mb[8];
-    uint64_t sa[16], sb[16];
-    key_masks(k, pa, ma, sa);
-    key_masks(k, pb, mb, sb);
-    return memcmp(sa, sb, (size_t)k->count * sizeof *sa) == 0 && mask_sequences_equal(pa, ma, pb, mb, k->count);
+    for (int p = 0; p < k->count; ++p) {
+        if (value_bits(pa[seed_entry(pa, k->t[p])]) != value_bits(pb[seed_entry(pb, k->t[p])]))
+            return 0;
+        if (!usable_values_equal(pa, pb, p, key_entry_usable, (void *)k))
+            return 0;
+    }
+    return 1;
 }
 
 /* Keeps the first pair of each equivalence class of a sorted list (in place), classes given by a
