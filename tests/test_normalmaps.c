@@ -275,12 +275,12 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
         const double(*pal)[8] = sol_nm_palettes(prec);
         for (int six = 0; six < 2; ++six) {
             int den = six ? 5 : 7;
-            for (int d0 = 0; d0 < 256; d0 += SOL_NM_SPAN_LANES) {
-                double step[SOL_NM_SPAN_LANES], lb[SOL_NM_SPAN_LANES];
-                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k)
+            for (int d0 = 0; d0 < 256; d0 += SOL_NM_SPAN_BOUND_LANES) {
+                double step[SOL_NM_SPAN_BOUND_LANES], lb[SOL_NM_SPAN_BOUND_LANES];
+                for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES; ++k)
                     step[k] = (2.0 * (d0 + k) / 255.0) / den;
-                sol_nm_span_bounds(sorted, step, delta, lb);
-                for (int k = 0; k < SOL_NM_SPAN_LANES; ++k) {
+                sol_nm_span_bounds(sorted, step, delta, INFINITY, lb);
+                for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES; ++k) {
                     int d = d0 + k;
                     if (d == 0)
                         cr_assert(lb[k] == 0.0, "span 0: %g", lb[k]);
@@ -295,6 +295,61 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
             }
         }
     }
+}
+
+/* The same lattice bound is tight where it should be, and its limit test is safe: targets on the
+ * lattice entries of a pair (L, L + d) moved by +-e (e = 0.15 step, in pairs, so that their mean stays
+ * on the lattice) have the span's least score 16 e^2 up to the palette rounding, and the bound is
+ * within 2% of it (float and 16-bit decoders; the 8-bit decoder's 1/255 allowance is far looser, so
+ * there only the bound's validity is checked); with limit = the span's least score a lane answers
+ * the same bound, and with limit 2% below the bound it answers INFINITY (the span dismissed). A bound
+ * or a limit test raised by 2% fails here. */
+Test(normalmaps, bc4_span_bound_is_tight_on_lattice_blocks_and_its_limit_is_safe)
+{
+    int tight = 0;
+    for (int trial = 0; trial < 48; ++trial) {
+        const int six = trial & 1, den = six ? 5 : 7, d = 12 + (int)(100.0 * uniform());
+        const int l = (int)((255 - d) * uniform());
+        const sol_bc4_precision prec = (sol_bc4_precision)(trial / 2 % 3);
+        const double delta =
+            (prec == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : prec == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) + 1e-12;
+        const double a = 2.0 * l / 255.0 - 1.0, s = (2.0 * (l + d) / 255.0 - 1.0 - a) / den, e = 0.15 * s;
+        double t[16], sorted[16];
+        for (int p = 0; p < 16; ++p) {
+            int j = (p >> 1) % (den + 1);
+            t[p] = a + j * s + (p & 1 ? e : -e);
+            t[p] = fmin(1.0, fmax(-1.0, t[p]));
+        }
+        memcpy(sorted, t, sizeof sorted);
+        for (int p = 1; p < 16; ++p)
+            for (int q = p; q > 0 && sorted[q - 1] > sorted[q]; --q) {
+                double x = sorted[q];
+                sorted[q] = sorted[q - 1];
+                sorted[q - 1] = x;
+            }
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        double least = INFINITY;
+        for (int l2 = 0; l2 + d < 256; ++l2)
+            least = fmin(least, span_test_score(pal, six, l2, d, t));
+        double step[SOL_NM_SPAN_BOUND_LANES], lb[SOL_NM_SPAN_BOUND_LANES], at[SOL_NM_SPAN_BOUND_LANES],
+            below[SOL_NM_SPAN_BOUND_LANES];
+        for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES; ++k)
+            step[k] = (2.0 * d / 255.0) / den;
+        sol_nm_span_bounds(sorted, step, delta, INFINITY, lb);
+        sol_nm_span_bounds(sorted, step, delta, least, at);
+        sol_nm_span_bounds(sorted, step, delta, lb[0] * 0.98, below);
+        cr_assert(lb[0] <= least, "trial %d: bound %.17g above the span's least score %.17g", trial, lb[0], least);
+        cr_assert(at[0] == lb[0], "trial %d: with the limit at the least score, %.17g instead of %.17g", trial, at[0],
+                  lb[0]);
+        if (prec != SOL_BC4_INTERP_8BIT) {
+            cr_assert(lb[0] * 1.02 > least, "trial %d (mode %d, span %d, precision %d): bound %.17g, least %.17g", trial,
+                      six, d, prec, lb[0], least);
+            cr_assert(below[0] == INFINITY, "trial %d: limit 2%% below the bound %.17g gave %.17g", trial, lb[0],
+                      below[0]);
+            ++tight;
+        }
+    }
+    cr_assert(tight >= 24, "only %d tight trials", tight);
 }
 
 /* bc4_span_bound.c's bound at a phase (the low anchor's) is below the score of the pair (L, L + span)
@@ -1957,6 +2012,10 @@ static void survey_block(int family, double spread, double n[16][3])
         double fa = phi + spread * (p / 15.0 - 0.5);
         if (family == 0) { /* an arc pointing away */
             n[p][0] = rho * cos(fa), n[p][1] = rho * sin(fa), n[p][2] = -h;
+        } else if (family == 1) { /* an arc on the rim */
+            n[p][0] = cos(fa), n[p][1] = sin(fa), n[p][2] = 0.0;
+        } else if (family == 2) { /* an arc, every other pixel pointing away */
+            n[p][0] = rho * cos(fa), n[p][1] = rho * sin(fa), n[p][2] = p % 2 ? -h : h;
         } else if (family == 5) { /* one azimuth, heights varied */
             double hh = h * (1 + spread * (SURVEY_U() - 0.5) * 0.5);
             hh = hh > 1 ? 1 : hh;
@@ -1996,6 +2055,172 @@ Test(normalmaps, pointing_away_survey_blocks_are_proven_exactly)
         double n[16][3];
         survey_block(cases[c].family, cases[c].spread, n);
         sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = cases[c].metric, .precision = cases[c].precision};
+        sol_bc5_block b;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+        cr_assert(!info.bounded, "case %zu: stopped by the work bound", c);
+        cr_assert_eq(info.error, cases[c].error, "case %zu: %.17g, reference %.17g", c, info.error, cases[c].error);
+        cr_assert(b.x.e0 == cases[c].anchors[0] && b.x.e1 == cases[c].anchors[1] && b.y.e0 == cases[c].anchors[2] &&
+                      b.y.e1 == cases[c].anchors[3],
+                  "case %zu: anchors %d,%d,%d,%d", c, b.x.e0, b.x.e1, b.y.e0, b.y.e1);
+        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
+                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
+                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "case %zu", c);
+    }
+}
+
+/* The coupled row bound's cosine (bc5_couple.c): for every pixel, out[p] is at least the cosine of
+ * every decode (a, b) with b in the spans, measured as the objective does (the decoder's z,
+ * sol_angle3), and within 2% in angle of the best decode sampled densely in the spans (so a bound
+ * raised by 2% fails here). Pixels: random, rims (z = 0), pointing away, straight up and down, on
+ * the x and y axes, near the rim; a: palette values, 0, +-1; spans: 1..8, some of one value. */
+Test(normalmaps, couple_cosine_bounds_every_decode_and_is_tight)
+{
+    double worst = 0.0; /* the largest ratio of the bound's angle to the sampled least angle */
+    for (int trial = 0; trial < 300; ++trial) {
+        double n[16][3];
+        for (int p = 0; p < 16; ++p) {
+            double u = 2 * uniform() - 1, ph = 2 * M_PI * uniform();
+            int kind = (trial + p) % 9;
+            u = kind == 0 ? 0.0 : kind == 1 ? -fabs(u) : kind == 2 ? 1.0 : kind == 3 ? -1.0 : kind == 4 ? -1e-9 : u;
+            double r = sqrt(fmax(0.0, 1 - u * u));
+            n[p][0] = kind == 5 ? 1.0 : kind == 6 ? 0.0 : r * cos(ph);
+            n[p][1] = kind == 5 ? 0.0 : kind == 6 ? -1.0 : r * sin(ph);
+            n[p][2] = kind == 5 || kind == 6 ? 0.0 : u;
+        }
+        const double(*pal)[8] = sol_nm_palettes((sol_bc4_precision)(trial % 3));
+        double a = trial % 10 == 0 ? 0.0 : trial % 10 == 1 ? 1.0 : trial % 10 == 2 ? -1.0
+                                            : pal[(int)(uniform() * 65536) & 0xffff][trial % 8];
+        int ns = 1 + trial % 8, c = trial % 2;
+        double lo[8], hi[8];
+        for (int k = 0; k < ns; ++k) {
+            double u = pal[(int)(uniform() * 65536) & 0xffff][k], v = trial % 4 == 0 ? u : 2 * uniform() - 1;
+            lo[k] = fmin(u, v);
+            hi[k] = fmax(u, v);
+        }
+        double out[16];
+        sol_nm_couple_cosines(a, n, c, lo, hi, ns, out);
+        for (int p = 0; p < 16; ++p) {
+            double bound = acos(fmin(out[p], 1.0)) * (1.0 - 1e-12), least = INFINITY;
+            for (int k = 0; k < ns; ++k)
+                for (int j = 0; j <= 4000; ++j) {
+                    double b = j == 4000 ? hi[k] : lo[k] + (hi[k] - lo[k]) * (j / 4000.0), zz = 1.0 - a * a - b * b;
+                    double u[3] = {c ? b : a, c ? a : b, zz > 0.0 ? sqrt(zz) : 0.0};
+                    least = fmin(least, sol_angle3(u, n[p]));
+                }
+            cr_assert(bound <= least, "trial %d pixel %d: bound %.17g above a decode's angle %.17g", trial, p, bound,
+                      least);
+            if (least > 0.05)
+                worst = fmax(worst, least / bound);
+        }
+    }
+    cr_assert(worst < 1.02, "the bound is %.4f of the sampled least angle somewhere", worst);
+}
+
+/* sol_nm_couple_reduce against brute force: on blocks of the degenerate families (rims, pointing
+ * away, both, every precision and metric), random lists of 150 pairs per channel and a margin at a
+ * low quantile of their candidates' objectives: every candidate below the margin keeps both its
+ * pairs, the lists keep their order, and the reduction drops something. */
+Test(normalmaps, couple_reduce_keeps_every_candidate_below_the_margin)
+{
+    enum { L = 150 };
+    size_t dropped = 0;
+    for (int trial = 0; trial < 6; ++trial) {
+        double n[16][3];
+        double phi = 2 * M_PI * uniform(), h = 0.1 + 0.8 * uniform(), rho = sqrt(1 - h * h);
+        for (int p = 0; p < 16; ++p) {
+            double fa = phi + 1.5 * (p / 15.0 - 0.5), z = trial % 3 == 0 ? 0.0 : trial % 3 == 1 ? -h : (p % 2 ? h : -h);
+            double r = z == 0.0 ? 1.0 : rho;
+            n[p][0] = r * cos(fa), n[p][1] = r * sin(fa), n[p][2] = z;
+        }
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        sol_bc5_metric metric = trial % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED;
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        sol_nm_pair xl[L], yl[L];
+        for (int i = 0; i < L; ++i) {
+            xl[i] = (sol_nm_pair){0.0, (uint16_t)((int)(uniform() * 65536) & 0xffff)};
+            yl[i] = (sol_nm_pair){0.0, (uint16_t)((int)(uniform() * 65536) & 0xffff)};
+        }
+        static double obj[L][L];
+        double sorted[L * L];
+        for (int i = 0; i < L; ++i)
+            for (int j = 0; j < L; ++j) {
+                sol_bc5_block b = {.x = {.e0 = (uint8_t)(xl[i].pair >> 8), .e1 = (uint8_t)(xl[i].pair & 255)},
+                                   .y = {.e0 = (uint8_t)(yl[j].pair >> 8), .e1 = (uint8_t)(yl[j].pair & 255)}};
+                double e;
+                cr_assert_eq(sol_bc5_choose_indices(&b, n, prec, metric, &e), SOL_OK);
+                obj[i][j] = metric == SOL_BC5_MAX ? e * e : e; /* internal units */
+                sorted[i * L + j] = obj[i][j];
+            }
+        for (int k = 1; k < L * L; ++k) /* the 1% quantile as the margin */
+            for (int q = k; q > 0 && sorted[q - 1] > sorted[q]; --q) {
+                double t = sorted[q];
+                sorted[q] = sorted[q - 1];
+                sorted[q - 1] = t;
+            }
+        double margin = sorted[L * L / 100];
+        sol_nm_couple *cs = sol_nm_couple_new();
+        cr_assert(cs);
+        sol_nm_pair xr[L], yr[L];
+        memcpy(xr, xl, sizeof xr);
+        memcpy(yr, yl, sizeof yr);
+        size_t nx = L, ny = L;
+        uint64_t work = 0;
+        sol_nm_couple_reduce(cs, n, metric == SOL_BC5_MAX, margin, pal, prec, xr, &nx, yr, &ny, &work);
+        sol_nm_couple_free(cs);
+        dropped += 2 * L - nx - ny;
+        for (int i = 0; i < L; ++i)
+            for (int j = 0; j < L; ++j) {
+                if (!(obj[i][j] < margin))
+                    continue;
+                int kx = 0, ky = 0;
+                for (size_t k = 0; k < nx; ++k)
+                    kx |= xr[k].pair == xl[i].pair;
+                for (size_t k = 0; k < ny; ++k)
+                    ky |= yr[k].pair == yl[j].pair;
+                cr_assert(kx && ky, "trial %d: candidate (%d, %d) of objective %.17g < %.17g dropped", trial, i, j,
+                          obj[i][j], margin);
+            }
+        for (size_t k = 1; k < nx; ++k) { /* order kept: positions in the original list increase */
+            int p0 = -1, p1 = -1;
+            for (int i = 0; i < L; ++i) {
+                if (p0 < 0 && xl[i].pair == xr[k - 1].pair)
+                    p0 = i;
+                if (xl[i].pair == xr[k].pair)
+                    p1 = i;
+            }
+            cr_assert(p0 <= p1, "trial %d: order", trial);
+        }
+    }
+    cr_assert(dropped > 0);
+}
+
+/* Survey blocks (generator above) that the search left bounded at the default work limit (0.3-0.5 s,
+ * its best found 1-50% above the optimum on some: half-away-arc 1 rad 2.2143 instead of 1.4551) and
+ * that the coupled row bounds of bc5_couple.c now prove: an arc on the rim (2 rad), an arc with every
+ * other pixel pointing away (1 and 2 rad), cones pointing away (0.3 and 1 rad). Reference: the search
+ * before bc5_couple.c with a work limit of 2^34 (error and anchors, 0.6-5.7 s per block), and literal
+ * brute force in a +-2 window around the result. */
+Test(normalmaps, coupled_survey_blocks_are_proven_exactly)
+{
+    static const struct {
+        int family;
+        double spread;
+        sol_bc4_precision precision;
+        double error;
+        int anchors[4];
+    } cases[] = {
+        {1, 2.0, SOL_BC4_INTERP_16BIT, 0.028094823736270348, {11, 46, 41, 214}},
+        {2, 1.0, SOL_BC4_INTERP_8BIT, 1.4551028824300727, {6, 29, 189, 65}},
+        {6, 0.3, SOL_BC4_INTERP_FLOAT, 3.7449236588967998, {2, 25, 209, 152}},
+        {6, 1.0, SOL_BC4_INTERP_8BIT, 3.8859124743180575, {1, 79, 62, 196}},
+        {2, 2.0, SOL_BC4_INTERP_8BIT, 4.441466024346842, {10, 74, 72, 201}},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        double n[16][3];
+        survey_block(cases[c].family, cases[c].spread, n);
+        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .precision = cases[c].precision};
         sol_bc5_block b;
         sol_bc5_info info;
         cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);

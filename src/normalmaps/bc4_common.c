@@ -37,7 +37,8 @@
  * two or three values, and hundreds of pairs put one entry on the same 16-bit value).
  * Wide blocks (at least WIDE_CODES codes) are searched by span instead (span_search: every pair of a
  * span shares one lattice step, so its score is bounded by the targets' fit to that lattice at any
- * phase, bc4_span_bound.c; in a span that survives, each low anchor L fixes the phase, A(L), and the
+ * phase, bc4_span_bound.c, in floats for eight spans at a time; in a span that survives, each low
+ * anchor L fixes the phase, A(L), and the
  * same fit at that phase bounds the pair (L, L + span): only the L whose phase is near one of the
  * targets' best phases are scored).
  * Search: the incumbent is the best of the fast encoder's two candidate pairs (extreme_seeds) refined
@@ -56,6 +57,7 @@
 #include "normalmaps_internal.h"
 
 #include <math.h>
+#include <string.h>
 
 /* The two hot functions (box_bound, try_pair) are also compiled for AVX2 and picked at run time
  * (GCC target_clones on x86-64): the same operations in wider lanes - no FMA contraction (C11 mode),
@@ -65,6 +67,9 @@
 #else
 #define HOT_CLONES __attribute__((noinline))
 #endif
+
+typedef double v4d __attribute__((vector_size(4 * sizeof(double))));
+typedef long long v4l __attribute__((vector_size(4 * sizeof(long long))));
 
 typedef struct common_ctx {
     const double *t;
@@ -124,16 +129,45 @@ static HOT_CLONES double quantisation_bound(common_ctx *c, int m)
                         c->gcost[i][j] = j < i ? INFINITY : v;
                     }
                 }
-            double b[16];
-            for (int j = 0; j < 16; ++j)
-                b[j] = INFINITY;
-            for (int i = r - 1; i < 16; ++i) {
-                const double base = c->dp[r - 1][i - 1];
-                for (int j = 0; j < 16; ++j) {
-                    double v = base + c->gcost[i][j];
-                    b[j] = v < b[j] ? v : b[j];
-                }
+            /* four lanes of four (vector types: the compiler kept the 16 minima in scalars) */
+            const v4d zero = {0.0, 0.0, 0.0, 0.0};
+            v4d b0 = zero + INFINITY, b1 = b0, b2 = b0, b3 = b0, g, v;
+            v4l lt;
+#define DP_LANE(bq, q)                                                                                                 \
+    memcpy(&g, &c->gcost[i][4 * (q)], sizeof g);                                                                       \
+    v = base + g;                                                                                                      \
+    lt = v < bq;                                                                                                       \
+    bq = (v4d)(((v4l)v & lt) | ((v4l)bq & ~lt))
+            /* gcost[i][j] is infinite for j < i: lanes wholly below i are skipped */
+            int i = r - 1;
+            for (; i < 4; ++i) {
+                const v4d base = zero + c->dp[r - 1][i - 1];
+                DP_LANE(b0, 0);
+                DP_LANE(b1, 1);
+                DP_LANE(b2, 2);
+                DP_LANE(b3, 3);
             }
+            for (; i < 8; ++i) {
+                const v4d base = zero + c->dp[r - 1][i - 1];
+                DP_LANE(b1, 1);
+                DP_LANE(b2, 2);
+                DP_LANE(b3, 3);
+            }
+            for (; i < 12; ++i) {
+                const v4d base = zero + c->dp[r - 1][i - 1];
+                DP_LANE(b2, 2);
+                DP_LANE(b3, 3);
+            }
+            for (; i < 16; ++i) {
+                const v4d base = zero + c->dp[r - 1][i - 1];
+                DP_LANE(b3, 3);
+            }
+#undef DP_LANE
+            double b[16];
+            memcpy(b, &b0, sizeof b0);
+            memcpy(b + 4, &b1, sizeof b1);
+            memcpy(b + 8, &b2, sizeof b2);
+            memcpy(b + 12, &b3, sizeof b3);
             for (int j = 0; j < 16; ++j)
                 c->dp[r][j] = r - 1 > j ? 0.0 : b[j];
         }
@@ -153,29 +187,28 @@ static inline double anchor(int c)
 }
 
 /* Exact score of a pair in the reference order, with early exit once above budget (checked after
- * every 4 targets). The per-target minimum is exact whatever the order it is taken in, and the 16
- * terms are added one by one in the reference order, so the sum is bit-identical to the brute
- * force's. Written target-parallel so that the compiler vectorises it. */
+ * the first 8 targets). The per-target minimum is exact whatever the order it is taken in, and the
+ * 16 terms are added one by one in the reference order, so the sum is bit-identical to the brute
+ * force's. Written target-parallel, 8 targets at a time, so that the compiler vectorises it. */
 static inline double exact_score(const common_ctx *c, int pair, double budget)
 {
     const double *pal = c->pal[pair];
     double s = 0.0;
-    for (int k0 = 0; k0 < 16; k0 += 4) {
-        double m[4];
-        for (int k = 0; k < 4; ++k) {
+    for (int k0 = 0; k0 < 16; k0 += 8) {
+        double m[8];
+        for (int k = 0; k < 8; ++k) {
             double d = pal[0] - c->to[k0 + k];
             m[k] = d * d;
         }
+#pragma GCC unroll 7
         for (int i = 1; i < 8; ++i)
-            for (int k = 0; k < 4; ++k) {
+            for (int k = 0; k < 8; ++k) {
                 double d = pal[i] - c->to[k0 + k];
                 d *= d;
                 m[k] = d < m[k] ? d : m[k];
             }
-        s += m[0];
-        s += m[1];
-        s += m[2];
-        s += m[3];
+        for (int k = 0; k < 8; ++k)
+            s += m[k];
         if (s > budget)
             return s;
     }
@@ -379,6 +412,19 @@ static HOT_CLONES void try_pair(common_ctx *c, int pair)
     }
 }
 
+/* try_pair on pairs[0 .. n), in that order, their palettes fetched from memory first: the 4 MB
+ * palette table is read at scattered pairs, and the reads of a list overlap instead of waiting one
+ * by one. */
+static void try_pairs(common_ctx *c, const int *pairs, int n)
+{
+    for (int i = 0; i < n; ++i) {
+        __builtin_prefetch(c->pal[pairs[i]]);
+        __builtin_prefetch(c->pal[pairs[i]] + 7);
+    }
+    for (int i = 0; i < n; ++i)
+        try_pair(c, pairs[i]);
+}
+
 /* Boxes of at most this many pairs are scored pair by pair (exact scores exit early; cheaper than
  * splitting further, measured on the benchmark maps). */
 #define SMALL_BOX 16
@@ -531,12 +577,12 @@ static void span_search(common_ctx *c, int six)
             cand[nc++] = d;
         }
     }
-    for (int i = 0; i < nc; i += SOL_NM_SPAN_LANES) {
-        double step[SOL_NM_SPAN_LANES], lat[SOL_NM_SPAN_LANES];
-        for (int k = 0; k < SOL_NM_SPAN_LANES; ++k)
+    for (int i = 0; i < nc; i += SOL_NM_SPAN_BOUND_LANES) {
+        double step[SOL_NM_SPAN_BOUND_LANES], lat[SOL_NM_SPAN_BOUND_LANES];
+        for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES; ++k)
             step[k] = i + k < nc ? (anchor(cand[i + k]) + 1.0) / den : 0.0;
-        sol_nm_span_bounds(c->sorted, step, c->delta, lat);
-        for (int k = 0; k < SOL_NM_SPAN_LANES && i + k < nc; ++k) {
+        sol_nm_span_bounds(c->sorted, step, c->delta, c->best, lat);
+        for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES && i + k < nc; ++k) {
             double l = lat[k] > ends[i + k] ? lat[k] : ends[i + k];
             if (l > c->best)
                 continue;
@@ -571,9 +617,11 @@ static void span_search(common_ctx *c, int six)
             continue;
         double f[256];
         sol_nm_span_phase_fs(cu, l1, l2 - l1 + 1, f);
+        int pairs[256], np = 0;
         for (int l = l1; l <= l2; ++l)
             if (f[l - l1] <= fstar)
-                try_pair(c, make_pair(six, l, l + d));
+                pairs[np++] = make_pair(six, l, l + d);
+        try_pairs(c, pairs, np);
     }
 }
 
@@ -772,6 +820,36 @@ static size_t walk_work(const common_ctx *c, const sol_nm_entry_index *ix, const
     return ix->start[first_above(ix, w->val[i] + r)] - ix->start[first_above(ix, w->val[i] - r)];
 }
 
+/* The least float at least x (x finite, well inside the float range): for a float g, g >= x exactly
+ * when g >= float_at_least(x), so the walk compares the index's float gaps in floats. */
+static float float_at_least(double x)
+{
+    float f = (float)x;
+    return (double)f < x ? nextafterf(f, INFINITY) : f;
+}
+
+/* The first j in [j, b) with gap[j] < far (b if none), eight gaps at a time (most holders of a
+ * value are far from every other entry: the walk skips them). */
+typedef float v4f __attribute__((vector_size(4 * sizeof(float))));
+typedef int v4i __attribute__((vector_size(4 * sizeof(int))));
+static uint32_t next_near(const float *gap, uint32_t j, uint32_t b, float far)
+{
+    const v4f farv = {far, far, far, far};
+    for (; j + 8 <= b; j += 8) {
+        v4f g0, g1;
+        memcpy(&g0, gap + j, sizeof g0);
+        memcpy(&g1, gap + j + 4, sizeof g1);
+        const v4i near = (g0 < farv) | (g1 < farv);
+        uint64_t w[2];
+        memcpy(w, &near, sizeof w);
+        if (w[0] | w[1])
+            break;
+    }
+    while (j < b && gap[j] >= far)
+        ++j;
+    return j;
+}
+
 static int narrow_walk(common_ctx *c, const sol_nm_entry_index *ix, const walk_plan *w, int iu, size_t max_work)
 {
     const double u = w->val[iu];
@@ -792,13 +870,16 @@ static int narrow_walk(common_ctx *c, const sol_nm_entry_index *ix, const walk_p
         if (work > max_work)
             return 0;
         int alone = 0; /* the least pair whose other entries are all far has been scored */
-        for (uint32_t j = a; j < b; ++j) {
-            if (ix->gap[j] >= far) {
-                if (alone)
+        const float far_f = float_at_least(far);
+        for (uint32_t j = a; j < b;) {
+            if (ix->gap[j] >= far_f) {
+                if (alone) {
+                    j = next_near(ix->gap, j + 1, b, far_f);
                     continue;
+                }
                 alone = 1;
             }
-            try_pair(c, ix->pair[j]);
+            try_pair(c, ix->pair[j++]);
         }
     }
     return 1;

@@ -73,33 +73,89 @@ static inline __attribute__((always_inline)) void sorted_phases(const double sor
     }
 }
 
-SPAN_CLONES void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_LANES], double delta,
-                                    double out[SOL_NM_SPAN_LANES])
+/* The bound in single precision, eight steps at once (what the search spends most of its time on:
+ * every span of the region is bounded, most of them only to be dismissed). Steps of the same
+ * operations as above, in floats: the phases u_p = v_p - s round(v_p / s) of v_p = t_p - t_0 (any
+ * representatives within one period work, so no correction into [0, s)), sorted by the same network,
+ * the 16 cut sequences' sums of squares about their means, the least of them, B_f. The allowance:
+ * - each computed phase is an exact phase (modulo the exact step s) of a target moved by at most
+ *   eta = 16 eps (W + s) (eps = 2^-24, W = t_15 - t_0: the rounding of v_p, of s, of the product
+ *   m s with |m| <= W / s + 1 and of the difference, and the phases past s/2 by the rounding of
+ *   m), and a target moved by eta moves sqrt of the circular sum by at most 4 eta over the 16
+ *   targets (Cauchy-Schwarz: the sum's square root is a 2-norm of 1-Lipschitz distances); the
+ *   shifted phases (u + s in floats) are off by at most eps s each, within the same allowance;
+ * - the running sums (values below 2 s, magnitudes below 24 s and 36 s^2, a few dozen float
+ *   operations) are off by less than 2^-10 s^2 in the sum of squares about the mean.
+ * So sqrt(B) >= sqrt(B_f - 2^-10 s^2) - 4 eta =: r, and the pair's score is at least r^2 - 8 delta r
+ * (as above, with r in place of sqrt(B): x^2 - 8 delta x is increasing for x >= 4 delta, and below
+ * that it is negative, answered 0). With a finite limit (the incumbent's score), a lane whose bound
+ * is above it is answered INFINITY without its square root: the bound exceeds limit when r > rho =
+ * 4 delta + sqrt(16 delta^2 + limit) (where r^2 - 8 delta r = limit); the lanes are tested in floats
+ * with margins far above the tests' own rounding (below). */
+typedef float v8f __attribute__((vector_size(8 * sizeof(float))));
+typedef int v8i __attribute__((vector_size(8 * sizeof(int))));
+#define select8(mask, a, b) ((v8f)(((v8i)(a) & (mask)) | ((v8i)(b) & ~(mask))))
+
+SPAN_CLONES void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_BOUND_LANES], double delta,
+                                    double limit, double out[SOL_NM_SPAN_BOUND_LANES])
 {
-    const v4d zero = {0.0, 0.0, 0.0, 0.0}, one = zero + 1.0;
-    v4d st = {step[0], step[1], step[2], step[3]};
-    const v4l has = st > zero;
-    st = select4(has, st, one); /* a lane without a step: any value, answered 0 below */
-    const v4d inv = one / st;
-    v4d u[16];
-    sorted_phases(sorted, &st, &inv, u);
-    v4d sum = zero, sum2 = zero;
+    const v8f zero = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, one = zero + 1.0f, magic = zero + 0x1.8p23f;
+    v8f st = {(float)step[0], (float)step[1], (float)step[2], (float)step[3],
+              (float)step[4], (float)step[5], (float)step[6], (float)step[7]};
+    const v8i has = st > zero;
+    st = select8(has, st, one); /* a lane without a step: any value, answered 0 below */
+    const v8f inv = one / st;
+    v8f u[16];
+#pragma GCC unroll 16
+    for (int p = 0; p < 16; ++p) {
+        /* |v / s| < 2^22, so the 1.5 2^23 addition rounds to nearest */
+        const v8f v = zero + (float)(sorted[p] - sorted[0]);
+        const v8f m = (v * inv + magic) - magic;
+        u[p] = v - st * m;
+    }
+#pragma GCC unroll 63
+    for (int c = 0; c < 63; ++c) {
+        v8f x = u[network[c][0]], y = u[network[c][1]];
+        v8i lt = x < y;
+        u[network[c][0]] = select8(lt, x, y);
+        u[network[c][1]] = select8(lt, y, x);
+    }
+    v8f sum = zero, sum2 = zero;
+#pragma GCC unroll 16
     for (int p = 0; p < 16; ++p) {
         sum += u[p];
         sum2 += u[p] * u[p];
     }
-    v4d b = sum2 - sum * sum / 16.0;
+    const v8f st2 = st * st, two_st = st + st;
+    v8f b = sum2 - sum * sum * 0.0625f;
+#pragma GCC unroll 15
     for (int c = 0; c < 15; ++c) { /* cut after u_c: u_c moves up by one period */
         sum += st;
-        sum2 += st * (2.0 * u[c] + st);
-        v4d var = sum2 - sum * sum / 16.0;
-        b = select4(var < b, var, b);
+        sum2 += two_st * u[c] + st2;
+        v8f var = sum2 - sum * sum * 0.0625f;
+        b = select8(var < b, var, b);
     }
-    /* rounding of the running sums (values below 2 s, 16 of them, a few dozen operations) */
-    b -= 1e-13 * 64.0 * st * st;
-    for (int k = 0; k < 4; ++k) {
-        double v = b[k], lb = v > 0.0 ? v - 8.0 * delta * sqrt(v) : 0.0;
-        out[k] = has[k] && lb > 0.0 ? lb * (1.0 - 1e-9) : 0.0;
+    /* the lanes above the limit, without a square root: the bound exceeds limit when r > rho =
+     * 4 delta + sqrt(16 delta^2 + limit) (where r^2 - 8 delta r = limit), i.e. when
+     * B_f - 2^-10 s^2 > (rho + 4 eta)^2; tested as B_f > (rho + 4 eta)^2 (1 + 2^-12) + 2^-9 s^2
+     * in floats (the margins far above their rounding) */
+    const float w = (float)(sorted[15] - sorted[0]);
+    const double rho = limit < INFINITY ? 4.0 * delta + sqrt(16.0 * delta * delta + (limit > 0.0 ? limit : 0.0)) : 0.0;
+    const v8f eta4 = (w + st) * 0x1p-18f, reach = (float)rho + eta4;
+    const v8i above = b > reach * reach * (1.0f + 0x1p-12f) + st2 * 0x1p-9f;
+    const double wd = sorted[15] - sorted[0];
+    for (int k = 0; k < 8; ++k) {
+        if (!has[k]) {
+            out[k] = 0.0;
+            continue;
+        }
+        if (limit < INFINITY && above[k]) {
+            out[k] = INFINITY;
+            continue;
+        }
+        const double s = step[k], eta = 0x1p-20 * (wd + s), bf = (double)b[k] - 0x1p-10 * s * s;
+        const double r = bf > 0.0 ? sqrt(bf) - 4.0 * eta : 0.0, lb = r > 0.0 ? r * (r - 8.0 * delta) : 0.0;
+        out[k] = lb > 0.0 ? lb * (1.0 - 1e-9) : 0.0;
     }
 }
 

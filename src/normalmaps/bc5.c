@@ -703,6 +703,7 @@ typedef struct search_workspace {
     window_scratch *win; /* the adaptive window path's lists (window_search) */
     struct value_set *vset;   /* value-level usability (see there), allocated on demand */
     struct value_mask *vtab; /* VALUE_CODES entries */
+    sol_nm_couple *couple;   /* the coupled row bounds' scratch (bc5_couple.c), allocated on demand */
     uint32_t vgen;
 } search_workspace;
 
@@ -2218,6 +2219,37 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             nx = merge_equivalent(ws->x, nx, &kx, pal, ws->slots);
             ny = merge_equivalent(ws->y, ny, &ky, pal, ws->slots);
         }
+        /* the coupled row bounds (bc5_couple.c): for rims and pixels pointing away whose lists are long,
+         * drop the pairs whose every candidate the channels' coupling rules out; then coordinate
+         * descent from the incumbent's x pair for a better incumbent (its candidates evaluated exactly)
+         * and, if it improved, the reduction again under it. Both lists keep their order and only
+         * pairs that cannot beat the incumbent go: the enumeration's result is unchanged except
+         * that a descent candidate met first wins exact ties. */
+        int coupled = 0;
+        double couple_at = -1.0; /* the incumbent at which the reduction runs again on the lists' rest */
+        if (loose && !all_equal && nx * ny > 4096 && (ws->couple || (ws->couple = sol_nm_couple_new()))) {
+            sol_nm_couple_reduce(ws->couple, n, use_max, best * (1.0 + BOUND_SLACK), pal, precision, ws->x, &nx,
+                                 ws->y, &ny, &work);
+            coupled = 1;
+            int cand[4][2];
+            int nc = sol_nm_couple_descent(ws->couple, n, use_max, pal, precision, ws->x, nx, ws->y, ny, px, cand,
+                                           &work);
+            double was = best;
+            for (int k = 0; k < nc; ++k) {
+                ++candidates;
+                work += 512;
+                double v = joint_objective(pal[cand[k][0]], pal[cand[k][1]], n, use_max, best, NULL, NULL);
+                if (v < best) {
+                    best = v;
+                    px = cand[k][0];
+                    py = cand[k][1];
+                }
+            }
+            if (best < was)
+                sol_nm_couple_reduce(ws->couple, n, use_max, best * (1.0 + BOUND_SLACK), pal, precision, ws->x,
+                                     &nx, ws->y, &ny, &work);
+            couple_at = best - (best - floor_all) / 16.0;
+        }
         /* visit pixels worst-first (by the incumbent's per-pixel error) when rejecting candidates */
         int order[16];
         double pixel_err[16];
@@ -2311,12 +2343,20 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 bounded = 1;
                 break;
             }
-            if (valued && best < reduce_at) {
+            if ((valued && best < reduce_at) || (coupled && best < couple_at)) {
                 size_t rest = nx - i;
-                pairs_before = rest + ny;
-                value_reduce(n, &aw, use_max, best, pal, precision, ws, ws->x + i, &rest, ws->y, &ny, tx, ty, loose, &work);
+                if (valued && best < reduce_at) {
+                    pairs_before = rest + ny;
+                    value_reduce(n, &aw, use_max, best, pal, precision, ws, ws->x + i, &rest, ws->y, &ny, tx, ty, loose,
+                                 &work);
+                    reduce_at = floor_all + (10 * (rest + ny) > 9 * pairs_before ? 1.0 / 64 : 0.5) * (best - floor_all);
+                }
+                if (coupled && best < couple_at) {
+                    sol_nm_couple_reduce(ws->couple, n, use_max, best * (1.0 + BOUND_SLACK), pal, precision, ws->x + i,
+                                         &rest, ws->y, &ny, &work);
+                    couple_at = best - (best - floor_all) / 16.0;
+                }
                 nx = i + rest;
-                reduce_at = floor_all + (10 * (rest + ny) > 9 * pairs_before ? 1.0 / 64 : 0.5) * (best - floor_all);
                 if (i >= nx || ny == 0)
                     break;
                 for (size_t j = 0; quick && j < ny; ++j)
@@ -2846,6 +2886,7 @@ static sol_status workspace_alloc(search_workspace *ws)
     ws->ybucket_cap = ws->ymark_cap = 0;
     ws->vset = NULL;
     ws->vtab = NULL;
+    ws->couple = NULL;
     ws->vgen = 0;
     ws->win = malloc(sizeof *ws->win);
     if (!ws->x || !ws->y || !ws->slots || !ws->win) {
@@ -2868,6 +2909,7 @@ static void workspace_free(search_workspace *ws)
     free(ws->ymark);
     free(ws->vset);
     free(ws->vtab);
+    sol_nm_couple_free(ws->couple);
     free(ws->win);
 }
 

@@ -55,14 +55,17 @@ size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pa
  * score as sol_nm_channel_argmin on the full range with use_max = 0 and no loose pixels (least
  * score, then least e0 << 8 | e1), by branch and bound over boxes of anchor codes. */
 int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score);
-/* Lower bounds (bc4_span_bound.c), for SOL_NM_SPAN_LANES steps at once, of sum_p min_j (e_j - t_p)^2
- * over every palette whose lattice entries e_j lie within delta of a lattice phi + step Z (any
- * phase phi; the ends and fixed entries ignored): the least circular sum of squares of the targets
- * modulo step, less the rounding. sorted: the 16 targets in ascending order; out[k] = 0 when
- * step[k] <= 0. */
+/* Lower bounds (bc4_span_bound.c), for SOL_NM_SPAN_BOUND_LANES steps at once, of sum_p min_j
+ * (e_j - t_p)^2 over every palette whose lattice entries e_j lie within delta of a lattice phi + step
+ * Z (any phase phi; the ends and fixed entries ignored): the least circular sum of squares of the
+ * targets modulo step, computed in single precision, less an allowance for that rounding. sorted:
+ * the 16 targets in ascending order; out[k] = 0 when step[k] <= 0, and INFINITY when the bound is
+ * above limit (then it is not computed: the search only compares it with limit; limit = INFINITY
+ * gives every bound). */
 #define SOL_NM_SPAN_LANES 4
-void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_LANES], double delta,
-                        double out[SOL_NM_SPAN_LANES]);
+#define SOL_NM_SPAN_BOUND_LANES 8
+void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_BOUND_LANES], double delta,
+                        double limit, double out[SOL_NM_SPAN_BOUND_LANES]);
 /* The same bound at one phase (bc4_span_bound.c): for a span's step, the 16 cut sequences of the
  * targets' phases (v: sum of squares about the mean, mean: relative to base = the least target), of
  * which n are kept; floor: at most every dropped cut's v (INFINITY: none dropped; 0: no bound).
@@ -145,6 +148,24 @@ double sol_nm_away_cosine(const double a[8], const double b[8], const double n[3
 /* A cheaper, looser form (bc5_away.c): at least the largest (a_i nx + b_j ny) / max(1, |(a_i, b_j)|)
  * (the z term, <= 0 for nz < 0, dropped; no roots per decode), less than 1e-15 above it. */
 double sol_nm_away_cosine_rim(const double a[8], const double b[8], const double n[3]);
+/* The coupled row bounds of the exact search (bc5_couple.c; scratch from sol_nm_couple_new, NULL if
+ * out of memory). sol_nm_couple_cosines: out[p] >= the largest cosine between n[p] and any decode
+ * (a, b) (channel c holds a: c = 1 swaps the decode's components) with b in one of the ns <= 8
+ * intervals [lo[k], hi[k]]. sol_nm_couple_reduce: drops from both lists (order kept) the pairs whose
+ * every candidate with the other list has objective (internal units: sum or max of dN^2) >= margin.
+ * sol_nm_couple_descent: up to 4 candidates (x pair, y pair) by alternating best partners from x
+ * pair start_x, for the caller to evaluate; returns their count. */
+typedef struct sol_nm_couple sol_nm_couple;
+sol_nm_couple *sol_nm_couple_new(void);
+void sol_nm_couple_free(sol_nm_couple *cs);
+void sol_nm_couple_cosines(double a, const double n[16][3], int c, const double *lo, const double *hi, int ns,
+                           double out[16]);
+void sol_nm_couple_reduce(sol_nm_couple *cs, const double n[16][3], int use_max, double margin,
+                          const double (*pal)[8], sol_bc4_precision precision, sol_nm_pair *xl, size_t *nx,
+                          sol_nm_pair *yl, size_t *ny, uint64_t *work);
+int sol_nm_couple_descent(sol_nm_couple *cs, const double n[16][3], int use_max, const double (*pal)[8],
+                          sol_bc4_precision precision, const sol_nm_pair *xl, size_t nx, const sol_nm_pair *yl,
+                          size_t ny, int start_x, int out[][2], uint64_t *work);
 /* The adaptive encoder's threshold level of an objective err (sum of dN^2, or max dN^2 when
  * use_max): the RMS angle sqrt(err / 16) (or the max angle sqrt(err)) in degrees. The block is
  * searched when it exceeds options.threshold_deg. Monotone in err. */
