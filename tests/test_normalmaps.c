@@ -1171,6 +1171,110 @@ Test(normalmaps, degenerate_families_are_proven_at_full_range)
     }
 }
 
+/* The distinct values of every palette entry of a decoder precision (ascending), for the value-pair
+ * brute force below. */
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static size_t distinct_entries(sol_bc4_precision prec, double *out)
+{
+    const double(*pal)[8] = sol_nm_palettes(prec);
+    for (int q = 0; q < 65536; ++q)
+        for (int e = 0; e < 8; ++e)
+            out[8 * q + e] = pal[q][e] + 0.0;
+    qsort(out, 8 * 65536, sizeof *out, cmp_double);
+    size_t n = 0;
+    for (size_t k = 0; k < 8 * 65536; ++k)
+        if (n == 0 || out[k] != out[n - 1])
+            out[n++] = out[k];
+    return n;
+}
+
+/* Blocks of 16 equal normals on the full range (issue 13: thousands of exactly tied anchor pairs;
+ * the 8-bit decoder's flat block took ~48 ms and 19602 candidates, equal rim and away blocks
+ * 14-166 ms) are decided by their decode values (bc5.c, equal_value_solve). Every candidate serves
+ * all 16 pixels with one decode (a, b), a and b entries of its palettes, so the least angle over
+ * every pair of entry values, e*, gives a lower bound of every candidate's objective (16 e*^2 summed
+ * in pixel order, or e*^2 for the max); the result must attain it (literal brute force over all
+ * value pairs of the 8-bit decoder, whose entries are its 256 codes' values; near the result's own
+ * values for the finer decoders), be proven (not bounded), be its own error, with no better quadruple
+ * within +-2 codes (literal brute force over anchors), and take few angle evaluations. */
+Test(normalmaps, equal_blocks_are_decided_by_their_values, .timeout = 120)
+{
+    double *vals = malloc(8 * 65536 * sizeof *vals);
+    cr_assert(vals);
+    const double flat8 = 128.0 / 127.5 - 1.0;
+    const double dirs[][3] = {{0.0, 0.0, 1.0},  {flat8, flat8, 1.0}, {0.3, -0.2, 0.9327379053},
+                              {0.6, 0.8, 0.0},  {-1.0, 0.0, 0.0},    {0.3, 0.2, -0.9},
+                              {0.0, 1.0, -0.3}, {0.05, 0.02, -1.0},  {0.7071067811865476, 0.7071067811865476, 1e-3}};
+    const int ndirs = (int)(sizeof dirs / sizeof dirs[0]);
+    for (int prec = 0; prec < 3; ++prec) {
+        size_t nv = distinct_entries((sol_bc4_precision)prec, vals);
+        for (int c = 0; c < ndirs + 4; ++c) {
+            double d[3];
+            if (c < ndirs) {
+                memcpy(d, dirs[c], sizeof d);
+            } else { /* random: up, rim, away */
+                double phi = 2 * M_PI * uniform(), h = (c % 3 == 0 ? 1 : (c % 3 == 1 ? 0 : -1)) * uniform();
+                d[0] = sqrt(1 - h * h) * cos(phi);
+                d[1] = sqrt(1 - h * h) * sin(phi);
+                d[2] = h;
+            }
+            double n[16][3], u[16][3];
+            for (int p = 0; p < 16; ++p)
+                memcpy(n[p], d, sizeof d);
+            cr_assert_eq(sol_nm_unit_normals(n, u), SOL_OK);
+            for (int metric = 0; metric < 2; ++metric) {
+                sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = (sol_bc5_metric)metric,
+                                     .precision = (sol_bc4_precision)prec};
+                sol_bc5_block b;
+                sol_bc5_info info;
+                cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+                cr_assert(!info.bounded, "prec %d case %d metric %d: bounded", prec, c, metric);
+                double own;
+                cr_assert_eq(sol_bc5_block_error(&b, n, o.precision, o.metric, &own), SOL_OK);
+                cr_assert_eq(own, info.error, "prec %d case %d metric %d", prec, c, metric);
+                /* the value-pair brute force: all pairs (8-bit), or those within 64 entries of the
+                 * result's own decode values (finer decoders) */
+                const double(*pal)[8] = sol_nm_palettes(o.precision);
+                const double *pa = pal[b.x.e0 << 8 | b.x.e1], *pb = pal[b.y.e0 << 8 | b.y.e1];
+                double a0 = pa[b.x.index[0]] + 0.0, b0 = pb[b.y.index[0]] + 0.0;
+                size_t ka = 0, kb = 0;
+                while (vals[ka] != a0)
+                    ++ka;
+                while (vals[kb] != b0)
+                    ++kb;
+                size_t w = prec == SOL_BC4_INTERP_8BIT ? nv : 64;
+                size_t alo = ka > w ? ka - w : 0, ahi = ka + w < nv ? ka + w : nv - 1;
+                size_t blo = kb > w ? kb - w : 0, bhi = kb + w < nv ? kb + w : nv - 1;
+                double e_min = INFINITY;
+                for (size_t i = alo; i <= ahi; ++i)
+                    for (size_t j = blo; j <= bhi; ++j) {
+                        double zz = 1.0 - vals[i] * vals[i] - vals[j] * vals[j];
+                        double v[3] = {vals[i], vals[j], zz > 0.0 ? sqrt(zz) : 0.0};
+                        e_min = fmin(e_min, sol_angle3(v, u[0]));
+                    }
+                double floor = 0.0;
+                for (int p = 0; p < 16; ++p)
+                    floor = metric ? fmax(floor, e_min * e_min) : floor + e_min * e_min;
+                floor = metric ? sqrt(floor) : floor;
+                cr_assert_eq(info.error, floor, "prec %d case %d metric %d: %.17g, value brute force %.17g", prec, c,
+                             metric, info.error, floor);
+                cr_assert(info.candidates < 20000, "prec %d case %d metric %d: %llu candidates", prec, c, metric,
+                          (unsigned long long)info.candidates);
+                sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
+                                   clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
+                                   clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+                cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "prec %d case %d metric %d", prec, c, metric);
+            }
+        }
+    }
+    free(vals);
+}
+
 /* Rim arcs next to an axis (z = 0, azimuths within 0.01-0.3 rad of x = -1 or x = +1; some pixels a
  * hair above or below the rim): one y pair is left and the x list holds the 33151 pairs with an
  * entry -1 or +1, exact ties that the search evaluated one by one (33154 candidates, ~0.3 s) until

@@ -793,6 +793,43 @@ static inline uint64_t mix64(uint64_t h, uint64_t v)
     return h * UINT64_C(0xBF58476D1CE4E5B9);
 }
 
+/* The usable entries' values of two palettes for each pixel, in palette order, equal bit for bit. */
+static int mask_sequences_equal(const double pa[8], const uint16_t ma[8], const double pb[8], const uint16_t mb[8],
+                                int count)
+{
+    for (int p = 0; p < count; ++p) {
+        int ea = 0, eb = 0;
+        for (;;) {
+            while (ea < 8 && !((ma[ea] >> p) & 1))
+                ++ea;
+            while (eb < 8 && !((mb[eb] >> p) & 1))
+                ++eb;
+            if (ea == 8 || eb == 8) {
+                if (ea != eb)
+                    return 0;
+                break;
+            }
+            if (value_bits(pa[ea++]) != value_bits(pb[eb++]))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* A hash that is a function of the key (seeds, and per pixel the usable values in palette order)
+ * alone: the seeds in pixel order, and the sum over entries usable for some pixel of a mix of
+ * (value bits, mask); an entry's mask is that of its value, so that multiset is fixed by the key. */
+static uint64_t masks_hash(const double pal[8], const uint16_t m[8], const uint64_t seed[16], int count)
+{
+    uint64_t h = 0, sum = 0;
+    for (int p = 0; p < count; ++p)
+        h = mix64(h, seed[p]);
+    for (int e = 0; e < 8; ++e)
+        if (m[e])
+            sum += mix64(value_bits(pal[e]), m[e]);
+    return mix64(h, sum);
+}
+
 static uint64_t pair_key_hash(const channel_key *k, const double pal[8])
 {
     uint64_t h = 0;
@@ -846,7 +883,10 @@ static int pair_key_equal(const channel_key *k, const double pa[8], const double
 
 /* Keeps the first pair of each equivalence class of a sorted list (in place), classes given by a
  * hash and an equality of the pairs' palettes (open addressing in slots, at least 2 count + 64
- * entries); work (if not NULL) is charged 16 per pair before its hash. Returns the count kept. */
+ * entries; a slot holds the kept position + 1 in its low 17 bits and 15 bits of the hash above, so
+ * that equality is only tested where those agree: equal palettes have equal hashes); work (if not
+ * NULL) is charged 16 per pair before its hash. Returns the count kept (count <= 65536). */
+#define SLOT_POS ((UINT32_C(1) << 17) - 1)
 typedef struct pair_classes {
     uint64_t (*hash)(void *ctx, const double pal[8]);
     int (*equal)(void *ctx, const double pa[8], const double pb[8]);
@@ -866,17 +906,19 @@ static size_t merge_classes(sol_nm_pair *list, size_t count, const double (*pal)
         const double *a = pal[list[i].pair];
         if (pc->work)
             *pc->work += 16;
-        size_t h = (size_t)pc->hash(pc->ctx, a) & (size - 1);
+        uint64_t hash = pc->hash(pc->ctx, a);
+        size_t h = (size_t)hash & (size - 1);
+        uint32_t tag = (uint32_t)(hash >> 49) << 17; /* 15 bits of the hash beside the position */
         int dup = 0;
         for (; slots[h]; h = (h + 1) & (size - 1))
-            if (pc->equal(pc->ctx, pal[list[slots[h] - 1].pair], a)) {
+            if ((slots[h] & ~SLOT_POS) == tag && pc->equal(pc->ctx, pal[list[(slots[h] & SLOT_POS) - 1].pair], a)) {
                 dup = 1;
                 break;
             }
         if (dup)
             continue;
         list[kept] = list[i];
-        slots[h] = (uint32_t)++kept;
+        slots[h] = tag | (uint32_t)++kept;
     }
     return kept;
 }
@@ -1364,43 +1406,47 @@ static size_t usable_filter(sol_nm_pair *list, size_t count, const double (*pal)
     return kept;
 }
 
-/* The seed entry's value for pixel p if usable, else a marker: a seed that is not usable starts
- * best_pixel's scan from a decode outside the pixel's ball, which every usable decode beats, so
- * then only the usable entries' order decides the choice. (NaN bits: never a palette value.) */
-static uint64_t seed_key(value_table *t, const double pal[8], double target, int p)
+/* The usable masks of a palette's entries (bit p: usable for pixel p), every pixel of each entry's
+ * value made known (as the key below needs them all; the same tests and work as testing them one
+ * pixel at a time), and each pixel's seed key: the seed entry's value if usable, else a marker: a
+ * seed that is not usable starts best_pixel's scan from a decode outside the pixel's ball, which
+ * every usable decode beats, so then only the usable entries' order decides the choice. (NaN bits:
+ * never a palette value.) */
+static void usable_masks(value_table *t, const double pal[8], const double tc[16], uint16_t m[8], uint64_t seed[16])
 {
-    double v = pal[seed_entry(pal, target)];
-    return slot_usable(t, value_slot(t, v), v, p) ? value_bits(v) : UINT64_C(0x7ff8dead0000beef);
+    for (int e = 0; e < 8; ++e) {
+        value_mask *s = value_slot(t, pal[e]);
+        for (int p = 0; s->known != 0xffffu && p < 16; ++p)
+            slot_usable(t, s, pal[e], p);
+        m[e] = s->usable;
+    }
+    for (int p = 0; p < 16; ++p) {
+        int e = seed_entry(pal, tc[p]);
+        seed[p] = (m[e] >> p) & 1 ? value_bits(pal[e]) : UINT64_C(0x7ff8dead0000beef);
+    }
 }
 
+/* The key of a palette: per pixel its seed key and its usable entries' values in palette order.
+ * The hash is a function of the key alone: the seed keys in pixel order, and the sum over entries
+ * usable for some pixel of a mix of (value bits, mask), the mask being that of the value (so the
+ * multiset of those is fixed by the key: an entry's value appears in the sequence of every pixel of
+ * its mask). Equal keys give equal hashes; merge_classes keeps the first of each class whatever the
+ * hash, so the classes and the list kept are those of the per-pixel walk. */
 static uint64_t usable_key_hash(value_table *t, const double pal[8], const double tc[16])
 {
-    uint64_t h = 0;
-    for (int p = 0; p < 16; ++p) {
-        h = mix64(h, seed_key(t, pal, tc[p], p));
-        for (int e = 0; e < 8; ++e)
-            if (slot_usable(t, value_slot(t, pal[e]), pal[e], p))
-                h = mix64(h, value_bits(pal[e]));
-        h = mix64(h, 0x5eed);
-    }
-    return h;
-}
-
-static int table_entry_usable(void *ctx, const double pal[8], int e, int p)
-{
-    value_table *t = ctx;
-    return slot_usable(t, value_slot(t, pal[e]), pal[e], p);
+    uint16_t m[8];
+    uint64_t seed[16];
+    usable_masks(t, pal, tc, m, seed);
+    return masks_hash(pal, m, seed, 16);
 }
 
 static int usable_key_equal(value_table *t, const double pa[8], const double pb[8], const double tc[16])
 {
-    for (int p = 0; p < 16; ++p) {
-        if (seed_key(t, pa, tc[p], p) != seed_key(t, pb, tc[p], p))
-            return 0;
-        if (!usable_values_equal(pa, pb, p, table_entry_usable, t))
-            return 0;
-    }
-    return 1;
+    uint16_t ma[8], mb[8];
+    uint64_t sa[16], sb[16];
+    usable_masks(t, pa, tc, ma, sa);
+    usable_masks(t, pb, tc, mb, sb);
+    return memcmp(sa, sb, sizeof sa) == 0 && mask_sequences_equal(pa, ma, pb, mb, 16);
 }
 
 /* merge_equivalent with the usable entries of the table (targets tc: the channel's components of n). */
@@ -1519,6 +1565,141 @@ static int equal_block_solve(const double n[16][3], const sol_nm_pair *xl, size_
     *py = by;
     *value = v;
     return 1;
+}
+
+/* ---- blocks of 16 equal normals on the full range, decided by their values (issue 13) ----
+ *
+ * Every pixel picks the same decode, and on the full range every value v of the index of distinct
+ * palette entries (bc4_entries.c) is an entry of some x pair and of some y pair, so e* = the least
+ * decoded_angle(a, b) over every value pair (a, b) bounds every candidate's pixel error, and
+ * L = the objective of 16 pixels of error e* (folded as joint_objective folds) every candidate's
+ * objective; a candidate whose objective is L is optimal. No lists of anchor pairs are built.
+ *
+ * The scan: as in equal_block_solve, target q (the normal, or its rim direction with weight and
+ * offset if it points away and is loose) and a chord^2 budget R2 from the per-pixel budget t (the
+ * incumbent's e^2, shrinking to e*^2 as it is found). A decode with value a has x component a
+ * (x^2 + y^2 <= 1) or, z clamped, a / r with r = sqrt(a^2 + b^2) in (1, sqrt(1 + a^2)], between
+ * f(a) = a / sqrt(1 + a^2) and a; its chord to q is at least |x - qx|, so only a with the interval
+ * [min(a, f(a)), max(a, f(a))] within R = sqrt(R2) of qx can be below the budget (just a within R
+ * when no clamped decode reaches the ball: qz^2 > R2): an interval of a, since a and f(a) increase.
+ * The values a are visited outward from qx (first above, then below, alternately), each
+ * with the b values inside pixel_y_intervals' intervals for it (a superset, widened against
+ * rounding) evaluated exactly; e* and (a*, b*), the first value pair reaching it in this order,
+ * are kept (strictly smaller replaces).
+ * The tie rule: the answer is the first (x pair, y pair), x pairs holding a* and y pairs holding b*
+ * each in ascending code order, x-major, whose objective is L (the first unless its 8 x 8 grid holds
+ * another decode of larger cosine but not smaller angle, a rounding-level tie: e.g. a 6-value pair's
+ * clamped (+-1, +-1) beside (a*, b*) at the rim; after EQUAL_TRIES evaluations 0, undecided, and the
+ * search runs as before). If L is not
+ * below the incumbent, nothing beats the incumbent, which stays (px, py untouched), as in the
+ * enumeration. The blocks are tied in thousands of candidates on their anchor pairs; this decides
+ * them in a few thousand angle evaluations (evals) instead. */
+static inline double unclamp_x(double y)
+{
+    /* f^-1(y) = y / sqrt(1 - y^2) for |y| < 1: the largest |a| whose clamped x can be y */
+    return y / sqrt((1.0 - y) * (1.0 + y));
+}
+
+static size_t value_lower(const double *v, size_t n, double x)
+{
+    size_t lo = 0, hi = n; /* first v[k] >= x */
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (v[mid] < x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+enum { EQUAL_TRIES = 256 };
+
+static int equal_value_solve(const double n[16][3], const away_info *aw, int use_max, double best,
+                             sol_bc4_precision precision, int *px, int *py, double *value, uint64_t *evals)
+{
+    const sol_nm_entry_index *ix = sol_nm_entry_index_get(precision);
+    const int away = aw->mask & 1;
+    if (!ix || (away && !(aw->w[0] > 0.0)))
+        return 0; /* (0, 0, -1): the hemisphere bound decides it */
+    const double q[3] = {away ? aw->m[0][0] : n[0][0], away ? aw->m[1][0] : n[0][1], away ? 0.0 : n[0][2]};
+    const double *val = ix->value;
+    const size_t nv = ix->count;
+    double e_best = INFINITY, a_star = 0.0, b_star = 0.0;
+    double t = (use_max ? best : best / 16.0) * (1.0 + 1e-9);
+    size_t up = value_lower(val, nv, q[0]), down = up;
+    int go_up = up < nv, go_down = down > 0;
+    for (int turn = 0; go_up || go_down; turn ^= 1) {
+        double r2 = away ? (t - aw->off[0]) / aw->w[0] : t;
+        if (r2 < 0.0)
+            return 0; /* cannot happen: the incumbent meets its own budget */
+        const double R2 = r2 * (1.0 + 1e-9) + 1e-15, R = sqrt(R2) * (1.0 + 1e-9) + 1e-9;
+        double a_lo = q[0] - R, a_hi = q[0] + R;
+        if (!(q[2] * q[2] > R2)) { /* clamped decodes may reach the ball */
+            a_lo = a_lo >= 0.0 ? a_lo : (a_lo > -1.0 ? unclamp_x(a_lo) * (1.0 + 1e-9) - 1e-9 : -INFINITY);
+            a_hi = a_hi <= 0.0 ? a_hi : (a_hi < 1.0 ? unclamp_x(a_hi) * (1.0 + 1e-9) + 1e-9 : INFINITY);
+        }
+        double a;
+        if (turn == 0 && go_up) {
+            if (val[up] > a_hi) {
+                go_up = 0;
+                continue;
+            }
+            a = val[up++];
+            go_up = up < nv;
+        } else if (turn == 1 && go_down) {
+            if (val[down - 1] < a_lo) {
+                go_down = 0;
+                continue;
+            }
+            a = val[--down];
+            go_down = down > 0;
+        } else {
+            continue;
+        }
+        double a8[8] = {a, a, a, a, a, a, a, a}, lo[16], hi[16];
+        int cnt = pixel_y_intervals(a8, q, R2, 1e-9, lo, hi);
+        if (cnt < 0)
+            return 0; /* a budget that constrains nothing: the search decides it */
+        for (int k = 0; k < cnt; ++k)
+            for (size_t j = value_lower(val, nv, lo[k]); j < nv && val[j] <= hi[k]; ++j) {
+                ++*evals;
+                double ang = decoded_angle(a, val[j], n[0]);
+                if (ang < e_best) {
+                    e_best = ang;
+                    a_star = a;
+                    b_star = val[j];
+                    t = ang * ang * (1.0 + 1e-9);
+                }
+            }
+    }
+    if (!(e_best < INFINITY))
+        return 0;
+    double floor = 0.0;
+    for (int p = 0; p < 16; ++p) /* the objective of 16 pixels of error e*, as joint_objective folds it */
+        floor = fold_term(floor, e_best * e_best, use_max);
+    if (best <= floor) { /* no candidate beats the incumbent: it stays (as in the enumeration) */
+        *value = best;
+        return 1;
+    }
+    const double(*pal)[8] = sol_nm_palettes(precision);
+    const size_t ka = value_lower(val, nv, a_star), kb = value_lower(val, nv, b_star);
+    int tries = 0;
+    for (uint32_t i = ix->start[ka]; i < ix->start[ka + 1]; ++i)
+        for (uint32_t j = ix->start[kb]; j < ix->start[kb + 1]; ++j) {
+            if (++tries > EQUAL_TRIES)
+                return 0;
+            ++*evals;
+            int ax = ix->pair[i], by = ix->pair[j];
+            double v = joint_objective(pal[ax], pal[by], n, use_max, INFINITY, NULL, NULL);
+            if (v <= floor && v < best) {
+                *px = ax;
+                *py = by;
+                *value = v;
+                return 1;
+            }
+        }
+    return 0;
 }
 
 /* ---- blocks decided by their pixels one at a time (pixels pointing away) ----
@@ -1835,6 +2016,70 @@ typedef struct search_request {
     uint64_t work_limit;
 } search_request;
 
+/* sol_nm_channel_argmin for a channel whose 16 pixels are all loose, with, in out, every pair of
+ * score <= cap from the same enumeration (*count; SIZE_MAX when not collected). Loose pixels prune
+ * no anchors (enumerate_pairs scores all 65536 pairs), so search_unit's argmin and its later collect
+ * (budget <= cap: the incumbent only falls) were two full passes; now one. The argmin is the least
+ * (score, pair) of the collected pairs: it has score <= cap (the incumbent's own pair scores at most
+ * the incumbent, the channel score being a lower bound of the objective), and a pair's score within
+ * the budget is its full sum in either enumeration, so the pair and *score are sol_nm_channel_argmin's
+ * (which it falls back to if nothing was collected, or for channels with tight pixels). */
+static int argmin_collect(const sol_nm_channel *ch, unsigned loose, double cap, sol_nm_pair *out, size_t *count,
+                          double *score)
+{
+    *count = SIZE_MAX;
+    if (loose != 0xffffu)
+        return sol_nm_channel_argmin(ch, score);
+    size_t n = sol_nm_channel_collect(ch, cap, out), b = 0;
+    if (n == 0)
+        return sol_nm_channel_argmin(ch, score);
+    for (size_t k = 1; k < n; ++k)
+        if (out[k].score < out[b].score || (out[k].score == out[b].score && out[k].pair < out[b].pair))
+            b = k;
+    *count = n;
+    *score = out[b].score;
+    return out[b].pair;
+}
+
+/* sol_nm_channel_collect(ch, budget, out), or, if argmin_collect collected `pre` pairs into out with
+ * a cap >= budget, those of them within budget (the same set; search_unit sorts it). */
+static size_t collect_within(const sol_nm_channel *ch, double budget, sol_nm_pair *out, size_t pre)
+{
+    if (pre == SIZE_MAX)
+        return sol_nm_channel_collect(ch, budget, out);
+    size_t n = 0;
+    for (size_t k = 0; k < pre; ++k)
+        if (out[k].score <= budget)
+            out[n++] = out[k];
+    return n;
+}
+
+/* search_unit's shortcut for blocks of 16 equal normals on the full range (equal_value_solve):
+ * those at a rim or pointing away, and those of the 8-bit decoder (whose lattice values tie
+ * thousands of anchor pairs exactly, also with z > 0); others keep the search (already fast).
+ * Returns 1 with *best, *px, *py, *candidates updated if it decided the block. */
+static int equal_shortcut(const double n[16][3], int full, const search_request *rq, double *best, int *px, int *py,
+                          uint64_t *candidates)
+{
+    if (!full)
+        return 0;
+    for (int p = 1; p < 16; ++p)
+        if (memcmp(n[0], n[p], sizeof n[p]) != 0)
+            return 0;
+    const int loose = n[0][2] * n[0][2] <= *best * (1.0 + BOUND_SLACK);
+    if (!loose && rq->precision != SOL_BC4_INTERP_8BIT)
+        return 0;
+    away_info aw;
+    away_info_init(&aw, n, loose ? 0xffffu : 0u);
+    double v;
+    uint64_t evals = 0;
+    int done = equal_value_solve(n, &aw, rq->use_max, *best, rq->precision, px, py, &v, &evals);
+    *candidates += evals;
+    if (done)
+        *best = v;
+    return done;
+}
+
 /* order[0..16) (a permutation) sorted by decreasing err, stable: the pixels most likely to reject a
  * candidate are visited first. Insertion sort: 16 items. */
 static void order_worst_first(const double err[16], int order[16])
@@ -1911,8 +2156,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     }
     int bounded = 0;
     uint64_t work = 0; /* pixel evaluations of candidates */
-    if (best > 0.0 && best > hemisphere_bound(n, use_max)) {
+    if (best > 0.0 && best > hemisphere_bound(n, use_max) && !equal_shortcut(n, full, rq, &best, &px, &py, &candidates)) {
         unsigned loose = 0;
+        size_t pre_x = SIZE_MAX, pre_y = SIZE_MAX; /* pairs collected with the argmins (argmin_collect) */
         away_info aw;
         away_info_init(&aw, n, 0);
         if (best * (1.0 + BOUND_SLACK) >= min_nz2) { /* rim pixels: loose bounds for them */
@@ -1928,7 +2174,8 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     sol_nm_channel_rim_weight(&cx, p, aw.w[p], off);
                     sol_nm_channel_rim_weight(&cy, p, aw.w[p], off);
                 }
-            int lx = sol_nm_channel_argmin(&cx, &sx_min), ly = sol_nm_channel_argmin(&cy, &sy_min);
+            int lx = argmin_collect(&cx, loose, best * (1.0 + BOUND_SLACK), ws->x, &pre_x, &sx_min);
+            int ly = argmin_collect(&cy, loose, best * (1.0 + BOUND_SLACK), ws->y, &pre_y, &sy_min);
             /* third incumbent: the pairs of least loose score, which aim at the rim directions */
             ++candidates;
             double v = joint_objective(pal[lx], pal[ly], n, use_max, best, NULL, NULL);
@@ -1939,8 +2186,8 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             }
         }
         double room = best * (1.0 + BOUND_SLACK);
-        size_t nx = sol_nm_channel_collect(&cx, use_max ? room : room - sy_min * (1.0 - BOUND_SLACK), ws->x);
-        size_t ny = sol_nm_channel_collect(&cy, use_max ? room : room - sx_min * (1.0 - BOUND_SLACK), ws->y);
+        size_t nx = collect_within(&cx, use_max ? room : room - sy_min * (1.0 - BOUND_SLACK), ws->x, pre_x);
+        size_t ny = collect_within(&cy, use_max ? room : room - sx_min * (1.0 - BOUND_SLACK), ws->y, pre_y);
         qsort(ws->x, nx, sizeof *ws->x, compare_pairs);
         qsort(ws->y, ny, sizeof *ws->y, compare_pairs);
         int valued = 0; /* the value-level filter and merge ran */
