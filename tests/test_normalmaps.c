@@ -2033,6 +2033,27 @@ static void survey_block(int family, double spread, double n[16][3])
 #undef SURVEY_U
 }
 
+/* A survey block (survey_block) encoded by the optimal search at full range: proven (not bounded),
+ * with the reference error and anchors to the last bit, and equal to brute force over +-2 codes
+ * around its anchors. */
+static void expect_survey_case(int family, double spread, sol_bc5_metric metric, sol_bc4_precision precision,
+                               double error, const int anchors[4], size_t c)
+{
+    double n[16][3];
+    survey_block(family, spread, n);
+    sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = metric, .precision = precision};
+    sol_bc5_block b;
+    sol_bc5_info info;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+    cr_assert(!info.bounded, "case %zu: stopped by the work bound", c);
+    cr_assert_eq(info.error, error, "case %zu: %.17g, reference %.17g", c, info.error, error);
+    cr_assert(b.x.e0 == anchors[0] && b.x.e1 == anchors[1] && b.y.e0 == anchors[2] && b.y.e1 == anchors[3],
+              "case %zu: anchors %d,%d,%d,%d", c, b.x.e0, b.x.e1, b.y.e0, b.y.e1);
+    sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2), clamp_code(b.x.e1 + 2),
+                       clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2), clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+    cr_assert_eq(bc5_brute_force(n, &r, &o), error, "case %zu", c);
+}
+
 Test(normalmaps, pointing_away_survey_blocks_are_proven_exactly)
 {
     static const struct {
@@ -2052,21 +2073,8 @@ Test(normalmaps, pointing_away_survey_blocks_are_proven_exactly)
         {5, 0.1, SOL_BC5_MAX, SOL_BC4_INTERP_FLOAT, 0.53836304517094469, {0, 0, 174, 169}},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
-        double n[16][3];
-        survey_block(cases[c].family, cases[c].spread, n);
-        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = cases[c].metric, .precision = cases[c].precision};
-        sol_bc5_block b;
-        sol_bc5_info info;
-        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
-        cr_assert(!info.bounded, "case %zu: stopped by the work bound", c);
-        cr_assert_eq(info.error, cases[c].error, "case %zu: %.17g, reference %.17g", c, info.error, cases[c].error);
-        cr_assert(b.x.e0 == cases[c].anchors[0] && b.x.e1 == cases[c].anchors[1] && b.y.e0 == cases[c].anchors[2] &&
-                      b.y.e1 == cases[c].anchors[3],
-                  "case %zu: anchors %d,%d,%d,%d", c, b.x.e0, b.x.e1, b.y.e0, b.y.e1);
-        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
-                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
-                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
-        cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "case %zu", c);
+        expect_survey_case(cases[c].family, cases[c].spread, cases[c].metric, cases[c].precision, cases[c].error,
+                           cases[c].anchors, c);
     }
 }
 
@@ -2218,20 +2226,7 @@ Test(normalmaps, coupled_survey_blocks_are_proven_exactly)
         {2, 2.0, SOL_BC4_INTERP_8BIT, 4.441466024346842, {10, 74, 72, 201}},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
-        double n[16][3];
-        survey_block(cases[c].family, cases[c].spread, n);
-        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .precision = cases[c].precision};
-        sol_bc5_block b;
-        sol_bc5_info info;
-        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
-        cr_assert(!info.bounded, "case %zu: stopped by the work bound", c);
-        cr_assert_eq(info.error, cases[c].error, "case %zu: %.17g, reference %.17g", c, info.error, cases[c].error);
-        cr_assert(b.x.e0 == cases[c].anchors[0] && b.x.e1 == cases[c].anchors[1] && b.y.e0 == cases[c].anchors[2] &&
-                      b.y.e1 == cases[c].anchors[3],
-                  "case %zu: anchors %d,%d,%d,%d", c, b.x.e0, b.x.e1, b.y.e0, b.y.e1);
-        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
-                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
-                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
-        cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "case %zu", c);
+        expect_survey_case(cases[c].family, cases[c].spread, SOL_BC5_SUM_SQUARED, cases[c].precision, cases[c].error,
+                           cases[c].anchors, c);
     }
 }

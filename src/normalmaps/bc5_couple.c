@@ -52,6 +52,41 @@ struct sol_nm_couple {
     uint64_t bits[COUPLE_CODES / 64];
 };
 
+/* Forgets every cached e2 row at once: a row counts only if its stamp is the current generation
+ * (on the rare wrap-around of the counter every stamp is cleared). */
+static void next_generation(sol_nm_couple *cs)
+{
+    if (++cs->gen == 0) {
+        memset(cs->stamp, 0, sizeof cs->stamp);
+        cs->gen = 1;
+    }
+}
+
+/* The cached row of per-pixel angle^2 floors of entry value v (its code on the q grid), or NULL if
+ * it was not filled in this generation; fresh_row marks it filled and returns it for the caller to
+ * fill. */
+static float *cached_row(sol_nm_couple *cs, double v, double half_q)
+{
+    long k = lround((v + 1.0) * half_q);
+    return cs->stamp[k] == cs->gen ? cs->e2[k] : NULL;
+}
+
+static float *fresh_row(sol_nm_couple *cs, double v, double half_q)
+{
+    long k = lround((v + 1.0) * half_q);
+    cs->stamp[k] = cs->gen;
+    return cs->e2[k];
+}
+
+/* The block objective's fold of 16 per-pixel floors: their sum, or their max for SOL_BC5_MAX. */
+static double fold_row(const float row[16], int use_max)
+{
+    double s = 0.0;
+    for (int p = 0; p < 16; ++p)
+        s = use_max ? (row[p] > s ? row[p] : s) : s + row[p];
+    return s;
+}
+
 sol_nm_couple *sol_nm_couple_new(void)
 {
     return calloc(1, sizeof(sol_nm_couple));
@@ -206,19 +241,15 @@ static size_t row_filter(sol_nm_couple *cs, const couple_pixels *px, int use_max
                          const double (*pal)[8], double half_q, sol_nm_pair *list, size_t count,
                          const double lo[COUPLE_SPANS], const double hi[COUPLE_SPANS], int ns, uint64_t *work)
 {
-    if (++cs->gen == 0) {
-        memset(cs->stamp, 0, sizeof cs->stamp);
-        cs->gen = 1;
-    }
+    next_generation(cs);
     size_t kept = 0;
     for (size_t i = 0; i < count; ++i) {
         const double *a = pal[list[i].pair];
         float row[16];
         for (int e = 0; e < 8; ++e) {
-            long k = lround((a[e] + 1.0) * half_q);
-            float *t = cs->e2[k];
-            if (cs->stamp[k] != cs->gen) {
-                cs->stamp[k] = cs->gen;
+            float *t = cached_row(cs, a[e], half_q);
+            if (!t) {
+                t = fresh_row(cs, a[e], half_q);
                 *work += 16 * ns;
                 double cs16[16];
                 code_cosines(a[e], px, lo, hi, ns, cs16);
@@ -236,9 +267,7 @@ static size_t row_filter(sol_nm_couple *cs, const couple_pixels *px, int use_max
                 row[p] = e ? (t[p] < row[p] ? t[p] : row[p]) : t[p];
         }
         *work += 16;
-        double s = 0.0;
-        for (int p = 0; p < 16; ++p)
-            s = use_max ? (row[p] > s ? row[p] : s) : s + row[p];
+        double s = fold_row(row, use_max);
         if (s < margin)
             list[kept++] = list[i];
     }
@@ -279,20 +308,16 @@ static size_t best_partner(sol_nm_couple *cs, const double n[16][3], int c, int 
                            const double (*pal)[8], double half_q, const sol_nm_pair *list, size_t count,
                            uint64_t *work)
 {
-    if (++cs->gen == 0) {
-        memset(cs->stamp, 0, sizeof cs->stamp);
-        cs->gen = 1;
-    }
+    next_generation(cs);
     size_t arg = 0;
     double least = INFINITY;
     for (size_t i = 0; i < count; ++i) {
         const double *a = pal[list[i].pair];
         float row[16];
         for (int e = 0; e < 8; ++e) {
-            long k = lround((a[e] + 1.0) * half_q);
-            float *t = cs->e2[k];
-            if (cs->stamp[k] != cs->gen) {
-                cs->stamp[k] = cs->gen;
+            float *t = cached_row(cs, a[e], half_q);
+            if (!t) {
+                t = fresh_row(cs, a[e], half_q);
                 *work += 64;
                 for (int p = 0; p < 16; ++p) {
                     const double m[3] = {n[p][c], n[p][1 - c], n[p][2]};
@@ -311,9 +336,7 @@ static size_t best_partner(sol_nm_couple *cs, const double n[16][3], int c, int 
                 row[p] = e ? (t[p] < row[p] ? t[p] : row[p]) : t[p];
         }
         *work += 16;
-        double s = 0.0;
-        for (int p = 0; p < 16; ++p)
-            s = use_max ? (row[p] > s ? row[p] : s) : s + row[p];
+        double s = fold_row(row, use_max);
         if (s < least) {
             least = s;
             arg = i;
