@@ -68,6 +68,19 @@ static inline double fold_term(double s, double term, int use_max)
     return use_max ? (term > s ? term : s) : s + term;
 }
 
+/* Folds terms[0 .. n) into *s in order, one work unit each, stopping as soon as *s reaches budget
+ * (the quick bounds' early exit); 1 if it stopped there. */
+static inline int fold_terms_until(double *s, const double *terms, int n, int use_max, double budget, uint64_t *work)
+{
+    for (int k = 0; k < n; ++k) {
+        ++*work;
+        *s = fold_term(*s, terms[k], use_max);
+        if (*s >= budget)
+            return 1;
+    }
+    return 0;
+}
+
 static inline double rebuild_z(double a, double b)
 {
     double zz = 1.0 - a * a - b * b;
@@ -438,6 +451,18 @@ static AVX2_FN void channel_side_nearest_avx2(const double pal[8], const double 
 }
 #endif
 
+/* s's nearest-entry fields for targets t (in visiting order), by the AVX2 form where it runs. */
+static void channel_side_fill(const double pal[8], const double t[16], channel_side *s)
+{
+#if SEARCH_AVX2
+    if (search_avx2()) {
+        channel_side_nearest_avx2(pal, t, s);
+        return;
+    }
+#endif
+    channel_side_nearest(pal, t, s);
+}
+
 /* Fills s for palette pal against component c (0 = x, 1 = y) of the pixels n[order[k]]. */
 static void channel_side_init(const double pal[8], const double n[16][3], const int order[16], int c,
                               const away_info *aw, channel_side *s)
@@ -448,19 +473,35 @@ static void channel_side_init(const double pal[8], const double n[16][3], const 
         s->lt[k] = (aw->mask >> p) & 1 ? aw->w[p] * sol_nm_loose_term(pal, aw->m[c][p]) : 0.0;
         t[k] = n[p][c];
     }
-#if SEARCH_AVX2
-    if (search_avx2()) {
-        channel_side_nearest_avx2(pal, t, s);
-        return;
-    }
-#endif
-    channel_side_nearest(pal, t, s);
+    channel_side_fill(pal, t, s);
 }
 
 /* The quick lower bound of the joint objective (pixels in `order`, stops once it reaches budget).
  * Each pixel's chord^2 bound c2 becomes a dN^2 bound c2 (1 - 3e-6) - 5e-15 <= (c (1 - 1e-6) - 1e-15)^2,
  * the rounding allowance of angle2_lower_bound; the chord of (v_x, v_y) is computed with the decoder's
  * z = sqrt(1 - a^2 - b^2). */
+/* The quick bound's term of the pixel at visiting position k (normal np): the least of the chord^2
+ * bounds, lowered for rounding, and at least the pointing-away term (0 unless it points away). */
+static inline double quick_term(const channel_side *xs, const channel_side *ys, const double np[3], int k,
+                                double away_off_k)
+{
+    double a = xs->v[k], b = ys->v[k], nz2 = np[2] * np[2];
+    double alt = xs->m2[k] + ys->m1[k], alt2 = xs->m1[k] + ys->m2[k];
+    double lb = alt < alt2 ? alt : alt2;
+    lb = nz2 < lb ? nz2 : lb;
+    double zz = 1.0 - a * a - b * b, c2;
+    if (zz > 0.0) {
+        double dz = sqrt(zz) - np[2];
+        c2 = xs->m1[k] + ys->m1[k] + dz * dz;
+    } else {
+        c2 = nz2; /* a clamped decode */
+    }
+    lb = c2 < lb ? c2 : lb;
+    double e2 = lb * (1.0 - 3e-6) - 5e-15;
+    double away = (away_off_k + xs->lt[k] + ys->lt[k]) * (1.0 - 1e-12); /* 0 unless pointing away */
+    return e2 > away ? e2 : away;
+}
+
 #if SEARCH_AVX2
 /* joint_objective_quick's tight per-pixel terms for pixels k..k+3 (before the away term and the
  * clamp at 0): the square root of a clamped argument, its result selected only where zz > 0, as the
@@ -507,35 +548,14 @@ static double joint_objective_quick(const channel_side *xs, const channel_side *
         for (int k = 0; k < 16; ++k)
             nz[k] = n[order[k]][2];
         quick_terms_avx2(xs, ys, nz, away_off, e2);
-        for (int k = 0; k < 16; ++k) {
-            ++*work;
-            s = fold_term(s, e2[k], use_max);
-            if (s >= budget)
-                return s;
-        }
+        fold_terms_until(&s, e2, 16, use_max, budget, work);
         return s;
     }
 #endif
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
         ++*work;
-        const double *np = n[order[k]];
-        double a = xs->v[k], b = ys->v[k], nz2 = np[2] * np[2];
-        double alt = xs->m2[k] + ys->m1[k], alt2 = xs->m1[k] + ys->m2[k];
-        double lb = alt < alt2 ? alt : alt2;
-        lb = nz2 < lb ? nz2 : lb;
-        double zz = 1.0 - a * a - b * b, c2;
-        if (zz > 0.0) {
-            double dz = sqrt(zz) - np[2];
-            c2 = xs->m1[k] + ys->m1[k] + dz * dz;
-        } else {
-            c2 = nz2; /* a clamped decode */
-        }
-        lb = c2 < lb ? c2 : lb;
-        double e2 = lb * (1.0 - 3e-6) - 5e-15;
-        double away = (away_off[k] + xs->lt[k] + ys->lt[k]) * (1.0 - 1e-12); /* 0 unless pointing away */
-        e2 = e2 > away ? e2 : away;
-        s = fold_term(s, e2, use_max);
+        s = fold_term(s, quick_term(xs, ys, n[order[k]], k, away_off[k]), use_max);
         if (s >= budget)
             return s;
     }
@@ -565,21 +585,7 @@ static double joint_objective_away(const double a[8], const double b[8], const c
         ++*work;
         const int p = order[k];
         const double *np = n[p];
-        double va = xs->v[k], vb = ys->v[k], nz2 = np[2] * np[2];
-        double alt = xs->m2[k] + ys->m1[k], alt2 = xs->m1[k] + ys->m2[k];
-        double lb = alt < alt2 ? alt : alt2;
-        lb = nz2 < lb ? nz2 : lb;
-        double zz = 1.0 - va * va - vb * vb, c2;
-        if (zz > 0.0) {
-            double dz = sqrt(zz) - np[2];
-            c2 = xs->m1[k] + ys->m1[k] + dz * dz;
-        } else {
-            c2 = nz2;
-        }
-        lb = c2 < lb ? c2 : lb;
-        double e2 = lb * (1.0 - 3e-6) - 5e-15;
-        double away = (away_off[k] + xs->lt[k] + ys->lt[k]) * (1.0 - 1e-12);
-        e2 = e2 > away ? e2 : away;
+        double e2 = quick_term(xs, ys, np, k, away_off[k]);
         if ((aw->mask >> p) & 1) {
             *work += 5;
             double cosine = sol_nm_away_cosine_rim(a, b, np) + 1e-14;
@@ -1475,6 +1481,20 @@ static size_t merge_usable(sol_nm_pair *list, size_t count, const double (*pal)[
     return merge_classes(list, count, pal, &pc, slots);
 }
 
+/* The open-addressing set of the distinct entry values of list xl (slot 8 i + e + 1 holds entry e
+ * of pair xl[i]; 0 is empty): 1 if a value with bits key is in it, else 0 and *h the empty slot
+ * where it goes. */
+static int distinct_value_slot(const uint32_t *slots, size_t size, const double (*pal)[8], const sol_nm_pair *xl,
+                               uint64_t key, size_t *h)
+{
+    size_t k = (size_t)mix64(0, key) & (size - 1);
+    for (; slots[k]; k = (k + 1) & (size - 1))
+        if (value_bits(pal[xl[(slots[k] - 1) >> 3].pair][(slots[k] - 1) & 7]) == key)
+            return 1;
+    *h = k;
+    return 0;
+}
+
 /* ---- blocks of 16 equal normals at a rim or pointing away ----
  *
  * Every pixel then picks the same decode, so a candidate's objective is that of the best decode
@@ -1507,12 +1527,8 @@ static int equal_block_solve(const double n[16][3], const sol_nm_pair *xl, size_
     for (size_t i = 0; i < nx; ++i)
         for (int e = 0; e < 8; ++e) {
             double a = pal[xl[i].pair][e];
-            uint64_t key = value_bits(a);
-            size_t h = (size_t)mix64(0, key) & (size - 1);
-            int seen = 0;
-            for (; slots[h] && !seen; h = (h + 1) & (size - 1))
-                seen = value_bits(pal[xl[(slots[h] - 1) >> 3].pair][(slots[h] - 1) & 7]) == key;
-            if (seen)
+            size_t h;
+            if (distinct_value_slot(slots, size, pal, xl, value_bits(a), &h))
                 continue;
             if (++distinct > size / 2)
                 return 0;
@@ -1827,12 +1843,8 @@ static int separable_solve(const double n[16][3], const int group[16], const sol
     size_t nd = 0;
     for (size_t i = 0; i < nx; ++i)
         for (int e = 0; e < 8; ++e) {
-            uint64_t key = value_bits(pal[xl[i].pair][e]);
-            size_t h = (size_t)mix64(0, key) & (size - 1);
-            int seen = 0;
-            for (; slots[h] && !seen; h = (h + 1) & (size - 1))
-                seen = value_bits(pal[xl[(slots[h] - 1) >> 3].pair][(slots[h] - 1) & 7]) == key;
-            if (seen)
+            size_t h;
+            if (distinct_value_slot(slots, size, pal, xl, value_bits(pal[xl[i].pair][e]), &h))
                 continue;
             if (nd == 65536) {
                 free(distinct);
@@ -2749,12 +2761,8 @@ static AVX2_FN double window_quick_avx2(const channel_side *xs, const channel_si
     double s = 0.0, e2[4];
     for (int k = 0; k < 16; k += 4) { /* quick_terms_avx2's terms, its away term 0 */
         _mm256_storeu_pd(e2, _mm256_max_pd(quick_tight4(xs, ys, nz, k), _mm256_setzero_pd()));
-        for (int q = 0; q < 4; ++q) {
-            ++*work;
-            s = fold_term(s, e2[q], use_max);
-            if (s >= budget)
-                return s;
-        }
+        if (fold_terms_until(&s, e2, 4, use_max, budget, work))
+            return s;
     }
     return s;
 }
@@ -2848,13 +2856,7 @@ static int window_chunk_below(const window_chunk *c, int q, double margin)
 static void window_side_init(const double pal[8], const double t[16], channel_side *s)
 {
     memset(s->lt, 0, sizeof s->lt);
-#if SEARCH_AVX2
-    if (search_avx2()) {
-        channel_side_nearest_avx2(pal, t, s);
-        return;
-    }
-#endif
-    channel_side_nearest(pal, t, s);
+    channel_side_fill(pal, t, s);
 }
 
 /* order_worst_first's order (pixels by decreasing err, equal errors in pixel order: a stable sort),
