@@ -62,18 +62,12 @@ static void next_generation(sol_nm_couple *cs)
     }
 }
 
-/* The cached row of per-pixel angle^2 floors of entry value v (its code on the q grid), or NULL if
- * it was not filled in this generation; fresh_row marks it filled and returns it for the caller to
- * fill. */
-static float *cached_row(sol_nm_couple *cs, double v, double half_q)
+/* The cached row of per-pixel angle^2 floors of entry value v (its code on the q grid); *stale = 1
+ * if it was not filled in this generation (it now counts as filled: the caller fills it). */
+static float *entry_row(sol_nm_couple *cs, double v, double half_q, int *stale)
 {
     long k = lround((v + 1.0) * half_q);
-    return cs->stamp[k] == cs->gen ? cs->e2[k] : NULL;
-}
-
-static float *fresh_row(sol_nm_couple *cs, double v, double half_q)
-{
-    long k = lround((v + 1.0) * half_q);
+    *stale = cs->stamp[k] != cs->gen;
     cs->stamp[k] = cs->gen;
     return cs->e2[k];
 }
@@ -247,9 +241,9 @@ static size_t row_filter(sol_nm_couple *cs, const couple_pixels *px, int use_max
         const double *a = pal[list[i].pair];
         float row[16];
         for (int e = 0; e < 8; ++e) {
-            float *t = cached_row(cs, a[e], half_q);
-            if (!t) {
-                t = fresh_row(cs, a[e], half_q);
+            int stale;
+            float *t = entry_row(cs, a[e], half_q, &stale);
+            if (stale) {
                 *work += 16 * ns;
                 double cs16[16];
                 code_cosines(a[e], px, lo, hi, ns, cs16);
@@ -315,9 +309,9 @@ static size_t best_partner(sol_nm_couple *cs, const double n[16][3], int c, int 
         const double *a = pal[list[i].pair];
         float row[16];
         for (int e = 0; e < 8; ++e) {
-            float *t = cached_row(cs, a[e], half_q);
-            if (!t) {
-                t = fresh_row(cs, a[e], half_q);
+            int stale;
+            float *t = entry_row(cs, a[e], half_q, &stale);
+            if (stale) {
                 *work += 64;
                 for (int p = 0; p < 16; ++p) {
                     const double m[3] = {n[p][c], n[p][1 - c], n[p][2]};
