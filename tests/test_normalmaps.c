@@ -573,6 +573,14 @@ static uint8_t clamp_code(int v)
     return (uint8_t)(v < 0 ? 0 : (v > 255 ? 255 : v));
 }
 
+/* The anchor box of +-d codes around block b's four anchors (clamped to 0..255). */
+static sol_bc5_range range_around(const sol_bc5_block *b, int d)
+{
+    return (sol_bc5_range){clamp_code(b->x.e0 - d), clamp_code(b->x.e0 + d), clamp_code(b->x.e1 - d),
+                           clamp_code(b->x.e1 + d), clamp_code(b->y.e0 - d), clamp_code(b->y.e0 + d),
+                           clamp_code(b->y.e1 - d), clamp_code(b->y.e1 + d)};
+}
+
 /* Literal brute force over a range: every anchor combination through sol_bc5_choose_indices. */
 static double bc5_brute_force(const double n[16][3], const sol_bc5_range *r, const sol_bc5_options *o)
 {
@@ -637,9 +645,7 @@ Test(normalmaps, joint_search_is_exact_at_the_rim)
     sol_bc5_block common, found;
     sol_bc5_info info;
     cr_assert_eq(sol_bc5_encode_block(n, &o, &common, NULL), SOL_OK);
-    sol_bc5_range r = {clamp_code(common.x.e0 - 2), clamp_code(common.x.e0 + 2), clamp_code(common.x.e1 - 2),
-                       clamp_code(common.x.e1 + 2), clamp_code(common.y.e0 - 2), clamp_code(common.y.e0 + 2),
-                       clamp_code(common.y.e1 - 2), clamp_code(common.y.e1 + 2)};
+    sol_bc5_range r = range_around(&common, 2);
     cr_assert_eq(sol_bc5_search_block(n, &r, &o, &found, &info), SOL_OK);
     cr_assert_eq(info.error, bc5_brute_force(n, &r, &o));
 }
@@ -665,9 +671,7 @@ Test(normalmaps, adaptive_window_equals_brute_force_over_the_window_T13)
         cr_assert_eq(sol_bc5_encode_block(n, &ob, &base, &ib), SOL_OK);
         cr_assert_eq(sol_bc5_encode_block(n, &o, &found, &info), SOL_OK);
         int w = o.window;
-        sol_bc5_range r = {clamp_code(base.x.e0 - w), clamp_code(base.x.e0 + w), clamp_code(base.x.e1 - w),
-                           clamp_code(base.x.e1 + w), clamp_code(base.y.e0 - w), clamp_code(base.y.e0 + w),
-                           clamp_code(base.y.e1 - w), clamp_code(base.y.e1 + w)};
+        sol_bc5_range r = range_around(&base, w);
         double ref = bc5_brute_force(n, &r, &o);
         cr_assert_eq(info.searched, 1, "trial %d", trial);
         cr_assert_eq(info.error, ref, "trial %d: window %.17g, brute force %.17g", trial, info.error, ref);
@@ -713,9 +717,7 @@ Test(normalmaps, adaptive_window_on_flat_8bit_blocks_equals_brute_force_T13)
         sol_bc5_info info;
         cr_assert_eq(sol_bc5_encode_block(n, &ob, &base, NULL), SOL_OK);
         cr_assert_eq(sol_bc5_encode_block(n, &o, &found, &info), SOL_OK);
-        sol_bc5_range r = {clamp_code(base.x.e0 - 4), clamp_code(base.x.e0 + 4), clamp_code(base.x.e1 - 4),
-                           clamp_code(base.x.e1 + 4), clamp_code(base.y.e0 - 4), clamp_code(base.y.e0 + 4),
-                           clamp_code(base.y.e1 - 4), clamp_code(base.y.e1 + 4)};
+        sol_bc5_range r = range_around(&base, 4);
         double ref = bc5_brute_force(n, &r, &o);
         cr_assert_eq(info.error, ref, "trial %d: window %.17g, brute force %.17g", trial, info.error, ref);
     }
@@ -763,9 +765,7 @@ Test(normalmaps, search_simd_forms_equal_the_scalar_forms)
         encode_both_forms(n, &o, NULL, trial);
         sol_bc5_block common;
         cr_assert_eq(sol_bc5_encode_block(n, &(sol_bc5_options){.precision = o.precision}, &common, NULL), SOL_OK);
-        sol_bc5_range r = {clamp_code(common.x.e0 - 3), clamp_code(common.x.e0 + 3), clamp_code(common.x.e1 - 3),
-                           clamp_code(common.x.e1 + 3), clamp_code(common.y.e0 - 3), clamp_code(common.y.e0 + 3),
-                           clamp_code(common.y.e1 - 3), clamp_code(common.y.e1 + 3)};
+        sol_bc5_range r = range_around(&common, 3);
         encode_both_forms(n, &o, &r, trial);
     }
     for (int family = 0; family < 4; ++family) { /* pointing away, rims: search_unit's away and loose terms */
@@ -821,9 +821,7 @@ Test(normalmaps, joint_search_is_exact_pointing_away_and_at_rims)
         sol_bc5_info info;
         cr_assert_eq(sol_bc5_encode_block(n, &o, &common, NULL), SOL_OK);
         /* windows of 11 codes: lists long enough for the coupling filter and the equal-block solver */
-        sol_bc5_range r = {clamp_code(common.x.e0 - 5), clamp_code(common.x.e0 + 5), clamp_code(common.x.e1 - 5),
-                           clamp_code(common.x.e1 + 5), clamp_code(common.y.e0 - 5), clamp_code(common.y.e0 + 5),
-                           clamp_code(common.y.e1 - 5), clamp_code(common.y.e1 + 5)};
+        sol_bc5_range r = range_around(&common, 5);
         for (int w = 0; w < 3; ++w) {
             if (w == 1) /* near full span, 8-value mode: where rim directions are reached */
                 r = (sol_bc5_range){245, 255, 0, 10, 245, 255, 0, 10};
@@ -857,9 +855,7 @@ Test(normalmaps, optimal_encoder_beats_common_and_adaptive_T12_T13)
         cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &optimal), SOL_OK);
         cr_assert(optimal.error <= adaptive.error && adaptive.error <= window0.error &&
                   window0.error <= common.error * (1 + 1e-12));
-        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
-                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
-                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        sol_bc5_range r = range_around(&b, 2);
         cr_assert_eq(bc5_brute_force(n, &r, &o), optimal.error);
     }
 }
@@ -1050,9 +1046,7 @@ Test(normalmaps, degenerate_blocks_are_decided_directly_and_exactly)
                       (unsigned long long)info.candidates);
             /* a window with many tied pairs: the search equals brute force there, and the full-range
              * optimum is no worse than the window's */
-            sol_bc5_range r = {clamp_code(b.x.e0 - 3), clamp_code(b.x.e0 + 3), clamp_code(b.x.e1 - 3),
-                               clamp_code(b.x.e1 + 3), clamp_code(b.y.e0 - 3), clamp_code(b.y.e0 + 3),
-                               clamp_code(b.y.e1 - 3), clamp_code(b.y.e1 + 3)};
+            sol_bc5_range r = range_around(&b, 3);
             sol_bc5_info window;
             sol_bc5_block wb;
             cr_assert_eq(sol_bc5_search_block(n, &r, &o, &wb, &window), SOL_OK);
@@ -1159,9 +1153,7 @@ Test(normalmaps, degenerate_families_are_proven_at_full_range)
         double own;
         cr_assert_eq(sol_bc5_block_error(&b, n, o.precision, o.metric, &own), SOL_OK);
         cr_assert_eq(own, info.error, "case %d", c);
-        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
-                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
-                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        sol_bc5_range r = range_around(&b, 2);
         cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "case %d", c);
         double floor = 0.0, len = sqrt(n[0][0] * n[0][0] + n[0][1] * n[0][1] + n[0][2] * n[0][2]);
         double e = n[0][2] < 0.0 ? asin(-n[0][2] / len) : 0.0;
@@ -1265,9 +1257,7 @@ Test(normalmaps, equal_blocks_are_decided_by_their_values, .timeout = 120)
                              metric, info.error, floor);
                 cr_assert(info.candidates < 20000, "prec %d case %d metric %d: %llu candidates", prec, c, metric,
                           (unsigned long long)info.candidates);
-                sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
-                                   clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
-                                   clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+                sol_bc5_range r = range_around(&b, 2);
                 cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "prec %d case %d metric %d", prec, c, metric);
             }
         }
@@ -1302,9 +1292,7 @@ Test(normalmaps, rim_arcs_next_to_an_axis_are_proven_with_few_candidates)
         double own;
         cr_assert_eq(sol_bc5_block_error(&b, n, o.precision, o.metric, &own), SOL_OK);
         cr_assert_eq(own, info.error, "case %d", c);
-        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
-                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
-                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        sol_bc5_range r = range_around(&b, 2);
         cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "case %d", c);
         r.x0_lo = r.x1_lo = 0;
         r.x0_hi = r.x1_hi = 10;
@@ -1367,9 +1355,7 @@ Test(normalmaps, hard_terrain_blocks_finish_exactly_within_the_work_bound)
         cr_assert(!info.bounded, "block %d: stopped by the work bound", c);
         cr_assert(info.candidates > 1000000, "block %d: %llu candidates", c, (unsigned long long)info.candidates);
         cr_assert_eq(info.error, reference[c], "block %d: %.17g, reference %.17g", c, info.error, reference[c]);
-        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
-                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
-                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        sol_bc5_range r = range_around(&b, 2);
         cr_assert_eq(bc5_brute_force(blocks[c], &r, &o), info.error, "block %d", c);
     }
 }
@@ -1744,9 +1730,7 @@ Test(normalmaps, joint_search_is_exact_near_the_hemisphere_bound)
         sol_bc5_block common, found;
         sol_bc5_info info;
         cr_assert_eq(sol_bc5_encode_block(n, &o, &common, NULL), SOL_OK);
-        sol_bc5_range r = {clamp_code(common.x.e0 - 5), clamp_code(common.x.e0 + 5), clamp_code(common.x.e1 - 5),
-                           clamp_code(common.x.e1 + 5), clamp_code(common.y.e0 - 5), clamp_code(common.y.e0 + 5),
-                           clamp_code(common.y.e1 - 5), clamp_code(common.y.e1 + 5)};
+        sol_bc5_range r = range_around(&common, 5);
         for (int w = 0; w < 2; ++w) {
             if (w == 1) /* both modes at the full span: entries -1 and +1 reach the rim */
                 r = (sol_bc5_range){0, 10, 245, 255, 245, 255, 0, 10};
@@ -1873,9 +1857,7 @@ Test(normalmaps, smooth_blocks_pointing_away_are_proven_at_full_range)
         cr_assert(!info.bounded, "block %d: stopped by the work bound", c);
         cr_assert_eq(info.error, cases[c].reference, "block %d: %.17g, reference %.17g", c, info.error,
                      cases[c].reference);
-        sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2),
-                           clamp_code(b.x.e1 + 2), clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2),
-                           clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+        sol_bc5_range r = range_around(&b, 2);
         cr_assert_eq(bc5_brute_force(blocks[c], &r, &o), info.error, "block %d", c);
     }
 }
@@ -2049,8 +2031,7 @@ static void expect_survey_case(int family, double spread, sol_bc5_metric metric,
     cr_assert_eq(info.error, error, "case %zu: %.17g, reference %.17g", c, info.error, error);
     cr_assert(b.x.e0 == anchors[0] && b.x.e1 == anchors[1] && b.y.e0 == anchors[2] && b.y.e1 == anchors[3],
               "case %zu: anchors %d,%d,%d,%d", c, b.x.e0, b.x.e1, b.y.e0, b.y.e1);
-    sol_bc5_range r = {clamp_code(b.x.e0 - 2), clamp_code(b.x.e0 + 2), clamp_code(b.x.e1 - 2), clamp_code(b.x.e1 + 2),
-                       clamp_code(b.y.e0 - 2), clamp_code(b.y.e0 + 2), clamp_code(b.y.e1 - 2), clamp_code(b.y.e1 + 2)};
+    sol_bc5_range r = range_around(&b, 2);
     cr_assert_eq(bc5_brute_force(n, &r, &o), error, "case %zu", c);
 }
 
