@@ -711,6 +711,10 @@ typedef struct search_workspace {
     struct value_mask *vtab; /* VALUE_CODES entries */
     sol_nm_couple *couple;   /* the coupled row bounds' scratch (bc5_couple.c), allocated on demand */
     uint32_t vgen;
+    struct key_mask *ktab; /* merge_keyed's per-value masks (VALUE_CODES entries), allocated on demand */
+    uint32_t kgen;
+    struct pair_key *kkey; /* merge_keyed's keys of the kept pairs, grown on demand */
+    size_t kkey_cap;
 } search_workspace;
 
 static int compare_pairs(const void *pa, const void *pb)
@@ -1481,6 +1485,123 @@ static size_t merge_usable(sol_nm_pair *list, size_t count, const double (*pal)[
     return merge_classes(list, count, pal, &pc, slots);
 }
 
+/* merge_equivalent's classes at a fraction of its cost (issue 13: on rims and blocks pointing away it
+ * hashed 10^4 - 3 10^4 pairs per list, each over 16 pixels x 8 entries with a mix per usable entry,
+ * 25-50 ms a block). An entry's usability for a pixel of the key (usable_entry) depends on its value
+ * alone, so each value's mask over the key's distinct pixels (bit q: usable for k->t[q]) is computed
+ * once, in a table of value codes (every palette value is K / Q exactly, see value_set), and a pair's
+ * key is read from its 8 entries' masks and its seeds: the hash is masks_hash's (a function of the
+ * key alone; merge_classes keeps the first pair of each class whatever the hash), the equality
+ * mask_sequences_equal's, the same relation as pair_key_equal. So the same pairs are kept, in the
+ * same order, as merge_equivalent keeps. */
+typedef struct key_mask {
+    uint32_t gen; /* the table's generation when filled (0: never) */
+    uint16_t mask;
+} key_mask;
+
+typedef struct key_table {
+    const channel_key *k;
+    key_mask *slot; /* VALUE_CODES entries */
+    uint32_t gen;
+    double half_q; /* value_set's Q / 2 */
+} key_table;
+
+static void key_masks(key_table *kt, const double pal[8], uint16_t m[8], uint64_t seed[16])
+{
+    const channel_key *k = kt->k;
+    for (int e = 0; e < 8; ++e) {
+        key_mask *s = &kt->slot[(long)((pal[e] + 1.0) * kt->half_q + 0.5)]; /* the value's exact code */
+        if (s->gen != kt->gen) {
+            uint16_t u = 0;
+            for (int q = 0; q < k->count; ++q)
+                if (usable_entry(pal[e], k->t[q], k->loose[q], k->budget))
+                    u |= (uint16_t)(1u << q);
+            *s = (key_mask){kt->gen, u};
+        }
+        m[e] = s->mask;
+    }
+    for (int q = 0; q < k->count; ++q)
+        seed[q] = value_bits(pal[seed_entry(pal, k->t[q])]);
+}
+
+/* A kept pair's key (the seeds of the key's distinct pixels, its entries' masks). */
+typedef struct pair_key {
+    uint64_t seed[16];
+    uint16_t m[8];
+} pair_key;
+
+/* Whether pairs of palettes pa, pb with keys ka, kb are equivalent (pair_key_equal): the same seeds
+ * and, per pixel, the same usable values in palette order; at once when the usable entries sit at
+ * the same places with the same values (then every pixel's sequence is the same). */
+static int keys_equal(const double pa[8], const pair_key *ka, const double pb[8], const pair_key *kb, int count)
+{
+    if (memcmp(ka->seed, kb->seed, (size_t)count * sizeof ka->seed[0]) != 0)
+        return 0;
+    int e = 0;
+    while (e < 8 && ka->m[e] == kb->m[e] && (!ka->m[e] || value_bits(pa[e]) == value_bits(pb[e])))
+        ++e;
+    return e == 8 || mask_sequences_equal(pa, ka->m, pb, kb->m, count);
+}
+
+/* merge_equivalent(list, count, k, pal, ws->slots): the same result (above), by merge_classes's
+ * walk (the same slots, hash tags and probing) with each pair's key computed once and the kept
+ * pairs' keys stored (ws->kkey; where it cannot grow, a kept pair's key is computed again);
+ * merge_equivalent itself if the table cannot be allocated. */
+static size_t merge_keyed(sol_nm_pair *list, size_t count, const channel_key *k, const double (*pal)[8],
+                          sol_bc4_precision precision, search_workspace *ws)
+{
+    if (!ws->ktab && !(ws->ktab = calloc(VALUE_CODES, sizeof *ws->ktab)))
+        return merge_equivalent(list, count, k, pal, ws->slots);
+    if (++ws->kgen == 0) { /* wrapped: clear the generations */
+        memset(ws->ktab, 0, VALUE_CODES * sizeof *ws->ktab);
+        ws->kgen = 1;
+    }
+    key_table kt = {k, ws->ktab, ws->kgen, precision == SOL_BC4_INTERP_FLOAT ? 4462.5 : 32767.5};
+    uint32_t *slots = ws->slots;
+    size_t size = 64;
+    while (size < 2 * count)
+        size *= 2;
+    memset(slots, 0, size * sizeof *slots);
+    size_t kept = 0;
+    for (size_t i = 0; i < count; ++i) {
+        const double *a = pal[list[i].pair];
+        pair_key key, other;
+        key_masks(&kt, a, key.m, key.seed);
+        uint64_t hash = masks_hash(a, key.m, key.seed, k->count);
+        size_t h = (size_t)hash & (size - 1);
+        uint32_t tag = (uint32_t)(hash >> 49) << 17;
+        int dup = 0;
+        for (; slots[h]; h = (h + 1) & (size - 1)) {
+            if ((slots[h] & ~SLOT_POS) != tag)
+                continue;
+            size_t r = (slots[h] & SLOT_POS) - 1;
+            const double *b = pal[list[r].pair];
+            const pair_key *kb = r < ws->kkey_cap ? &ws->kkey[r] : &other;
+            if (r >= ws->kkey_cap)
+                key_masks(&kt, b, other.m, other.seed);
+            if (keys_equal(b, kb, a, &key, k->count)) {
+                dup = 1;
+                break;
+            }
+        }
+        if (dup)
+            continue;
+        if (kept >= ws->kkey_cap && kept < 65536) { /* room for the key of the pair kept next */
+            size_t cap = ws->kkey_cap ? 2 * ws->kkey_cap : 1024;
+            pair_key *grown = realloc(ws->kkey, cap * sizeof *grown);
+            if (grown) {
+                ws->kkey = grown;
+                ws->kkey_cap = cap;
+            }
+        }
+        if (kept < ws->kkey_cap)
+            ws->kkey[kept] = key;
+        list[kept] = list[i];
+        slots[h] = tag | (uint32_t)++kept;
+    }
+    return kept;
+}
+
 /* The open-addressing set of the distinct entry values of list xl (slot 8 i + e + 1 holds entry e
  * of pair xl[i]; 0 is empty): 1 if a value with bits key is in it, else 0 and *h the empty slot
  * where it goes. */
@@ -2013,7 +2134,7 @@ static int value_reduce(const double n[16][3], const away_info *aw, int use_max,
                  * so their composition does too) */
                 channel_key k;
                 channel_key_init(&k, c ? ty : tx, loose, best * (1.0 + BOUND_SLACK));
-                *count = merge_equivalent(list, *count, &k, pal, ws->slots);
+                *count = merge_keyed(list, *count, &k, pal, precision, ws);
             }
         }
     }
@@ -2228,8 +2349,8 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             channel_key kx, ky;
             channel_key_init(&kx, tx, loose, room);
             channel_key_init(&ky, ty, loose, room);
-            nx = merge_equivalent(ws->x, nx, &kx, pal, ws->slots);
-            ny = merge_equivalent(ws->y, ny, &ky, pal, ws->slots);
+            nx = merge_keyed(ws->x, nx, &kx, pal, precision, ws);
+            ny = merge_keyed(ws->y, ny, &ky, pal, precision, ws);
         }
         /* the coupled row bounds (bc5_couple.c): for rims and pixels pointing away whose lists are long,
          * drop the pairs whose every candidate the channels' coupling rules out; then coordinate
@@ -3127,6 +3248,10 @@ static sol_status workspace_alloc(search_workspace *ws)
     ws->vtab = NULL;
     ws->couple = NULL;
     ws->vgen = 0;
+    ws->ktab = NULL;
+    ws->kgen = 0;
+    ws->kkey = NULL;
+    ws->kkey_cap = 0;
     ws->win = calloc(1, sizeof *ws->win); /* zeroed: window_scratch's padding columns */
     if (!ws->x || !ws->y || !ws->slots || !ws->win) {
         free(ws->x);
@@ -3148,6 +3273,8 @@ static void workspace_free(search_workspace *ws)
     free(ws->ymark);
     free(ws->vset);
     free(ws->vtab);
+    free(ws->ktab);
+    free(ws->kkey);
     sol_nm_couple_free(ws->couple);
     free(ws->win);
 }
