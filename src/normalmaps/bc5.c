@@ -797,6 +797,49 @@ static inline int seed_entry(const double pal[8], double t)
     return i0;
 }
 
+/* seed_entry of each of count <= 16 targets t, into e[0 .. count). */
+static void seed_entries_scalar(const double pal[8], const double *t, int count, int *e)
+{
+    for (int k = 0; k < count; ++k)
+        e[k] = seed_entry(pal, t[k]);
+}
+
+#if SEARCH_AVX2
+/* seed_entries, 4 targets at a time: the same squared distances, d < m (ordered, strict) moves to
+ * entry i as the scalar walk does, so the first least is kept. */
+static AVX2_FN void seed_entries_avx2(const double pal[8], const double *t, int count, int *e)
+{
+    double tt[16], idx[16];
+    for (int k = 0; k < 16; ++k)
+        tt[k] = t[k < count ? k : 0];
+    for (int k = 0; k < count; k += 4) {
+        __m256d tk = _mm256_loadu_pd(tt + k), d = _mm256_sub_pd(_mm256_set1_pd(pal[0]), tk);
+        __m256d m = _mm256_mul_pd(d, d), ix = _mm256_setzero_pd();
+        for (int i = 1; i < 8; ++i) {
+            d = _mm256_sub_pd(_mm256_set1_pd(pal[i]), tk);
+            d = _mm256_mul_pd(d, d);
+            ix = _mm256_blendv_pd(ix, _mm256_set1_pd((double)i), _mm256_cmp_pd(d, m, _CMP_LT_OQ));
+            m = _mm256_min_pd(d, m);
+        }
+        _mm256_storeu_pd(idx + k, ix);
+    }
+    for (int k = 0; k < count; ++k)
+        e[k] = (int)idx[k];
+}
+#endif
+
+/* seed_entry of each of count <= 16 targets t, into e[0 .. count), by the AVX2 form where it runs. */
+static void seed_entries(const double pal[8], const double *t, int count, int *e)
+{
+#if SEARCH_AVX2
+    if (search_avx2()) {
+        seed_entries_avx2(pal, t, count, e);
+        return;
+    }
+#endif
+    seed_entries_scalar(pal, t, count, e);
+}
+
 static inline uint64_t mix64(uint64_t h, uint64_t v)
 {
     h ^= v + UINT64_C(0x9E3779B97F4A7C15) + (h << 6) + (h >> 2);
@@ -1430,60 +1473,18 @@ static void usable_masks(value_table *t, const double pal[8], const double tc[16
             slot_usable(t, s, pal[e], p);
         m[e] = s->usable;
     }
-    for (int p = 0; p < 16; ++p) {
-        int e = seed_entry(pal, tc[p]);
-        seed[p] = (m[e] >> p) & 1 ? value_bits(pal[e]) : UINT64_C(0x7ff8dead0000beef);
-    }
+    int se[16];
+    seed_entries(pal, tc, 16, se);
+    for (int p = 0; p < 16; ++p)
+        seed[p] = (m[se[p]] >> p) & 1 ? value_bits(pal[se[p]]) : UINT64_C(0x7ff8dead0000beef);
 }
 
 /* The key of a palette: per pixel its seed key and its usable entries' values in palette order.
- * The hash is a function of the key alone: the seed keys in pixel order, and the sum over entries
- * usable for some pixel of a mix of (value bits, mask), the mask being that of the value (so the
- * multiset of those is fixed by the key: an entry's value appears in the sequence of every pixel of
- * its mask). Equal keys give equal hashes; merge_classes keeps the first of each class whatever the
- * hash, so the classes and the list kept are those of the per-pixel walk. */
-static uint64_t usable_key_hash(value_table *t, const double pal[8], const double tc[16])
-{
-    uint16_t m[8];
-    uint64_t seed[16];
-    usable_masks(t, pal, tc, m, seed);
-    return masks_hash(pal, m, seed, 16);
-}
-
-static int usable_key_equal(value_table *t, const double pa[8], const double pb[8], const double tc[16])
-{
-    uint16_t ma[8], mb[8];
-    uint64_t sa[16], sb[16];
-    usable_masks(t, pa, tc, ma, sa);
-    usable_masks(t, pb, tc, mb, sb);
-    return memcmp(sa, sb, sizeof sa) == 0 && mask_sequences_equal(pa, ma, pb, mb, 16);
-}
-
-/* merge_equivalent with the usable entries of the table (targets tc: the channel's components of n). */
-typedef struct usable_ctx {
-    value_table *t;
-    const double *tc;
-} usable_ctx;
-
-static uint64_t usable_hash_fn(void *ctx, const double pal[8])
-{
-    usable_ctx *u = ctx;
-    return usable_key_hash(u->t, pal, u->tc);
-}
-
-static int usable_equal_fn(void *ctx, const double pa[8], const double pb[8])
-{
-    usable_ctx *u = ctx;
-    return usable_key_equal(u->t, pa, pb, u->tc);
-}
-
-static size_t merge_usable(sol_nm_pair *list, size_t count, const double (*pal)[8], value_table *t,
-                           const double tc[16], uint32_t *slots)
-{
-    usable_ctx u = {t, tc};
-    const pair_classes pc = {usable_hash_fn, usable_equal_fn, &u, t->work};
-    return merge_classes(list, count, pal, &pc, slots);
-}
+ * Its hash (masks_hash) is a function of the key alone: the seed keys in pixel order, and the sum
+ * over entries usable for some pixel of a mix of (value bits, mask), the mask being that of the
+ * value (so the multiset of those is fixed by the key: an entry's value appears in the sequence of
+ * every pixel of its mask). Equal keys give equal hashes; merge_classes keeps the first of each class
+ * whatever the hash, so the classes and the list kept are those of the per-pixel walk. */
 
 /* merge_equivalent's classes at a fraction of its cost (issue 13: on rims and blocks pointing away it
  * hashed 10^4 - 3 10^4 pairs per list, each over 16 pixels x 8 entries with a mix per usable entry,
@@ -1520,8 +1521,10 @@ static void key_masks(key_table *kt, const double pal[8], uint16_t m[8], uint64_
         }
         m[e] = s->mask;
     }
+    int se[16];
+    seed_entries(pal, k->t, k->count, se);
     for (int q = 0; q < k->count; ++q)
-        seed[q] = value_bits(pal[seed_entry(pal, k->t[q])]);
+        seed[q] = value_bits(pal[se[q]]);
 }
 
 /* A kept pair's key (the seeds of the key's distinct pixels, its entries' masks). */
@@ -1543,20 +1546,17 @@ static int keys_equal(const double pa[8], const pair_key *ka, const double pb[8]
     return e == 8 || mask_sequences_equal(pa, ka->m, pb, kb->m, count);
 }
 
-/* merge_equivalent(list, count, k, pal, ws->slots): the same result (above), by merge_classes's
- * walk (the same slots, hash tags and probing) with each pair's key computed once and the kept
- * pairs' keys stored (ws->kkey; where it cannot grow, a kept pair's key is computed again);
- * merge_equivalent itself if the table cannot be allocated. */
-static size_t merge_keyed(sol_nm_pair *list, size_t count, const channel_key *k, const double (*pal)[8],
-                          sol_bc4_precision precision, search_workspace *ws)
+/* A pair's key for merge_stored: its entries' masks m and per pixel its seed key (count pixels). */
+typedef void (*pair_key_fn)(void *ctx, const double pal[8], uint16_t m[8], uint64_t seed[16]);
+
+/* merge_classes's walk (the same slots, hash tags and probing; work, if not NULL, charged 16 per
+ * pair) for classes given by keys (key_fn; hash masks_hash, equality keys_equal over count pixels),
+ * with each pair's key computed once and the kept pairs' keys stored (ws->kkey; where it cannot grow,
+ * a kept pair's key is computed again): the same pairs kept, in the same order, as merge_classes with
+ * a hash and an equality computing the keys afresh. */
+static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[8], pair_key_fn key_fn, void *ctx,
+                           int npix, search_workspace *ws, uint64_t *work)
 {
-    if (!ws->ktab && !(ws->ktab = calloc(VALUE_CODES, sizeof *ws->ktab)))
-        return merge_equivalent(list, count, k, pal, ws->slots);
-    if (++ws->kgen == 0) { /* wrapped: clear the generations */
-        memset(ws->ktab, 0, VALUE_CODES * sizeof *ws->ktab);
-        ws->kgen = 1;
-    }
-    key_table kt = {k, ws->ktab, ws->kgen, precision == SOL_BC4_INTERP_FLOAT ? 4462.5 : 32767.5};
     uint32_t *slots = ws->slots;
     size_t size = 64;
     while (size < 2 * count)
@@ -1566,8 +1566,10 @@ static size_t merge_keyed(sol_nm_pair *list, size_t count, const channel_key *k,
     for (size_t i = 0; i < count; ++i) {
         const double *a = pal[list[i].pair];
         pair_key key, other;
-        key_masks(&kt, a, key.m, key.seed);
-        uint64_t hash = masks_hash(a, key.m, key.seed, k->count);
+        if (work)
+            *work += 16;
+        key_fn(ctx, a, key.m, key.seed);
+        uint64_t hash = masks_hash(a, key.m, key.seed, npix);
         size_t h = (size_t)hash & (size - 1);
         uint32_t tag = (uint32_t)(hash >> 49) << 17;
         int dup = 0;
@@ -1578,8 +1580,8 @@ static size_t merge_keyed(sol_nm_pair *list, size_t count, const channel_key *k,
             const double *b = pal[list[r].pair];
             const pair_key *kb = r < ws->kkey_cap ? &ws->kkey[r] : &other;
             if (r >= ws->kkey_cap)
-                key_masks(&kt, b, other.m, other.seed);
-            if (keys_equal(b, kb, a, &key, k->count)) {
+                key_fn(ctx, b, other.m, other.seed);
+            if (keys_equal(b, kb, a, &key, npix)) {
                 dup = 1;
                 break;
             }
@@ -1600,6 +1602,47 @@ static size_t merge_keyed(sol_nm_pair *list, size_t count, const channel_key *k,
         slots[h] = tag | (uint32_t)++kept;
     }
     return kept;
+}
+
+static void keyed_key_fn(void *ctx, const double pal[8], uint16_t m[8], uint64_t seed[16])
+{
+    key_masks(ctx, pal, m, seed);
+}
+
+/* merge_equivalent(list, count, k, pal, ws->slots): the same result (above), through merge_stored;
+ * merge_equivalent itself if the table cannot be allocated. */
+static size_t merge_keyed(sol_nm_pair *list, size_t count, const channel_key *k, const double (*pal)[8],
+                          sol_bc4_precision precision, search_workspace *ws)
+{
+    if (!ws->ktab && !(ws->ktab = calloc(VALUE_CODES, sizeof *ws->ktab)))
+        return merge_equivalent(list, count, k, pal, ws->slots);
+    if (++ws->kgen == 0) { /* wrapped: clear the generations */
+        memset(ws->ktab, 0, VALUE_CODES * sizeof *ws->ktab);
+        ws->kgen = 1;
+    }
+    key_table kt = {k, ws->ktab, ws->kgen, precision == SOL_BC4_INTERP_FLOAT ? 4462.5 : 32767.5};
+    return merge_stored(list, count, pal, keyed_key_fn, &kt, k->count, ws, NULL);
+}
+
+/* merge_equivalent with the usable entries of the table (targets tc: the channel's components of n):
+ * merge_classes with usable_key_hash and usable_key_equal, through merge_stored (the same keys, the
+ * same slot_usable tests and work: a kept pair's values were all made known by its own key). */
+typedef struct usable_ctx {
+    value_table *t;
+    const double *tc;
+} usable_ctx;
+
+static void usable_key_fn(void *ctx, const double pal[8], uint16_t m[8], uint64_t seed[16])
+{
+    usable_ctx *u = ctx;
+    usable_masks(u->t, pal, u->tc, m, seed);
+}
+
+static size_t merge_usable(sol_nm_pair *list, size_t count, const double (*pal)[8], value_table *t,
+                           const double tc[16], search_workspace *ws)
+{
+    usable_ctx u = {t, tc};
+    return merge_stored(list, count, pal, usable_key_fn, &u, 16, ws, t->work);
 }
 
 /* The open-addressing set of the distinct entry values of list xl (slot 8 i + e + 1 holds entry e
@@ -2129,7 +2172,7 @@ static int value_reduce(const double n[16][3], const away_info *aw, int use_max,
             t.c = c;
             *count = usable_filter(list, *count, pal, &t);
             if (round == 1 && *count > 1) {
-                *count = merge_usable(list, *count, pal, &t, c ? ty : tx, ws->slots);
+                *count = merge_usable(list, *count, pal, &t, c ? ty : tx, ws);
                 /* and the classes of the budget-based key (each merge keeps the first of its classes,
                  * so their composition does too) */
                 channel_key k;
