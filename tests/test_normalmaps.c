@@ -2211,3 +2211,86 @@ Test(normalmaps, coupled_survey_blocks_are_proven_exactly)
                            cases[c].anchors, c);
     }
 }
+
+static int pair_order(const void *a, const void *b)
+{
+    const sol_nm_pair *x = a, *y = b;
+    return (x->pair > y->pair) - (x->pair < y->pair);
+}
+
+/* issue 13: channels whose 16 pixels are all loose (rims, pixels pointing away, with the rim weights
+ * and offsets search_unit gives them) are collected by a walk over the palette table in order, with
+ * an AVX2 form of the loose terms: the collected pairs and their scores equal, bit for bit, a literal
+ * scoring of every pair of the ranges (sum or max in the channel's visiting order of offset + weight
+ * x sol_nm_loose_term), in both forms, at budgets that keep part of the pairs and at one that keeps
+ * none; full ranges and boxes, both metrics, every precision. */
+Test(normalmaps, loose_channels_collect_every_pair_within_the_budget, .timeout = 120)
+{
+    sol_nm_pair *got = malloc(65536 * sizeof *got), *want = malloc(65536 * sizeof *want);
+    double *all = malloc(65536 * sizeof *all);
+    cr_assert(got && want && all);
+    for (int trial = 0; trial < 12; ++trial) {
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        int use_max = trial % 2;
+        double t[16], w[16], off[16], phi = 2 * M_PI * uniform();
+        for (int p = 0; p < 16; ++p) {
+            double f = phi + (trial % 4 == 3 ? 0.0 : 0.3 * (uniform() - 0.5));
+            t[p] = p == 5 && trial % 5 == 0 ? 1.0 : (p == 7 && trial % 6 == 0 ? 0.0 : cos(f));
+            w[p] = trial % 3 == 0 ? 1.0 : 0.5 + uniform();
+            off[p] = trial % 3 == 0 ? 0.0 : 0.1 * uniform();
+        }
+        sol_nm_channel ch;
+        int box = trial >= 8;
+        sol_nm_channel_init(&ch, t, prec, use_max, 0xffffu, box ? 20 : 0, box ? 200 : 255, box ? 10 : 0,
+                            box ? 250 : 255);
+        for (int p = 0; p < 16; ++p)
+            sol_nm_channel_rim_weight(&ch, p, w[p], off[p]);
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        size_t total = 0;
+        for (int e0 = ch.e0_lo; e0 <= ch.e0_hi; ++e0)
+            for (int e1 = ch.e1_lo; e1 <= ch.e1_hi; ++e1) {
+                double s = 0.0;
+                for (int k = 0; k < 16; ++k) {
+                    int p = ch.order[k];
+                    double term = off[p] + w[p] * sol_nm_loose_term(pal[e0 << 8 | e1], t[p]);
+                    s = use_max ? (term > s ? term : s) : s + term;
+                }
+                all[total] = s;
+                want[total].score = s;
+                want[total++].pair = (uint16_t)(e0 << 8 | e1);
+            }
+        for (int level = 0; level < 3; ++level) {
+            /* a budget at a score of the set (level 0: the least less a hair, none kept) */
+            double budget = level == 0 ? 0.0 : all[(size_t)(level == 1 ? total / 7 : (3 * total) / 5)];
+            if (level == 0) {
+                budget = all[0];
+                for (size_t i = 1; i < total; ++i)
+                    budget = all[i] < budget ? all[i] : budget;
+                budget = nextafter(budget, -1.0);
+            }
+            size_t nw = 0;
+            for (size_t i = 0; i < total; ++i)
+                if (want[i].score <= budget)
+                    nw++;
+            for (int simd = 0; simd < 2; ++simd) {
+                sol_nm_simd_disable = !simd;
+                size_t ng = sol_nm_channel_collect(&ch, budget, got);
+                sol_nm_simd_disable = 0;
+                cr_assert_eq(ng, nw, "trial %d level %d simd %d: %zu pairs, want %zu", trial, level, simd, ng, nw);
+                qsort(got, ng, sizeof *got, pair_order);
+                size_t j = 0;
+                for (size_t i = 0; i < total; ++i) {
+                    if (!(want[i].score <= budget))
+                        continue;
+                    cr_assert_eq(got[j].pair, want[i].pair, "trial %d: pair %d vs %d", trial, got[j].pair, want[i].pair);
+                    cr_assert(memcmp(&got[j].score, &want[i].score, sizeof got[j].score) == 0,
+                              "trial %d pair %d: %.17g vs %.17g", trial, got[j].pair, got[j].score, want[i].score);
+                    ++j;
+                }
+            }
+        }
+    }
+    free(got);
+    free(want);
+    free(all);
+}

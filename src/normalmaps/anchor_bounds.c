@@ -6,6 +6,13 @@
 #include <math.h>
 #include <string.h>
 
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
+#include <immintrin.h>
+#define LOOSE_AVX2 1
+#else
+#define LOOSE_AVX2 0
+#endif
+
 /* ---- per-channel scoring ---- */
 
 /* The largest |a| whose loose interval (term_loose) holds |t|: |t| / sqrt(1 - t^2) (infinite for |t| >= 1). */
@@ -144,6 +151,86 @@ static inline double score_pair(const sol_nm_channel *ch, int pair, double budge
     return s;
 }
 
+/* ---- score_pair for channels whose 16 pixels are all loose, 4 pixels per instruction ----
+ *
+ * Rims and blocks pointing away make every pixel loose; then enumerate_pairs scores all 65536 pairs
+ * through term_loose (issue 13: 7-25 ms of a block's set-up). loose_lanes holds the pixels in the
+ * visiting order (|t|, its sign, reach, weight, offset); score_loose_avx2 computes 4 visiting
+ * positions' terms at once with term_loose's operations per lane (the least entry >= |t| above the
+ * reach and the largest below |t| by min / max, which select as its ternaries do; 0 if an entry lies
+ * in [|t|, reach]; the same quotient, root and clamps, no FMA), then folds them one pixel at a time in
+ * the visiting order and stops where score_pair stops: the same double, bit for bit (the tests
+ * compare both forms over whole enumerations). */
+typedef struct loose_lanes {
+    double tt[16], sgn[16], reach[16], w[16], off[16];
+} loose_lanes;
+
+static void loose_lanes_init(const sol_nm_channel *ch, loose_lanes *ll)
+{
+    for (int k = 0; k < 16; ++k) {
+        int p = ch->order[k];
+        double t = ch->t[p];
+        ll->sgn[k] = t < 0.0 ? -1.0 : 1.0;
+        ll->tt[k] = fabs(t);
+        ll->reach[k] = ch->loose_reach[p];
+        ll->w[k] = ch->loose_w[p];
+        ll->off[k] = ch->loose_off[p];
+    }
+}
+
+#if LOOSE_AVX2
+static __attribute__((target("avx2"))) double score_loose_avx2(const sol_nm_channel *ch, const loose_lanes *ll,
+                                                               const double pal[8], double budget)
+{
+    const __m256d inf = _mm256_set1_pd(INFINITY), ninf = _mm256_set1_pd(-INFINITY), zero = _mm256_setzero_pd();
+    const __m256d one = _mm256_set1_pd(1.0), shrink = _mm256_set1_pd(1.0 - 1e-15);
+    double s = 0.0;
+    for (int k = 0; k < 16; k += 4) {
+        __m256d tt = _mm256_loadu_pd(ll->tt + k), sgn = _mm256_loadu_pd(ll->sgn + k);
+        __m256d reach = _mm256_loadu_pd(ll->reach + k);
+        __m256d above = inf, below = ninf, in = zero;
+        for (int i = 0; i < 8; ++i) {
+            __m256d a = _mm256_mul_pd(sgn, _mm256_set1_pd(pal[i]));
+            __m256d ge = _mm256_cmp_pd(a, tt, _CMP_GE_OQ), le = _mm256_cmp_pd(a, reach, _CMP_LE_OQ);
+            in = _mm256_or_pd(in, _mm256_and_pd(ge, le));
+            above = _mm256_blendv_pd(above, _mm256_min_pd(a, above), _mm256_andnot_pd(le, ge));
+            below = _mm256_blendv_pd(_mm256_max_pd(a, below), below, ge);
+        }
+        /* above: above / sqrt(1 + above^2) (1 - 1e-15) - |t|, clamped at 0, squared (none: INFINITY) */
+        __m256d q = _mm256_mul_pd(_mm256_div_pd(above, _mm256_sqrt_pd(_mm256_add_pd(one, _mm256_mul_pd(above, above)))), shrink);
+        __m256d d = _mm256_max_pd(_mm256_sub_pd(q, tt), zero);
+        __m256d m = _mm256_blendv_pd(_mm256_mul_pd(d, d), inf, _mm256_cmp_pd(above, inf, _CMP_EQ_OQ));
+        /* below: |t| - (below >= 0 ? below : its quotient), clamped, squared; the least of both */
+        __m256d qb = _mm256_mul_pd(_mm256_div_pd(below, _mm256_sqrt_pd(_mm256_add_pd(one, _mm256_mul_pd(below, below)))), shrink);
+        __m256d e = _mm256_blendv_pd(qb, below, _mm256_cmp_pd(below, zero, _CMP_GE_OQ));
+        __m256d db = _mm256_max_pd(_mm256_sub_pd(tt, e), zero);
+        __m256d mb = _mm256_min_pd(_mm256_mul_pd(db, db), m);
+        m = _mm256_blendv_pd(mb, m, _mm256_cmp_pd(below, ninf, _CMP_EQ_OQ));
+        m = _mm256_blendv_pd(m, zero, in);
+        __m256d term = _mm256_add_pd(_mm256_loadu_pd(ll->off + k), _mm256_mul_pd(_mm256_loadu_pd(ll->w + k), m));
+        double tl[4];
+        _mm256_storeu_pd(tl, term);
+        for (int j = 0; j < 4; ++j) {
+            s = ch->use_max ? (tl[j] > s ? tl[j] : s) : s + tl[j];
+            if (s > budget)
+                return s;
+        }
+    }
+    return s;
+}
+#endif
+
+/* 1 when score_loose_avx2 may score ch's pairs: every pixel loose, AVX2 present and not disabled. */
+static int loose_avx2(const sol_nm_channel *ch)
+{
+#if LOOSE_AVX2
+    return ch->loose == 0xffffu && !sol_nm_simd_disable && __builtin_cpu_supports("avx2");
+#else
+    (void)ch;
+    return 0;
+#endif
+}
+
 /* A lower bound of score_pair without the palette table: with low anchor value al and step s the
  * exact (float) decoder's entries are al + k s, k = 0..divisions (and -1, +1 in 6-value mode); a
  * rounding decoder moves each by at most delta. So a tight term is at least (dist(t, lattice) -
@@ -262,6 +349,35 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
         if ((ch->loose >> p) & 1)
             floor = ch->use_max ? (ch->loose_off[p] > floor ? ch->loose_off[p] : floor) : floor + ch->loose_off[p];
     floor *= 1.0 - 1e-12; /* below every score's computed sum or max of the same offsets */
+    loose_lanes ll;
+    const int lanes = loose_avx2(ch);
+    if (lanes)
+        loose_lanes_init(ch, &ll);
+    if (collect && ch->loose == 0xffffu) {
+        /* every pixel loose: no mask or lattice bound excludes a pair (they use tight pixels only), so
+         * the walk below visits every pair of the ranges (each is in one mode: e0 > e1 or e0 <= e1);
+         * visited here in table order instead, whose reads stream through the 4 MB palette table
+         * (the walk's steps of 256 pairs touched a new page at each pair: most of the scoring's time).
+         * The same pairs and scores, in e0-major order. */
+        double tb = ch->use_max ? (floor > *budget ? -1.0 : *budget) : *budget - floor;
+        if (tb < 0.0)
+            return 0;
+        for (int e0 = ch->e0_lo; e0 <= ch->e0_hi; ++e0)
+            for (int e1 = ch->e1_lo; e1 <= ch->e1_hi; ++e1) {
+                int pair = e0 << 8 | e1;
+#if LOOSE_AVX2
+                double v = lanes ? score_loose_avx2(ch, &ll, ch->palettes[pair], *budget) : score_pair(ch, pair, *budget);
+#else
+                double v = score_pair(ch, pair, *budget);
+#endif
+                if (v <= *budget) {
+                    out[n].score = v;
+                    out[n].pair = (uint16_t)pair;
+                    ++n;
+                }
+            }
+        return n;
+    }
     for (int six = 0; six < 2; ++six) {
         /* 8-value: e0 > e1, low anchor e1; 6-value: e0 <= e1, low anchor e0 */
         int low_lo = six ? ch->e0_lo : ch->e1_lo, low_hi = six ? ch->e0_hi : ch->e1_hi;
@@ -326,7 +442,11 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
                         }
                         continue;
                     }
+#if LOOSE_AVX2
+                    double v = lanes ? score_loose_avx2(ch, &ll, ch->palettes[pair], *budget) : score_pair(ch, pair, *budget);
+#else
                     double v = score_pair(ch, pair, *budget);
+#endif
                     if (collect) {
                         if (v <= *budget) {
                             out[n].score = v;
