@@ -180,6 +180,19 @@ static inline double sol_nm_threshold_level(double err, int use_max)
  * the exact test. */
 int sol_nm_threshold_test(const double palx[8], const double paly[8], const sol_bc5_block *b, const double t[3][16],
                           int use_max, double threshold_deg);
+/* The chord bounds of sol_nm_threshold_test: lower <= the exact objective (sum of dN^2, or max of dN^2
+ * when use_max, as bc5.c computes it) <= upper, for block b's own indices. */
+void sol_nm_chord_bounds(const double palx[8], const double paly[8], const sol_bc5_block *b, const double t[3][16],
+                         int use_max, double *lower, double *upper);
+/* The adaptive encoder's gap bound (bc5_adaptive.c; proof at sol_bc5_options.gap): from the two
+ * channels' least-squares sums sx, sy (sol_nm_bc4_common) and the unit normals t (t[2][p] = nz_p), a
+ * value at most the computed objective (internal units: sum, or max when use_max, of dN^2) of EVERY
+ * block with any anchors and indices: min(sx + sy, min_p nz_p^2) ((sx + sy) / 16 for the max),
+ * lowered for rounding. */
+double sol_nm_gap_bound(double sx, double sy, const double t[3][16], int use_max);
+/* The gap test from bounds lower <= err <= upper of a block's objective: 0 if err <= limit (skip),
+ * 1 if err > limit (search), -1 if the bounds cannot tell. */
+int sol_nm_gap_test(double lower, double upper, double limit);
 /* The unit normals of block (bx, by) of a 3-channel image whose pixels sol_nm_unit_normals accepts,
  * bit for bit as it computes them (the same length and quotients; a finite non-zero float pixel
  * never takes its rescaling path), as n[p][c] and again as t[c][p]. */
