@@ -3468,6 +3468,7 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
     if (failed)
         return SOL_ERR_NO_MEMORY;
     if (stats) {
+        memset(stats, 0, sizeof *stats); /* padding too: callers compare stats bytewise (make bench) */
         stats->blocks = (uint64_t)nblocks;
         stats->searched_blocks = searched;
         stats->candidates = candidates;
