@@ -568,22 +568,24 @@ static void span_search(common_ctx *c, int six)
     const int den = six ? 5 : 7;
     int d_lo = g.h_min - g.l_max, d_hi = g.span_max;
     d_lo = d_lo > g.gap ? d_lo : g.gap;
-    int spans[256], n = 0, cand[256], nc = 0;
-    double lb[256], ends[256];
-    for (int d = d_lo; d <= d_hi; ++d) { /* the ends bound first (cheap), then the lattice bound */
-        double e = ends_bound(c, anchor(d) + 1.0 + 2.0 * c->delta + 1e-12);
-        if (e <= c->best) {
-            ends[nc] = e;
-            cand[nc++] = d;
-        }
-    }
-    for (int i = 0; i < nc; i += SOL_NM_SPAN_BOUND_LANES) {
+    int spans[256], n = 0;
+    double lb[256];
+    /* the ends bound is non-increasing in the span (its width grows, each term shrinks), so the spans
+     * it leaves are those from the first it leaves on */
+    int d_first = d_lo;
+    while (d_first <= d_hi && ends_bound(c, anchor(d_first) + 1.0 + 2.0 * c->delta + 1e-12) > c->best)
+        ++d_first;
+    /* the lattice bound of each, and the ends bound of those it leaves */
+    for (int d0 = d_first; d0 <= d_hi; d0 += SOL_NM_SPAN_BOUND_LANES) {
         double step[SOL_NM_SPAN_BOUND_LANES], lat[SOL_NM_SPAN_BOUND_LANES];
         for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES; ++k)
-            step[k] = i + k < nc ? (anchor(cand[i + k]) + 1.0) / den : 0.0;
+            step[k] = d0 + k <= d_hi ? (anchor(d0 + k) + 1.0) / den : 0.0;
         sol_nm_span_bounds(c->sorted, step, c->delta, c->best, lat);
-        for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES && i + k < nc; ++k) {
-            double l = lat[k] > ends[i + k] ? lat[k] : ends[i + k];
+        for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES && d0 + k <= d_hi; ++k) {
+            if (lat[k] > c->best)
+                continue;
+            const double e = ends_bound(c, anchor(d0 + k) + 1.0 + 2.0 * c->delta + 1e-12);
+            double l = lat[k] > e ? lat[k] : e;
             if (l > c->best)
                 continue;
             int q = n++; /* insertion by bound, then span */
@@ -592,7 +594,7 @@ static void span_search(common_ctx *c, int six)
                 spans[q] = spans[q - 1];
             }
             lb[q] = l;
-            spans[q] = cand[i + k];
+            spans[q] = d0 + k;
         }
     }
     sol_nm_span_cuts cuts[SOL_NM_SPAN_LANES];
