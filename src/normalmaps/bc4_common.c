@@ -156,6 +156,7 @@ typedef struct common_ctx {
     const double *t;
     double to[16]; /* the targets in the reference order */
     const small_palettes *sp;
+    const double (*pal)[8]; /* the palette table (try_pair_row) */
     double delta;
     double best;
     int best_pair;
@@ -312,10 +313,9 @@ static inline int make_pair(int six, int l, int h)
  * the first 8 targets). The per-target minimum is exact whatever the order it is taken in, and the
  * 16 terms are added one by one in the reference order, so the sum is bit-identical to the brute
  * force's. Written target-parallel, 8 targets at a time, so that the compiler vectorises it. */
-static inline __attribute__((always_inline)) double exact_score(const common_ctx *c, int pair, double budget)
+static inline __attribute__((always_inline)) double exact_score(const common_ctx *c, const double pal[8],
+                                                                double budget)
 {
-    double pal[8];
-    small_palette(c->sp, pair, pal);
     double s = 0.0;
     for (int k0 = 0; k0 < 16; k0 += 8) {
         double m[8];
@@ -528,7 +528,21 @@ static int mode_region(common_ctx *c, int six, region *g)
 
 static HOT_CLONES void try_pair(common_ctx *c, int pair)
 {
-    double v = exact_score(c, pair, c->best);
+    double pal[8];
+    small_palette(c->sp, pair, pal);
+    double v = exact_score(c, pal, c->best);
+    if (v < c->best || (v == c->best && pair < c->best_pair)) {
+        c->best = v;
+        c->best_pair = pair;
+    }
+}
+
+/* The same with the palette read from its table row: the walk below scores the pairs holding a
+ * value, and on smooth 8-bit maps neighbouring blocks hold the same values, so those rows stay in
+ * the caches and the load is cheaper than building the palette. */
+static HOT_CLONES void try_pair_row(common_ctx *c, int pair)
+{
+    double v = exact_score(c, c->pal[pair], c->best);
     if (v < c->best || (v == c->best && pair < c->best_pair)) {
         c->best = v;
         c->best_pair = pair;
@@ -1002,7 +1016,7 @@ static int narrow_walk(common_ctx *c, const sol_nm_entry_index *ix, const walk_p
                 }
                 alone = 1;
             }
-            try_pair(c, ix->pair[j++]);
+            try_pair_row(c, ix->pair[j++]);
         }
     }
     return 1;
@@ -1037,7 +1051,24 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     for (int k = 0; k < 16; ++k)
         c.to[k] = t[order[k]];
     c.sp = small_palettes_get(precision);
-    sol_nm_sort16(t, c.sorted);
+    c.pal = sol_nm_palettes(precision);
+    /* sorted: wide blocks by the branch-free network (an insertion sort mispredicts there), narrow
+     * ones by an insertion sort (their few distinct values make its branches predictable, and it
+     * stops early) - the same values in the same order, zeros of either sign aside */
+    double lo = t[0], hi = t[0];
+    for (int p = 1; p < 16; ++p) {
+        lo = t[p] < lo ? t[p] : lo;
+        hi = t[p] > hi ? t[p] : hi;
+    }
+    if ((hi - lo) * 127.5 >= WIDE_CODES)
+        sol_nm_sort16(t, c.sorted);
+    else
+        for (int p = 0; p < 16; ++p) {
+            int q = p;
+            for (; q > 0 && c.sorted[q - 1] > t[p]; --q)
+                c.sorted[q] = c.sorted[q - 1];
+            c.sorted[q] = t[p];
+        }
     c.tmin = c.sorted[0];
     c.window_best = -1.0;
     c.tmax = c.sorted[15];
