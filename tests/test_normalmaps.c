@@ -1,6 +1,7 @@
 /* test_normalmaps.c - BC4/BC5 codecs and the 3Dc encoders (T8-T13): palettes of both modes, packing,
  * the exact least-squares BC4 encoder and the joint search against literal brute force, hard cases. */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -293,6 +294,86 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
                               trial, six, d, lb[k], least);
                 }
             }
+        }
+    }
+}
+
+/* sol_nm_span_bounds_all (16 lanes at a time where the processor has AVX-512) gives the 8-lane
+ * function's values bit for bit, for every count 0-256 of steps (the lanes past the count untouched),
+ * without and with a limit (at the median bound, so that lanes go either way), steps 0 among them. */
+Test(normalmaps, bc4_span_bounds_all_equals_the_eight_lane_bound)
+{
+    for (int trial = 0; trial < 12; ++trial) {
+        double t[16], sorted[16], delta;
+        span_test_block(trial, t, sorted, &delta);
+        double step[264], ref[264], all[272];
+        for (int i = 0; i < 264; ++i)
+            step[i] = i % 37 == 5 ? 0.0 : (2.0 * (i % 256) / 255.0) / (i & 1 ? 5 : 7);
+        for (int i = 0; i < 256; i += SOL_NM_SPAN_BOUND_LANES)
+            sol_nm_span_bounds(sorted, step + i, delta, INFINITY, ref + i);
+        double mid = ref[128];
+        for (int li = 0; li < 2; ++li) {
+            const double limit = li ? mid : INFINITY;
+            if (li)
+                for (int i = 0; i < 256; i += SOL_NM_SPAN_BOUND_LANES)
+                    sol_nm_span_bounds(sorted, step + i, delta, limit, ref + i);
+            for (int n = 0; n <= 256; n += n < 40 ? 1 : 23) {
+                double padded[272] = {0.0}; /* the steps past n 0, to a multiple of 16 */
+                memcpy(padded, step, sizeof *step * (size_t)n);
+                for (int i = 0; i < 272; ++i)
+                    all[i] = -1.0;
+                sol_nm_span_bounds_all(sorted, padded, n, delta, limit, all);
+                cr_assert(memcmp(all, ref, sizeof *all * (size_t)n) == 0, "trial %d, limit %g, count %d", trial, limit, n);
+                for (int i = n; i < (n + 15) / 16 * 16; ++i)
+                    cr_assert(all[i] == 0.0 || all[i] == -1.0, "trial %d: count %d, padding lane %d: %g", trial, n, i, all[i]);
+                for (int i = (n + 15) / 16 * 16; i < 272; ++i)
+                    cr_assert(all[i] == -1.0, "trial %d: count %d wrote lane %d", trial, n, i);
+            }
+        }
+    }
+}
+
+/* The common search's palettes from two codes (sol_nm_small_palette) are the palette table's rows bit
+ * for bit: every pair, every precision. */
+Test(normalmaps, bc4_small_palettes_are_the_table_rows)
+{
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec) {
+        const double(*pal)[8] = sol_nm_palettes((sol_bc4_precision)prec);
+        for (int pair = 0; pair < 65536; ++pair) {
+            double out[8];
+            sol_nm_small_palette((sol_bc4_precision)prec, pair, out);
+            cr_assert(memcmp(out, pal[pair], sizeof out) == 0, "precision %d, pair %d", prec, pair);
+        }
+    }
+}
+
+/* sol_nm_sort16: ascending, the same multiset, on random values, many ties, zeros of both signs,
+ * infinities and the extremes of the double range. */
+Test(normalmaps, sort16_sorts)
+{
+    for (int trial = 0; trial < 200; ++trial) {
+        double in[16], out[16];
+        for (int p = 0; p < 16; ++p) {
+            double u = uniform();
+            if (trial % 4 == 0)
+                in[p] = 2.0 * u - 1.0;
+            else if (trial % 4 == 1) /* ties */
+                in[p] = floor(4.0 * u);
+            else if (trial % 4 == 2)
+                in[p] = u < 0.5 ? -0.0 : 0.0;
+            else
+                in[p] = u < 0.3 ? -INFINITY : u < 0.6 ? DBL_MAX : u < 0.8 ? -DBL_MIN : 4.9e-324;
+        }
+        sol_nm_sort16(in, out);
+        for (int p = 1; p < 16; ++p)
+            cr_assert(out[p - 1] <= out[p], "trial %d: %g before %g", trial, out[p - 1], out[p]);
+        for (int p = 0; p < 16; ++p) { /* each value as often in either */
+            int a = 0, b = 0;
+            for (int q = 0; q < 16; ++q) {
+                a += in[q] == in[p];
+                b += out[q] == in[p];
+            }
+            cr_assert(a == b, "trial %d: %g %d times in, %d out", trial, in[p], a, b);
         }
     }
 }
