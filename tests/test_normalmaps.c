@@ -1,6 +1,7 @@
 /* test_normalmaps.c - BC4/BC5 codecs and the 3Dc encoders (T8-T13): palettes of both modes, packing,
  * the exact least-squares BC4 encoder and the joint search against literal brute force, hard cases. */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -293,6 +294,86 @@ Test(normalmaps, bc4_span_bound_is_below_every_pair_of_its_span)
                               trial, six, d, lb[k], least);
                 }
             }
+        }
+    }
+}
+
+/* sol_nm_span_bounds_all (16 lanes at a time where the processor has AVX-512) gives the 8-lane
+ * function's values bit for bit, for every count 0-256 of steps (the lanes past the count untouched),
+ * without and with a limit (at the median bound, so that lanes go either way), steps 0 among them. */
+Test(normalmaps, bc4_span_bounds_all_equals_the_eight_lane_bound)
+{
+    for (int trial = 0; trial < 12; ++trial) {
+        double t[16], sorted[16], delta;
+        span_test_block(trial, t, sorted, &delta);
+        double step[264], ref[264], all[272];
+        for (int i = 0; i < 264; ++i)
+            step[i] = i % 37 == 5 ? 0.0 : (2.0 * (i % 256) / 255.0) / (i & 1 ? 5 : 7);
+        for (int i = 0; i < 256; i += SOL_NM_SPAN_BOUND_LANES)
+            sol_nm_span_bounds(sorted, step + i, delta, INFINITY, ref + i);
+        double mid = ref[128];
+        for (int li = 0; li < 2; ++li) {
+            const double limit = li ? mid : INFINITY;
+            if (li)
+                for (int i = 0; i < 256; i += SOL_NM_SPAN_BOUND_LANES)
+                    sol_nm_span_bounds(sorted, step + i, delta, limit, ref + i);
+            for (int n = 0; n <= 256; n += n < 40 ? 1 : 23) {
+                double padded[272] = {0.0}; /* the steps past n 0, to a multiple of 16 */
+                memcpy(padded, step, sizeof *step * (size_t)n);
+                for (int i = 0; i < 272; ++i)
+                    all[i] = -1.0;
+                sol_nm_span_bounds_all(sorted, padded, n, delta, limit, all);
+                cr_assert(memcmp(all, ref, sizeof *all * (size_t)n) == 0, "trial %d, limit %g, count %d", trial, limit, n);
+                for (int i = n; i < (n + 15) / 16 * 16; ++i)
+                    cr_assert(all[i] == 0.0 || all[i] == -1.0, "trial %d: count %d, padding lane %d: %g", trial, n, i, all[i]);
+                for (int i = (n + 15) / 16 * 16; i < 272; ++i)
+                    cr_assert(all[i] == -1.0, "trial %d: count %d wrote lane %d", trial, n, i);
+            }
+        }
+    }
+}
+
+/* The common search's palettes from two codes (sol_nm_small_palette) are the palette table's rows bit
+ * for bit: every pair, every precision. */
+Test(normalmaps, bc4_small_palettes_are_the_table_rows)
+{
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec) {
+        const double(*pal)[8] = sol_nm_palettes((sol_bc4_precision)prec);
+        for (int pair = 0; pair < 65536; ++pair) {
+            double out[8];
+            sol_nm_small_palette((sol_bc4_precision)prec, pair, out);
+            cr_assert(memcmp(out, pal[pair], sizeof out) == 0, "precision %d, pair %d", prec, pair);
+        }
+    }
+}
+
+/* sol_nm_sort16: ascending, the same multiset, on random values, many ties, zeros of both signs,
+ * infinities and the extremes of the double range. */
+Test(normalmaps, sort16_sorts)
+{
+    for (int trial = 0; trial < 200; ++trial) {
+        double in[16], out[16];
+        for (int p = 0; p < 16; ++p) {
+            double u = uniform();
+            if (trial % 4 == 0)
+                in[p] = 2.0 * u - 1.0;
+            else if (trial % 4 == 1) /* ties */
+                in[p] = floor(4.0 * u);
+            else if (trial % 4 == 2)
+                in[p] = u < 0.5 ? -0.0 : 0.0;
+            else
+                in[p] = u < 0.3 ? -INFINITY : u < 0.6 ? DBL_MAX : u < 0.8 ? -DBL_MIN : 4.9e-324;
+        }
+        sol_nm_sort16(in, out);
+        for (int p = 1; p < 16; ++p)
+            cr_assert(out[p - 1] <= out[p], "trial %d: %g before %g", trial, out[p - 1], out[p]);
+        for (int p = 0; p < 16; ++p) { /* each value as often in either */
+            int a = 0, b = 0;
+            for (int q = 0; q < 16; ++q) {
+                a += in[q] == in[p];
+                b += out[q] == in[p];
+            }
+            cr_assert(a == b, "trial %d: %g %d times in, %d out", trial, in[p], a, b);
         }
     }
 }
@@ -663,7 +744,8 @@ Test(normalmaps, adaptive_window_equals_brute_force_over_the_window_T13)
                              .precision = (sol_bc4_precision)(trial % 3),
                              .metric = trial % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED,
                              .base = trial % 4 < 2 ? SOL_BC5_BASE_COMMON : SOL_BC5_BASE_FAST,
-                             .window = trial % 5 == 0 ? 3 : 2};
+                             .window = trial % 5 == 0 ? 3 : 2,
+                             .gap = -1.0}; /* every block searched, the window exactly */
         sol_bc5_options ob = o;
         ob.encoder = o.base == SOL_BC5_BASE_FAST ? SOL_BC5_FAST : SOL_BC5_COMMON;
         sol_bc5_block base, found;
@@ -710,7 +792,8 @@ Test(normalmaps, adaptive_window_on_flat_8bit_blocks_equals_brute_force_T13)
         sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE,
                              .precision = (sol_bc4_precision)(trial % 3),
                              .metric = trial % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED,
-                             .base = trial % 4 < 2 ? SOL_BC5_BASE_COMMON : SOL_BC5_BASE_FAST};
+                             .base = trial % 4 < 2 ? SOL_BC5_BASE_COMMON : SOL_BC5_BASE_FAST,
+                             .gap = -1.0};
         sol_bc5_options ob = o;
         ob.encoder = o.base == SOL_BC5_BASE_FAST ? SOL_BC5_FAST : SOL_BC5_COMMON;
         sol_bc5_block base, found;
@@ -761,7 +844,8 @@ Test(normalmaps, search_simd_forms_equal_the_scalar_forms)
         sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE,
                              .precision = (sol_bc4_precision)(trial % 3),
                              .metric = trial % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED,
-                             .base = trial % 6 < 3 ? SOL_BC5_BASE_COMMON : SOL_BC5_BASE_FAST};
+                             .base = trial % 6 < 3 ? SOL_BC5_BASE_COMMON : SOL_BC5_BASE_FAST,
+                             .gap = trial % 5 == 2 ? 0.0 : -1.0}; /* the default gap on some */
         encode_both_forms(n, &o, NULL, trial);
         sol_bc5_block common;
         cr_assert_eq(sol_bc5_encode_block(n, &(sol_bc5_options){.precision = o.precision}, &common, NULL), SOL_OK);
@@ -1638,7 +1722,7 @@ Test(normalmaps, adaptive_image_path_equals_the_exact_block_path_T13)
     for (int cfg = 0; cfg < 12; ++cfg) {
         sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .precision = (sol_bc4_precision)(cfg % 3),
                              .metric = (sol_bc5_metric)(cfg / 3 % 2), .base = (sol_bc5_base)(cfg / 6),
-                             .window = cfg == 0 ? 0 : -1};
+                             .window = cfg == 0 ? 0 : -1, .gap = -1.0}; /* the threshold alone (gap: below) */
         /* the base encoder's levels, block by block */
         double n[NB][16][3], level[NB];
         for (int b = 0; b < NB; ++b) {
@@ -2293,4 +2377,223 @@ Test(normalmaps, loose_channels_collect_every_pair_within_the_budget, .timeout =
     free(got);
     free(want);
     free(all);
+}
+
+/* ---- the adaptive encoder's gap (options.gap, issue 13) ---- */
+
+/* Blocks for the gap tests: smooth near the axis, smooth tilted, rough, tilted rough, a rim, pointing
+ * away, half pointing away, flat (0, 0, 1), a flat 8-bit block, normals along an axis on the rim, all
+ * equal and tilted, nearly flat with one pixel near the rim. */
+enum { GAP_KINDS = 12 };
+static void gap_block(int kind, double n[16][3])
+{
+    switch (kind) {
+    case 0: random_block(n, 0.05, 0.02); break;
+    case 1: random_block(n, 1.2, 0.02); break;
+    case 2: random_block(n, 0.9, 0.6); break;
+    case 3: random_block(n, 1.45, 0.3); break;
+    case 4: degenerate_block(1, n); break;
+    case 5: degenerate_block(0, n); break;
+    case 6: degenerate_block(2, n); break;
+    case 7:
+        for (int p = 0; p < 16; ++p)
+            n[p][0] = n[p][1] = 0.0, n[p][2] = 1.0;
+        break;
+    case 8: flat8_block(n, 0.004); break;
+    case 9:
+        for (int p = 0; p < 16; ++p)
+            n[p][0] = 1.0, n[p][1] = p % 2 ? 1e-300 : 0.0, n[p][2] = 0.0; /* a denormal-free tiny y */
+        break;
+    case 10: random_block(n, 1.0, 0.0); break;
+    default:
+        random_block(n, 0.1, 0.05);
+        n[5][0] = 0.999, n[5][1] = 0.0, n[5][2] = 0.04; /* one pixel near the rim */
+        break;
+    }
+}
+
+/* The bound of a block (sol_nm_gap_bound from the common encoder's sums), internal units. */
+static double gap_bound_of(const double in[16][3], sol_bc4_precision prec, int use_max)
+{
+    double n[16][3], t[3][16], sx, sy;
+    cr_assert_eq(sol_nm_unit_normals(in, n), SOL_OK);
+    for (int p = 0; p < 16; ++p)
+        for (int c = 0; c < 3; ++c)
+            t[c][p] = n[p][c];
+    sol_nm_bc4_common(t[0], prec, &sx);
+    sol_nm_bc4_common(t[1], prec, &sy);
+    return sol_nm_gap_bound(sx, sy, (const double(*)[16])t, use_max);
+}
+
+/* An info's error in internal units (sum of dN^2, or max dN^2). */
+static double internal_error(const sol_bc5_info *info, sol_bc5_metric metric)
+{
+    return metric == SOL_BC5_MAX ? info->error * info->error : info->error;
+}
+
+/* The bound is below the window's optimum (window search at gap off, +-4) and the optimal encoder's
+ * error on every block family, both metrics, every precision; and it is tight: on smooth blocks near
+ * the axis the window's optimum is within 2% of it, so raising the bound by 2% breaks the first
+ * check (the test counts such blocks). */
+Test(normalmaps, gap_bound_is_below_every_block_and_tight_T13)
+{
+    int tight = 0, checked = 0;
+    for (int trial = 0; trial < 6 * GAP_KINDS; ++trial) {
+        double n[16][3];
+        int kind = trial % GAP_KINDS;
+        gap_block(kind, n);
+        sol_bc4_precision prec = (sol_bc4_precision)(trial / GAP_KINDS % 3);
+        sol_bc5_metric metric = trial / (3 * GAP_KINDS) ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED;
+        double lb = gap_bound_of(n, prec, metric == SOL_BC5_MAX);
+        sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .precision = prec, .metric = metric, .gap = -1.0};
+        sol_bc5_block b;
+        sol_bc5_info win, opt;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &win), SOL_OK);
+        double ew = internal_error(&win, metric);
+        cr_assert(lb >= 0.0 && lb <= ew, "trial %d kind %d: bound %.17g above the window's optimum %.17g", trial, kind,
+                  lb, ew);
+        ++checked;
+        if (metric == SOL_BC5_SUM_SQUARED && ew < 1.02 * lb)
+            ++tight;
+        if (trial % 4 == 0 || kind == 0) { /* the optimal encoder on a share of them */
+            o.encoder = SOL_BC5_OPTIMAL;
+            cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &opt), SOL_OK);
+            cr_assert(lb <= internal_error(&opt, metric), "trial %d kind %d: bound %.17g above the optimum %.17g",
+                      trial, kind, lb, internal_error(&opt, metric));
+        }
+    }
+    cr_assert_eq(checked, 6 * GAP_KINDS);
+    cr_assert(tight >= 3, "only %d blocks within 2%% of the bound", tight);
+}
+
+/* A block the gap test skips has error <= (1 + gap) times the window's optimum (and the optimal
+ * encoder's); a searched block's error (the window's relative tolerance) too; gap off gives the
+ * exact window. Several gaps, both bases and metrics; both outcomes occur. */
+Test(normalmaps, gap_keeps_every_block_within_its_factor_T13)
+{
+    static const double gaps[] = {0.02, 0.05, 0.21, 1.0};
+    int skipped = 0, searched = 0;
+    for (int trial = 0; trial < 4 * GAP_KINDS; ++trial) {
+        double n[16][3];
+        int kind = trial % GAP_KINDS;
+        gap_block(kind, n);
+        sol_bc5_metric metric = trial / GAP_KINDS % 2 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED;
+        sol_bc5_base base = trial / (2 * GAP_KINDS) ? SOL_BC5_BASE_FAST : SOL_BC5_BASE_COMMON;
+        sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .precision = (sol_bc4_precision)(trial % 3),
+                             .metric = metric, .base = base, .gap = -1.0};
+        sol_bc5_block b;
+        sol_bc5_info exact, opt, got;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &exact), SOL_OK);
+        double ew = internal_error(&exact, metric), eo = INFINITY;
+        if (trial % 3 == 0) {
+            sol_bc5_options oo = o;
+            oo.encoder = SOL_BC5_OPTIMAL;
+            cr_assert_eq(sol_bc5_encode_block(n, &oo, &b, &opt), SOL_OK);
+            eo = internal_error(&opt, metric);
+        }
+        for (size_t g = 0; g < sizeof gaps / sizeof gaps[0]; ++g) {
+            o.gap = gaps[g];
+            cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &got), SOL_OK);
+            double e = internal_error(&got, metric);
+            cr_assert(e <= (1.0 + gaps[g]) * ew, "trial %d gap %g: %.17g vs window %.17g", trial, gaps[g], e, ew);
+            if (!got.searched) {
+                ++skipped;
+                cr_assert(base == SOL_BC5_BASE_COMMON || e == 0.0, "the fast base has no skip test");
+                cr_assert(e <= (1.0 + gaps[g]) * eo, "trial %d gap %g: %.17g vs optimum %.17g", trial, gaps[g], e, eo);
+            } else {
+                ++searched;
+                cr_assert(e >= ew, "trial %d: below the window's optimum", trial);
+            }
+        }
+    }
+    cr_assert(skipped > 10 && searched > 10, "skipped %d searched %d", skipped, searched);
+}
+
+/* The documented option: 0 = SOL_BC5_DEFAULT_GAP (10% in RMS angle at most), negative = no gap test
+ * and the exact window, NaN or Inf refused (outputs untouched), the fast base has no skip test; the
+ * image path (the gap decided from chord bounds) gives the blocks and statistics of the block path
+ * (exact angles) at gaps exactly at a block's ratio and one ulp either side, for 1 and 2 threads. */
+Test(normalmaps, gap_option_is_as_documented_T13)
+{
+    cr_assert(SOL_BC5_DEFAULT_GAP > 0.0 && SOL_BC5_DEFAULT_GAP <= 0.21);
+    cr_assert(sqrt(1.0 + SOL_BC5_DEFAULT_GAP) <= 1.1 + 1e-12);
+    double n[16][3];
+    random_block(n, 0.3, 0.02);
+    sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE}, od = o, off = o;
+    od.gap = SOL_BC5_DEFAULT_GAP;
+    off.gap = -0.5;
+    sol_bc5_block b0, b1, b2, untouched = {.x = {.e0 = 42}};
+    sol_bc5_info i0, i1, i2;
+    cr_assert_eq(sol_bc5_encode_block(n, &o, &b0, &i0), SOL_OK);
+    cr_assert_eq(sol_bc5_encode_block(n, &od, &b1, &i1), SOL_OK);
+    cr_assert(memcmp(&b0, &b1, sizeof b0) == 0 && i0.searched == i1.searched && i0.error == i1.error);
+    cr_assert_eq(i0.searched, 0); /* a smooth block: provably within the default gap */
+    cr_assert_eq(sol_bc5_encode_block(n, &off, &b2, &i2), SOL_OK);
+    cr_assert_eq(i2.searched, 1);
+    off.gap = -1.0;
+    cr_assert_eq(sol_bc5_encode_block(n, &off, &b1, &i1), SOL_OK);
+    cr_assert(memcmp(&b1, &b2, sizeof b1) == 0 && i1.error == i2.error);
+    sol_bc5_options fb = {.encoder = SOL_BC5_ADAPTIVE, .base = SOL_BC5_BASE_FAST, .gap = 1e6};
+    cr_assert_eq(sol_bc5_encode_block(n, &fb, &b1, &i1), SOL_OK);
+    cr_assert_eq(i1.searched, 1);
+    const double bad[] = {NAN, INFINITY, -INFINITY};
+    for (int k = 0; k < 3; ++k) {
+        sol_bc5_options ob = {.encoder = SOL_BC5_ADAPTIVE, .gap = bad[k]};
+        cr_assert_eq(sol_bc5_encode_block(n, &ob, &untouched, NULL), SOL_ERR_INVALID_ARG);
+    }
+    cr_assert_eq(untouched.x.e0, 42);
+    /* the image path */
+    enum { W = 16, H = 16, NB = W * H / 16 };
+    sol_image img = {0};
+    cr_assert_eq(sol_image_alloc(&img, W, H, 3), SOL_OK);
+    double blk[NB][16][3];
+    for (int b = 0; b < NB; ++b) {
+        double g[16][3];
+        gap_block(b % GAP_KINDS, g);
+        for (int p = 0; p < 16; ++p) {
+            float *v = sol_image_pixel(&img, 4 * (b % (W / 4)) + (p & 3), 4 * (b / (W / 4)) + (p >> 2));
+            for (int c = 0; c < 3; ++c)
+                v[c] = (float)g[p][c];
+            if (!(v[0] != 0.0f || v[1] != 0.0f || v[2] != 0.0f))
+                v[2] = 1.0f;
+        }
+    }
+    for (int b = 0; b < NB; ++b) /* the float pixels */
+        for (int p = 0; p < 16; ++p)
+            for (int c = 0; c < 3; ++c)
+                blk[b][p][c] = sol_image_pixel(&img, 4 * (b % (W / 4)) + (p & 3), 4 * (b / (W / 4)) + (p >> 2))[c];
+    for (int cfg = 0; cfg < 4; ++cfg) {
+        sol_bc5_metric metric = (sol_bc5_metric)(cfg % 2);
+        sol_bc5_options oc = {.encoder = SOL_BC5_COMMON, .metric = metric, .precision = (sol_bc4_precision)cfg % 3};
+        /* block 1's ratio of its base error to its bound: the gap exactly at it, and one ulp either side */
+        sol_bc5_info ib;
+        cr_assert_eq(sol_bc5_encode_block(blk[1], &oc, &b0, &ib), SOL_OK);
+        double ratio = internal_error(&ib, metric) / gap_bound_of(blk[1], oc.precision, metric == SOL_BC5_MAX) - 1.0;
+        const double gl[] = {ratio, nextafter(ratio, 0.0), nextafter(ratio, 1e9), 0.0, 0.05};
+        for (size_t g = 0; g < sizeof gl / sizeof gl[0]; ++g) {
+            sol_bc5_options oa = oc;
+            oa.encoder = SOL_BC5_ADAPTIVE;
+            oa.gap = gl[g];
+            uint8_t got[2][16 * NB], want[16 * NB];
+            sol_bc5_image_stats st[2];
+            int threads = omp_get_max_threads();
+            for (int th = 0; th < 2; ++th) {
+                omp_set_num_threads(th + 1);
+                cr_assert_eq(sol_bc5_encode_image(&img, &oa, got[th], &st[th]), SOL_OK);
+            }
+            omp_set_num_threads(threads);
+            cr_assert(memcmp(got[0], got[1], sizeof got[0]) == 0 && memcmp(&st[0], &st[1], sizeof st[0]) == 0);
+            uint64_t searched = 0;
+            for (int b = 0; b < NB; ++b) {
+                sol_bc5_info info;
+                cr_assert_eq(sol_bc5_encode_block(blk[b], &oa, &b1, &info), SOL_OK);
+                cr_assert_eq(sol_bc4_pack(&b1.x, want + 16 * b), SOL_OK);
+                cr_assert_eq(sol_bc4_pack(&b1.y, want + 16 * b + 8), SOL_OK);
+                searched += (uint64_t)info.searched;
+            }
+            cr_assert(memcmp(got[0], want, sizeof want) == 0, "cfg %d gap %d", cfg, (int)g);
+            cr_assert_eq(st[0].searched_blocks, searched, "cfg %d gap %d", cfg, (int)g);
+        }
+    }
+    sol_image_free(&img);
 }

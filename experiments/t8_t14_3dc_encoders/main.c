@@ -28,10 +28,11 @@ typedef struct encoder {
 
 static const encoder ENCODERS[] = {
     {"common", ENC_SOL, {.encoder = SOL_BC5_COMMON}, 0},
-    {"common+joint idx", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .window = -1}, 0},
-    {"adaptive w1", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .window = 1}, 0},
-    {"adaptive w2", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .window = 2}, 0},
-    {"adaptive w4", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .window = 4}, 0},
+    /* the adaptive rows search every block (gap < 0: no gap test; T13 sweeps the gap) */
+    {"common+joint idx", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .window = -1, .gap = -1.0}, 0},
+    {"adaptive w1", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .window = 1, .gap = -1.0}, 0},
+    {"adaptive w2", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .window = 2, .gap = -1.0}, 0},
+    {"adaptive w4", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .window = 4, .gap = -1.0}, 0},
     {"optimal", ENC_SOL, {.encoder = SOL_BC5_OPTIMAL}, 0},
     {"libsquish kBc5", ENC_SQUISH, {0}, 0},
     {"nvtt fastest", ENC_NVTT, {0}, 0},
@@ -39,7 +40,7 @@ static const encoder ENCODERS[] = {
     {"nvtt highest", ENC_NVTT, {0}, 3},
     {"fast (alpha-block style)", ENC_SOL, {.encoder = SOL_BC5_FAST}, 0},
     /* the talk's literal step 1: the window around the usual (fast) encoder's anchors */
-    {"adaptive w4, fast base", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .window = 4, .base = SOL_BC5_BASE_FAST}, 0},
+    {"adaptive w4, fast base", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .window = 4, .base = SOL_BC5_BASE_FAST, .gap = -1.0}, 0},
 };
 enum {
     N_ENC = sizeof ENCODERS / sizeof ENCODERS[0],
@@ -344,7 +345,7 @@ static void t9(const exp_run *exp, const maps *m, const results *r)
         err_stats b16on8 = decoded_stats(&m->exact[k], r->blocks[E_ADAPTIVE][k], SOL_BC4_INTERP_8BIT);
         exp_table_row(t, "%s|same blocks, 8-bit interpolation|%.4f|%.3f", input_name((input_kind)k), b16on8.rms,
                       b16on8.max);
-        sol_bc5_options o8 = {.encoder = SOL_BC5_ADAPTIVE, .precision = SOL_BC4_INTERP_8BIT};
+        sol_bc5_options o8 = {.encoder = SOL_BC5_ADAPTIVE, .precision = SOL_BC4_INTERP_8BIT, .gap = -1.0};
         uint8_t *b = alloc_blocks(&m->q16[k]);
         exp_check(sol_bc5_encode_image(&m->q16[k], &o8, b, NULL), "encoding for 8-bit interpolation");
         err_stats b8 = decoded_stats(&m->exact[k], b, SOL_BC4_INTERP_8BIT);
@@ -681,7 +682,7 @@ static double error_left_pct(const t13_crops *c, double total)
  * returns core-ns per block. */
 static double window_point(t13_crops *c, int window, sol_bc5_base base, int *at, double *total)
 {
-    sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .window = window, .base = base};
+    sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .window = window, .base = base, .gap = -1.0};
     double ns = 0.0;
     *at = 0;
     *total = 0.0;
@@ -765,12 +766,12 @@ static double encoder_ns_per_block(const t13_crops *c, int e, int repeats)
     return ns;
 }
 
-/* One threshold (window 4, the default) over every crop: searched blocks, summed error; returns
- * core-ns per block (CPU time, as time_encoder). */
-static double threshold_point(t13_crops *c, double threshold_deg, sol_bc5_base base, uint64_t *searched,
+/* One threshold and gap (window 4, the default) over every crop: searched blocks, summed error;
+ * returns core-ns per block (CPU time, as time_encoder). gap < 0: no gap test. */
+static double threshold_point(t13_crops *c, double threshold_deg, sol_bc5_base base, double gap, uint64_t *searched,
                               uint64_t *candidates, double *total)
 {
-    sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .threshold_deg = threshold_deg, .base = base};
+    sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE, .threshold_deg = threshold_deg, .base = base, .gap = gap};
     double ns = 0.0;
     *total = 0.0;
     *searched = 0;
@@ -813,7 +814,7 @@ static void t13_threshold_sweep(const exp_run *exp, t13_crops *c, t13_overhead *
         uint64_t prev_searched = UINT64_MAX, prev_cand = UINT64_MAX;
         for (size_t i = 0; i < sizeof thresholds / sizeof thresholds[0]; ++i) {
             uint64_t searched, cand;
-            double total, ns = threshold_point(c, thresholds[i], (sol_bc5_base)base, &searched, &cand, &total);
+            double total, ns = threshold_point(c, thresholds[i], (sol_bc5_base)base, -1.0, &searched, &cand, &total);
             double overhead = 100.0 * (ns - out->common_ns) / out->common_ns, left = error_left_pct(c, total);
             if (i == 0)
                 left0 = left;
@@ -837,26 +838,34 @@ static void t13_threshold_sweep(const exp_run *exp, t13_crops *c, t13_overhead *
     exp_table_write(tt, exp, "t13_threshold");
 }
 
-/* The adaptive encoder at the library's default options (common base, threshold 0: every block
- * searched) and at the ARGB8 threshold (SOL_BC5_THRESHOLD_ARGB8_DEG, the RMS angle 8-bit-per-channel
+/* The adaptive encoder at the library's default options (common base, threshold 0, gap
+ * SOL_BC5_DEFAULT_GAP: the blocks the gap test cannot skip searched) and at the ARGB8 threshold (gap off) (SOL_BC5_THRESHOLD_ARGB8_DEG, the RMS angle 8-bit-per-channel
  * storage of a normal leaves) around either base, over the crops: searched blocks, error left above
  * the optimum, time over the fast and the common encoder (issue 13's goals: <= 2x fast, <= 1.2x
  * common). Rows into a table and exp_number keys (T13-default-*, T13-argb8-*). */
-static void t13_defaults(const exp_run *exp, t13_crops *c, const t13_overhead *ov)
+static void t13_defaults(const exp_run *exp, t13_crops *c, const t13_overhead *ov, double *default_searched,
+                         double *default_left)
 {
     exp_table *t = exp_table_new("T13: adaptive encoder (window 4) at the library default and at the ARGB8 threshold",
-                                 "base,threshold deg,searched blocks %,error left %,core-ns per block,time / fast encoder,"
-                                 "time / common encoder");
+                                 "base,threshold deg,gap,searched blocks %,error left %,core-ns per block,"
+                                 "time / fast encoder,time / common encoder");
     static const char *const base_key[2] = {"common-base", "fast-base"};
     for (int row = 0; row < 3; ++row) {
         sol_bc5_options d = {0}; /* row 0: the library's defaults */
         sol_bc5_base base = row == 0 ? d.base : row == 1 ? SOL_BC5_BASE_FAST : SOL_BC5_BASE_COMMON;
         double thr = row == 0 ? d.threshold_deg : SOL_BC5_THRESHOLD_ARGB8_DEG;
         uint64_t searched, cand;
-        double total, ns = threshold_point(c, thr, base, &searched, &cand, &total);
+        double total, ns = threshold_point(c, thr, base, row == 0 ? d.gap : -1.0, &searched, &cand, &total);
         double pct = 100.0 * (double)searched / (c->nb * INPUT_COUNT), left = error_left_pct(c, total);
-        exp_table_row(t, "%s%s|%.3f|%.1f|%.3f|%.0f|%.1f|%.2f", base == SOL_BC5_BASE_FAST ? "fast" : "common",
-                      row == 0 ? " (default)" : "", thr, pct, left, ns, ns / ov->fast_ns, ns / ov->common_ns);
+        if (row == 0) {
+            *default_searched = pct;
+            *default_left = left;
+        }
+        char gap_cell[32] = "off";
+        if (row == 0)
+            snprintf(gap_cell, sizeof gap_cell, "%.2f", d.gap == 0.0 ? SOL_BC5_DEFAULT_GAP : d.gap);
+        exp_table_row(t, "%s%s|%.3f|%s|%.1f|%.3f|%.0f|%.1f|%.2f", base == SOL_BC5_BASE_FAST ? "fast" : "common",
+                      row == 0 ? " (default)" : "", thr, gap_cell, pct, left, ns, ns / ov->fast_ns, ns / ov->common_ns);
         char key[96];
         const char *pre = row == 0 ? "T13-default" : "T13-argb8";
         const char *mid = row == 0 ? "" : base_key[base];
@@ -873,13 +882,60 @@ static void t13_defaults(const exp_run *exp, t13_crops *c, const t13_overhead *o
     exp_table_write(t, exp, "t13_defaults");
 }
 
+/* The gap sweep (options.gap, common base, threshold 0, window 4) over the crops: a block is searched
+ * only when its base objective exceeds (1 + gap) times the lower bound of every block's objective
+ * (sol_normalmaps.h), so a skipped block is within (1 + gap) of the optimum. Per gap: searched
+ * blocks, error left above the optimum and above searching every block (gap off), time over the
+ * fast and the common encoder. Rows into a table, exp_number keys T13-gap-<gap>-* and T13-default-gap. */
+static const double T13_GAPS[] = {-1.0, 0.02, 0.05, 0.1, SOL_BC5_DEFAULT_GAP, 0.5, 1.0};
+static void t13_gap_sweep(const exp_run *exp, t13_crops *c, const t13_overhead *ov)
+{
+    exp_table *t = exp_table_new("T13: adaptive gap (skip a block whose base error is provably within 1 + gap of the "
+                                 "optimum), common base, threshold 0, window 4",
+                                 "gap,searched blocks %,error left vs optimum %,error above searching every block %,"
+                                 "core-ns per block,time / fast encoder,time / common encoder");
+    double total_off = 0.0;
+    for (size_t i = 0; i < sizeof T13_GAPS / sizeof T13_GAPS[0]; ++i) {
+        const double gap = T13_GAPS[i];
+        uint64_t searched, cand;
+        double total, ns = threshold_point(c, 0.0, SOL_BC5_BASE_COMMON, gap, &searched, &cand, &total);
+        if (gap < 0.0)
+            total_off = total;
+        double pct = 100.0 * (double)searched / (c->nb * INPUT_COUNT), left = error_left_pct(c, total);
+        double above = total_off > 0.0 ? 100.0 * (total - total_off) / total_off : 0.0;
+        char label[32];
+        if (gap < 0.0)
+            snprintf(label, sizeof label, "off");
+        else
+            snprintf(label, sizeof label, "%.2f%s", gap, gap == SOL_BC5_DEFAULT_GAP ? " (default)" : "");
+        exp_table_row(t, "%s|%.1f|%.3f|%.3f|%.0f|%.2f|%.2f", label, pct, left, above, ns, ns / ov->fast_ns,
+                      ns / ov->common_ns);
+        if (gap >= 0.0) {
+            char key[96];
+            snprintf(key, sizeof key, "T13-gap-%02d-searched-pct", (int)lrint(100.0 * gap));
+            exp_number(exp, key, "%.1f", pct);
+            snprintf(key, sizeof key, "T13-gap-%02d-error-left-pct", (int)lrint(100.0 * gap));
+            exp_number(exp, key, "%.3f", left);
+            snprintf(key, sizeof key, "T13-gap-%02d-above-all-searched-pct", (int)lrint(100.0 * gap));
+            exp_number(exp, key, "%.3f", above);
+            snprintf(key, sizeof key, "T13-gap-%02d-over-common-timing", (int)lrint(100.0 * gap));
+            exp_number(exp, key, "%.2f", ns / ov->common_ns);
+        }
+        exp_progress("T13 gap", i + 1, sizeof T13_GAPS / sizeof T13_GAPS[0]);
+    }
+    exp_progress_done("T13 gap");
+    exp_number(exp, "T13-default-gap", "%.2f", SOL_BC5_DEFAULT_GAP);
+    exp_number(exp, "T13-default-gap-rms-pct", "%.0f", 100.0 * (sqrt(1.0 + SOL_BC5_DEFAULT_GAP) - 1.0));
+    exp_table_write(t, exp, "t13_gap");
+}
+
 /* Per pixel, over every crop: how many pixels the adaptive encoder (window 4, `threshold_deg`) decodes
  * closer to the source than the usual fast encoder, and how many farther (16-bit interpolants). */
 static void t13_pixels_vs_fast(t13_crops *c, double threshold_deg, sol_bc5_base base, uint64_t *better,
                                uint64_t *worse)
 {
     *better = *worse = 0;
-    sol_bc5_options oa = {.encoder = SOL_BC5_ADAPTIVE, .threshold_deg = threshold_deg, .base = base};
+    sol_bc5_options oa = {.encoder = SOL_BC5_ADAPTIVE, .threshold_deg = threshold_deg, .base = base, .gap = -1.0};
     sol_bc5_options of = {.encoder = SOL_BC5_FAST};
     for (int k = 0; k < INPUT_COUNT; ++k) {
         const sol_image *src = &c->src[k];
@@ -922,7 +978,9 @@ static void t13(const exp_run *exp, const maps *m)
     t13_overhead ov = {0};
     t13_window_sweep(exp, &c, &at4, &left4, &at4_other, &left4_other);
     t13_threshold_sweep(exp, &c, &ov);
-    t13_defaults(exp, &c, &ov);
+    double default_searched = 0.0, default_left = 0.0;
+    t13_defaults(exp, &c, &ov, &default_searched, &default_left);
+    t13_gap_sweep(exp, &c, &ov);
     const int cb = T13_BASE, ob = 1 - T13_BASE;
     uint64_t better, worse;
     t13_pixels_vs_fast(&c, ov.threshold[cb], (sol_bc5_base)cb, &better, &worse);
@@ -965,8 +1023,10 @@ static void t13(const exp_run *exp, const maps *m)
               "against %.0f for sol's exact least-squares common encoder and %.0f for the usual one-pass alpha-block "
               "encoder, so its overhead is not minimal against the usual encoder; threshold = the largest that keeps the "
               "window's error within 0.1 points of searching every block; searched blocks, candidates and error left %s "
-              "in the threshold",
-              adaptive_ns, ov.common_ns, ov.fast_ns, ov.monotone ? "are monotone" : "are NOT monotone");
+              "in the threshold; at the library default (threshold 0, gap %.2f: a block is searched only where it "
+              "could gain more than that factor) %.1f%% of the blocks are searched and %.3f%% is left",
+              adaptive_ns, ov.common_ns, ov.fast_ns, ov.monotone ? "are monotone" : "are NOT monotone",
+              SOL_BC5_DEFAULT_GAP, default_searched, default_left);
 }
 
 /* ---- T14: specular banding on the hood ---- */
@@ -1094,8 +1154,10 @@ static void t14(const exp_run *exp)
  * independent) and CPU time for the peers - what a loaded machine does not inflate; the ratios use
  * it. The wall column is the measured single-thread run (the least over the same runs). Error
  * against the exact normals, 16-bit interpolation. For the optimal encoder: blocks the work bound
- * stopped, and the costliest block (most candidates) timed alone. Then the accuracy knobs' tables
- * (bench_threshold, bench_threshold_goals, bench_work_limit; see bench_thresholds below). Env:
+ * stopped, and the costliest block (most candidates) timed alone. "adaptive" is the library's default
+ * (bench_encoder: gap SOL_BC5_DEFAULT_GAP), "adaptive-exact" the exact +-4 window on every block (gap
+ * off), "adaptive-fast" the window around the fast encoder's anchors. Then the accuracy knobs' tables
+ * (bench_threshold, bench_threshold_goals, bench_gap, bench_work_limit; see bench_thresholds below). Env:
  * T8_BENCH_MAPS, T8_BENCH_ENCODERS (encoder names, plus "thresholds" and "work-limits" for the knob
  * tables) and T8_BENCH_BITS ("16", "8") restrict the run; unset = everything. */
 /* 1 if name is in the comma-separated list (or the list is unset). */
@@ -1172,10 +1234,12 @@ static void left_cell(char *cell, size_t size, const bench_ref *r, double total)
 /* One row of the threshold table: an encoder's blocks, its CPU time and searched share. */
 static void threshold_row(exp_table *t, const bench_ref *r, const char *enc_name, const char *base,
                           const char *threshold, const char *searched, double cpu, const uint8_t *blocks,
-                          double *left_out)
+                          double *left_out, double *total_out)
 {
     err_stats es = decoded_stats(r->exact, blocks, SOL_BC4_INTERP_16BIT);
     double total = blocks_total(r, blocks);
+    if (total_out)
+        *total_out = total;
     char vs_fast[32], vs_common[32], left[32];
     ratio_cell(vs_fast, sizeof vs_fast, cpu, r->fast_cpu, "%.2f");
     ratio_cell(vs_common, sizeof vs_common, cpu, r->common_cpu, "%.3f");
@@ -1186,16 +1250,58 @@ static void threshold_row(exp_table *t, const bench_ref *r, const char *enc_name
                   cpu, vs_fast, vs_common, es.mean, es.max, left);
 }
 
-/* The adaptive encoder's threshold around each base on one map (rows into t), and per base the least
- * threshold of the sweep whose time is within 2x the fast encoder's and within 1.2x the common
- * encoder's, with the error left there (rows into summary). */
+/* The searched share f (%) at which the adaptive encoder's time would reach `goal` CPU s, if each
+ * searched block cost the mean of the all-searched run over the base's (cpu_all, cpu_base: time
+ * linear in the share, f = (goal - cpu_base) / (cpu_all - cpu_base)), and the error left there,
+ * interpolated linearly in the searched share between the threshold sweep's points (searched[],
+ * left[]: the sweep, searched shares non-increasing). Cells: f, error left (vs optimum, "-" without
+ * it), error above the all-searched run. */
+static void goal_share_cells(char *cells, size_t size, double goal, double cpu_base, double cpu_all,
+                             const double searched[], const double left[], const double above[])
+{
+    if (!(goal > 0.0) || !(cpu_base > 0.0)) {
+        snprintf(cells, size, "-|-|-");
+        return;
+    }
+    double f = cpu_all > cpu_base ? 100.0 * (goal - cpu_base) / (cpu_all - cpu_base) : INFINITY;
+    if (f >= searched[0]) { /* the all-searched run is within the goal */
+        if (isnan(left[0]))
+            snprintf(cells, size, "%.1f (all searched)|-|%.3f", fmin(f, 1e9), above[0]);
+        else
+            snprintf(cells, size, "%.1f (all searched)|%.3f|%.3f", fmin(f, 1e9), left[0], above[0]);
+        return;
+    }
+    int i = 1;
+    while (i < N_BENCH_THRESHOLDS && searched[i] > f)
+        ++i;
+    if (i == N_BENCH_THRESHOLDS || f <= 0.0) { /* below the sweep's least share */
+        snprintf(cells, size, "%.1f|beyond the sweep|beyond the sweep", f);
+        return;
+    }
+    /* searched[i] <= f < searched[i - 1] */
+    double w = searched[i - 1] > searched[i] ? (f - searched[i]) / (searched[i - 1] - searched[i]) : 0.0;
+    double ab = above[i] + w * (above[i - 1] - above[i]);
+    if (isnan(left[i]) || isnan(left[i - 1]))
+        snprintf(cells, size, "%.1f|-|%.3f", f, ab);
+    else
+        snprintf(cells, size, "%.1f|%.3f|%.3f", f, left[i] + w * (left[i - 1] - left[i]), ab);
+}
+
+/* The adaptive encoder's threshold around each base on one map (rows into t; the common base with
+ * the gap test off, so that the rows show the threshold alone), and per base the least threshold of
+ * the sweep whose time is within 2x the fast encoder's and within 1.2x the common encoder's, with
+ * the error left there, and the searched share at which the time goal of the base would be met
+ * (fast base: 2x fast; common base: 1.2x common; goal_share_cells) with the error left there (rows
+ * into summary). */
 static void bench_thresholds(exp_table *t, exp_table *summary, const bench_ref *r)
 {
     for (int base = 0; base < 2; ++base) {
-        double cpu[N_BENCH_THRESHOLDS], left[N_BENCH_THRESHOLDS];
+        double cpu[N_BENCH_THRESHOLDS], left[N_BENCH_THRESHOLDS], total[N_BENCH_THRESHOLDS],
+            searched_pct[N_BENCH_THRESHOLDS], above[N_BENCH_THRESHOLDS];
         for (int i = 0; i < N_BENCH_THRESHOLDS; ++i) {
             encoder e = {"adaptive", ENC_SOL,
-                         {.encoder = SOL_BC5_ADAPTIVE, .threshold_deg = BENCH_THRESHOLDS[i], .base = (sol_bc5_base)base},
+                         {.encoder = SOL_BC5_ADAPTIVE, .threshold_deg = BENCH_THRESHOLDS[i], .base = (sol_bc5_base)base,
+                          .gap = -1.0},
                          0};
             uint8_t *blocks = alloc_blocks(r->src);
             sol_bc5_image_stats st;
@@ -1205,8 +1311,11 @@ static void bench_thresholds(exp_table *t, exp_table *summary, const bench_ref *
                      BENCH_THRESHOLDS[i],
                      BENCH_THRESHOLDS[i] == 0.0 ? " (default)"
                                                 : BENCH_THRESHOLDS[i] == SOL_BC5_THRESHOLD_ARGB8_DEG ? " (ARGB8)" : "");
-            snprintf(searched, sizeof searched, "%.1f", 100.0 * (double)st.searched_blocks / (double)st.blocks);
-            threshold_row(t, r, "adaptive", base ? "fast" : "common", thr, searched, cpu[i], blocks, &left[i]);
+            searched_pct[i] = 100.0 * (double)st.searched_blocks / (double)st.blocks;
+            snprintf(searched, sizeof searched, "%.1f", searched_pct[i]);
+            threshold_row(t, r, "adaptive", base ? "fast" : "common (gap off)", thr, searched, cpu[i], blocks, &left[i],
+                          &total[i]);
+            above[i] = total[0] > 0.0 ? 100.0 * (total[i] - total[0]) / total[0] : 0.0;
             free(blocks);
             fprintf(stderr, "bench: %s %d-bit adaptive, %s base, threshold %.2f: CPU %.2f s\n", r->map, r->bits,
                     base ? "fast" : "common", BENCH_THRESHOLDS[i], cpu[i]);
@@ -1236,8 +1345,60 @@ static void bench_thresholds(exp_table *t, exp_table *summary, const bench_ref *
         ratio_cell(a_common, sizeof a_common, cpu[ia], r->common_cpu, "%.3f");
         if (!isnan(left[ia]))
             snprintf(a_left, sizeof a_left, "%.3f", left[ia]);
-        exp_table_row(summary, "%s|%d|%s|%s|%s|%s|%s|%s|%s|%s", r->map, r->bits, base ? "fast" : "common", z_fast,
-                      z_common, a_fast, a_common, a_left, cells[0], cells[1]);
+        char share[128];
+        goal_share_cells(share, sizeof share, base ? 2.0 * r->fast_cpu : 1.2 * r->common_cpu,
+                         base ? r->fast_cpu : r->common_cpu, cpu[0], searched_pct, left, above);
+        exp_table_row(summary, "%s|%d|%s|%s|%s|%s|%s|%s|%s|%s|%s", r->map, r->bits, base ? "fast" : "common (gap off)",
+                      z_fast, z_common, a_fast, a_common, a_left, cells[0], cells[1], share);
+    }
+}
+
+/* The adaptive encoder's gap (options.gap; common base, threshold 0, window 4) on one map: per gap
+ * the searched blocks, time over the fast and the common encoder, error left above the optimum and
+ * above searching every block (gap off). */
+static const double BENCH_GAPS[] = {-1.0, 0.02, 0.05, 0.1, SOL_BC5_DEFAULT_GAP, 0.5, 1.0};
+static exp_table *bench_gap_table_new(void)
+{
+    return exp_table_new("make bench: adaptive encoder gap (common base, threshold 0, window 4): a block is searched "
+                         "only if its error exceeds (1 + gap) x a lower bound of the optimum's (one thread; the least "
+                         "of up to 5 runs, as the encoders above)",
+                         "map,source bits,gap,searched blocks %,CPU s,time / fast,time / common,mean deg,max deg,"
+                         "error left above optimum %,error above searching every block %");
+}
+
+static double bench_cpu_s(const encoder *e, const sol_image *src, uint8_t *blocks, sol_bc5_image_stats *st,
+                          double *wall_s, int *runs);
+
+/* (each row timed as bench_set times the encoders: the least of up to 5 runs, bench_cpu_s) */
+static void bench_gaps(exp_table *t, const bench_ref *r)
+{
+    double total_off = 0.0;
+    for (size_t i = 0; i < sizeof BENCH_GAPS / sizeof BENCH_GAPS[0]; ++i) {
+        const double gap = BENCH_GAPS[i];
+        encoder e = {"adaptive", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .gap = gap}, 0};
+        uint8_t *blocks = alloc_blocks(r->src);
+        sol_bc5_image_stats st;
+        double wall;
+        int runs;
+        double cpu = bench_cpu_s(&e, r->src, blocks, &st, &wall, &runs);
+        err_stats es = decoded_stats(r->exact, blocks, SOL_BC4_INTERP_16BIT);
+        double total = blocks_total(r, blocks);
+        if (gap < 0.0)
+            total_off = total;
+        char label[32], vs_fast[32], vs_common[32], left[32];
+        if (gap < 0.0)
+            snprintf(label, sizeof label, "off");
+        else
+            snprintf(label, sizeof label, "%.2f%s", gap, gap == SOL_BC5_DEFAULT_GAP ? " (default)" : "");
+        ratio_cell(vs_fast, sizeof vs_fast, cpu, r->fast_cpu, "%.2f");
+        ratio_cell(vs_common, sizeof vs_common, cpu, r->common_cpu, "%.3f");
+        left_cell(left, sizeof left, r, total);
+        exp_table_row(t, "%s|%d|%s|%.1f|%.3f|%s|%s|%.4f|%.3f|%s|%.4f", r->map, r->bits, label,
+                      100.0 * (double)st.searched_blocks / (double)st.blocks, cpu, vs_fast, vs_common, es.mean, es.max,
+                      left, total_off > 0.0 ? 100.0 * (total - total_off) / total_off : 0.0);
+        free(blocks);
+        fprintf(stderr, "bench: %s %d-bit adaptive, gap %s: CPU %.2f s, searched %.1f%%\n", r->map, r->bits, label, cpu,
+                100.0 * (double)st.searched_blocks / (double)st.blocks);
     }
 }
 
@@ -1298,15 +1459,27 @@ static double bench_cpu_s(const encoder *e, const sol_image *src, uint8_t *block
     return cpu;
 }
 
+/* make bench's encoders: ENCODERS entries by index, and BENCH_ADAPTIVE_DEFAULT for the adaptive
+ * encoder at the library's defaults (common base, window 4, threshold 0, gap SOL_BC5_DEFAULT_GAP:
+ * what a caller zero-initialising sol_bc5_options gets, the "adaptive" of issue 13's goals). The
+ * ENCODERS adaptive rows keep the gap off so the T8-T14 tables measure the exact window. */
+#define BENCH_ADAPTIVE_DEFAULT (-1)
+static const encoder *bench_encoder(int id)
+{
+    static const encoder adaptive_default = {"adaptive (library default)", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE}, 0};
+    return id == BENCH_ADAPTIVE_DEFAULT ? &adaptive_default : &ENCODERS[id];
+}
+
 static void bench_set(const exp_run *exp)
 {
     const int size = exp->quick ? 128 : 1024, threads = omp_get_max_threads();
     const double talk_s = 3.0 * 3600.0;
     bench_map maps_[4];
     bench_maps_init(maps_, size);
-    const int encs[] = {E_FAST, E_COMMON, E_ADAPTIVE, E_OPTIMAL, E_SQUISH, E_NVTT_HIGHEST, E_ADAPTIVE_FAST};
-    static const char *const bench_names[] = {"fast",      "common", "adaptive",     "optimal",
-                                              "libsquish", "nvtt",   "adaptive-fast"};
+    const int encs[] = {E_FAST,   E_COMMON,       BENCH_ADAPTIVE_DEFAULT, E_OPTIMAL, E_SQUISH, E_NVTT_HIGHEST,
+                        E_ADAPTIVE_FAST, E_ADAPTIVE};
+    static const char *const bench_names[] = {"fast",      "common", "adaptive",      "optimal",
+                                              "libsquish", "nvtt",   "adaptive-fast", "adaptive-exact"};
     enum { N_BENCH_ENC = sizeof encs / sizeof encs[0] };
     exp_table *t = exp_table_new("make bench: the benchmark set, every encoder on each map (times: the least of up to 5 runs "
                                  "for runs under 2 s CPU, within about 3 s; longer runs once)",
@@ -1327,7 +1500,11 @@ static void bench_set(const exp_run *exp)
                                   "map,source bits,base,time / fast at threshold 0,time / common at threshold 0,"
                                   "time / fast at the ARGB8 threshold,time / common there,error left there %,"
                                   "least threshold deg with time <= 2x fast,error left there %,"
-                                  "least threshold deg with time <= 1.2x common,error left there %");
+                                  "least threshold deg with time <= 1.2x common,error left there %,"
+                                  "searched share % at the base's goal (fast base: 2x fast; common: 1.2x common; time "
+                                  "linear in the share),error left there % (interpolated in the sweep),"
+                                  "error above searching every block there %");
+    exp_table *kg = bench_gap_table_new();
     exp_table *kw = exp_table_new("make bench: optimal encoder work_limit, with the baselines and peers: error vs time "
                                   "(one thread)",
                                   "map,source bits,encoder,work limit,bounded blocks,CPU s,time / fast,"
@@ -1353,7 +1530,7 @@ static void bench_set(const exp_run *exp)
             uint64_t bounded_of[N_BENCH_ENC] = {0};
             int ran[N_BENCH_ENC] = {0};
             for (int j = 0; j < N_BENCH_ENC; ++j) {
-                const encoder *e = &ENCODERS[encs[j]];
+                const encoder *e = bench_encoder(encs[j]);
                 if (!bench_wanted(only_encs, bench_names[j]))
                     continue;
                 ran[j] = 1;
@@ -1383,7 +1560,7 @@ static void bench_set(const exp_run *exp)
                     fprintf(stderr, "bench:   slowest block %.4f s CPU, bounded blocks %llu\n", slowest,
                             (unsigned long long)st.bounded_blocks);
             }
-            /* indices into encs: 0 fast, 1 common, 2 adaptive, 3 optimal, 4 libsquish, 5 nvtt, 6 adaptive-fast */
+            /* indices into encs: 0 fast, 1 common, 2 adaptive, 3 optimal, 4 libsquish, 5 nvtt, 6 adaptive-fast, 7 adaptive-exact (gap off) */
             char c[9][32];
             bench_ratio(c[0], ran, est, 0, 4, "%.2f");
             bench_ratio(c[1], ran, cpus, 0, 4, "%.2f");
@@ -1416,9 +1593,10 @@ static void bench_set(const exp_run *exp)
                 const int rows[] = {0, 1, 4, 5, 3};
                 for (size_t i = 0; i < sizeof rows / sizeof rows[0]; ++i)
                     if (kept[rows[i]])
-                        threshold_row(kt, &ref, ENCODERS[encs[rows[i]]].name, "-", "-", "-", cpus[rows[i]],
-                                      kept[rows[i]], NULL);
+                        threshold_row(kt, &ref, bench_encoder(encs[rows[i]])->name, "-", "-", "-", cpus[rows[i]],
+                                      kept[rows[i]], NULL, NULL);
                 bench_thresholds(kt, ks, &ref);
+                bench_gaps(kg, &ref);
             }
             if (bench_wanted(only_encs, "work-limits") && kept[3]) {
                 const int rows[] = {0, 1, 2, 4, 5};
@@ -1431,7 +1609,7 @@ static void bench_set(const exp_run *exp)
                     ratio_cell(vs_fast, sizeof vs_fast, cpus[rows[i]], ref.fast_cpu, "%.1f");
                     ratio_cell(vs_nvtt, sizeof vs_nvtt, cpus[rows[i]], ref.nvtt_cpu, "%.2f");
                     exp_table_row(kw, "%s|%d|%s|-|-|%.3f|%s|%s|%.4f|%.3f|%s", maps_[k].name, bits,
-                                  ENCODERS[encs[rows[i]]].name, cpus[rows[i]], vs_fast, vs_nvtt, es.mean, es.max, left);
+                                  bench_encoder(encs[rows[i]])->name, cpus[rows[i]], vs_fast, vs_nvtt, es.mean, es.max, left);
                 }
                 bench_work_limits(kw, &ref, exp->quick);
                 err_stats es = decoded_stats(&maps_[k].exact, kept[3], SOL_BC4_INTERP_16BIT);
@@ -1450,6 +1628,7 @@ static void bench_set(const exp_run *exp)
     exp_table_write(ratios, exp, "bench_ratios");
     exp_table_write(kt, exp, "bench_threshold");
     exp_table_write(ks, exp, "bench_threshold_goals");
+    exp_table_write(kg, exp, "bench_gap");
     exp_table_write(kw, exp, "bench_work_limit");
     for (int k = 0; k < 4; ++k)
         sol_image_free(&maps_[k].exact);

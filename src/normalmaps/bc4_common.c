@@ -37,10 +37,9 @@
  * two or three values, and hundreds of pairs put one entry on the same 16-bit value).
  * Wide blocks (at least WIDE_CODES codes) are searched by span instead (span_search: every pair of a
  * span shares one lattice step, so its score is bounded by the targets' fit to that lattice at any
- * phase, bc4_span_bound.c, in floats for eight spans at a time; in a span that survives, each low
- * anchor L fixes the phase, A(L), and the
- * same fit at that phase bounds the pair (L, L + span): only the L whose phase is near one of the
- * targets' best phases are scored).
+ * phase, bc4_span_bound.c, in floats for eight or sixteen spans at a time; in a span that
+ * survives, each low anchor L fixes the phase, A(L), and the same fit at that phase bounds the pair
+ * (L, L + span): only the L whose phase is near one of the targets' best phases are scored).
  * Search: the incumbent is the best of the fast encoder's two candidate pairs (extreme_seeds) refined
  * by a least-squares refit of its anchors (refine) and, for blocks narrower than a few codes, palettes of
  * span 1-4 codes centred on the targets (narrow_seeds: the fast pair has span 0 there, and the refit
@@ -57,24 +56,107 @@
 #include "normalmaps_internal.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <string.h>
 
-/* The two hot functions (box_bound, try_pair) are also compiled for AVX2 and picked at run time
- * (GCC target_clones on x86-64): the same operations in wider lanes - no FMA contraction (C11 mode),
- * sums in the same order - so the results are bit-identical to the baseline build. */
+/* The hot functions (box_bound, try_pair, quantisation_bound) are also compiled for AVX2 and picked
+ * at run time (GCC target_clones on x86-64), the quantisation programme's rows also for AVX-512: the
+ * same operations in wider lanes - no FMA contraction (C11 mode), sums in the same order - so the
+ * results are bit-identical to the baseline build. */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define HOT_CLONES __attribute__((noinline, target_clones("avx2", "default")))
+#define HOT_CLONES __attribute__((noinline, target_clones("avx512f", "avx2", "default")))
 #else
 #define HOT_CLONES __attribute__((noinline))
 #endif
 
 typedef double v4d __attribute__((vector_size(4 * sizeof(double))));
 typedef long long v4l __attribute__((vector_size(4 * sizeof(long long))));
+typedef double v8d __attribute__((vector_size(8 * sizeof(double))));
+typedef long long v8l __attribute__((vector_size(8 * sizeof(long long))));
+
+static inline double anchor(int c)
+{
+    return 2.0 * c / 255.0 - 1.0;
+}
+
+/* A pair's palette from its two codes (the search scores pairs at scattered indices, and a load from
+ * the 4 MB palette table, sol_nm_palettes, missed the caches on most of them): every entry is an
+ * anchor, an interpolant of weight numerator num = w0 e0 + w1 e1 over den 7 (8-value mode, e0 > e1:
+ * entry i = 2..7 has num = (8 - i) e0 + (i - 1) e1) or den 5 (6-value mode: entry i = 2..5 has num =
+ * (6 - i) e0 + (i - 1) e1), or the 6-value mode's fixed -1, +1, and the decoder's value of an
+ * interpolant depends only on (num, den) (bc4.c). The tables below (26 KB per precision, cached) are
+ * copied from the palette table itself, so every palette they give is bit-identical to its row.
+ * (The same block holds the span search's lattice steps, for the same reason: no division per span.) */
+typedef struct small_palettes {
+    double anchor[256];
+    double over7[7 * 255 + 1], over5[5 * 255 + 1];
+    double step[2][256]; /* span_search's lattice steps (A(d) + 1) / den, den = 7 ([0]), 5 ([1]) */
+} small_palettes;
+
+static small_palettes smalls[SOL_BC4_PRECISION_COUNT];
+static pthread_once_t smalls_once[SOL_BC4_PRECISION_COUNT] = {PTHREAD_ONCE_INIT, PTHREAD_ONCE_INIT,
+                                                              PTHREAD_ONCE_INIT};
+
+static void build_smalls(sol_bc4_precision precision)
+{
+    const double(*pal)[8] = sol_nm_palettes(precision);
+    small_palettes *sp = &smalls[precision];
+    for (int d = 0; d < 256; ++d) {
+        sp->step[0][d] = (anchor(d) + 1.0) / 7;
+        sp->step[1][d] = (anchor(d) + 1.0) / 5;
+    }
+    for (int e0 = 0; e0 < 256; ++e0) {
+        sp->anchor[e0] = pal[e0 << 8][0];
+        for (int e1 = 0; e1 < 256; ++e1) {
+            const double *row = pal[e0 << 8 | e1];
+            if (e0 > e1)
+                for (int i = 2; i < 8; ++i)
+                    sp->over7[(8 - i) * e0 + (i - 1) * e1] = row[i];
+            else
+                for (int i = 2; i < 6; ++i)
+                    sp->over5[(6 - i) * e0 + (i - 1) * e1] = row[i];
+        }
+    }
+}
+static void build_smalls_16bit(void) { build_smalls(SOL_BC4_INTERP_16BIT); }
+static void build_smalls_8bit(void) { build_smalls(SOL_BC4_INTERP_8BIT); }
+static void build_smalls_float(void) { build_smalls(SOL_BC4_INTERP_FLOAT); }
+
+static const small_palettes *small_palettes_get(sol_bc4_precision precision)
+{
+    static void (*const builders[SOL_BC4_PRECISION_COUNT])(void) = {build_smalls_16bit, build_smalls_8bit,
+                                                                    build_smalls_float};
+    pthread_once(&smalls_once[precision], builders[precision]);
+    return &smalls[precision];
+}
+
+/* The palette of pair = e0 << 8 | e1, as its row of the palette table. */
+static inline __attribute__((always_inline)) void small_palette(const small_palettes *sp, int pair, double pal[8])
+{
+    const int e0 = pair >> 8, e1 = pair & 255;
+    pal[0] = sp->anchor[e0];
+    pal[1] = sp->anchor[e1];
+    if (e0 > e1) {
+        for (int i = 2; i < 8; ++i)
+            pal[i] = sp->over7[(8 - i) * e0 + (i - 1) * e1];
+    } else {
+        for (int i = 2; i < 6; ++i)
+            pal[i] = sp->over5[(6 - i) * e0 + (i - 1) * e1];
+        pal[6] = -1.0;
+        pal[7] = 1.0;
+    }
+}
+
+void sol_nm_small_palette(sol_bc4_precision precision, int pair, double out[8])
+{
+    small_palette(small_palettes_get(precision), pair, out);
+}
 
 typedef struct common_ctx {
     const double *t;
     double to[16]; /* the targets in the reference order */
-    const double (*pal)[8];
+    const small_palettes *sp;
+    const double (*pal)[8]; /* the palette table (try_pair_row) */
     double delta;
     double best;
     int best_pair;
@@ -99,6 +181,83 @@ static inline double group_cost(const common_ctx *c, int i, int j)
     double v = s2 - s * s * inv[j - i + 1]; /* s^2 / n within a rounding (q_slack) */
     return v > 0.0 ? v : 0.0;
 }
+
+/* Row r >= 2 of the quantisation programme before its clean-up: b[j] = min over i of
+ * dp[r - 1][i - 1] + gcost[i][j] (i from r - 1), i by i, each i updating every j at once (independent
+ * lanes, no chain of dependent minima): four lanes of four (vector types: the compiler kept the 16
+ * minima in scalars) for the AVX2 and baseline builds, two lanes of eight (one AVX-512 register each)
+ * where the processor has AVX-512 - the minimum of the same sums either way. */
+static inline __attribute__((always_inline)) void dp_row4(const common_ctx *c, int r, double b[16])
+{
+    const v4d zero = {0.0, 0.0, 0.0, 0.0};
+    v4d b0 = zero + INFINITY, b1 = b0, b2 = b0, b3 = b0, g, v;
+    v4l lt;
+#define DP_LANE(bq, q)                                                                                                 \
+    memcpy(&g, &c->gcost[i][4 * (q)], sizeof g);                                                                       \
+    v = base + g;                                                                                                      \
+    lt = v < bq;                                                                                                       \
+    bq = (v4d)(((v4l)v & lt) | ((v4l)bq & ~lt))
+    /* gcost[i][j] is infinite for j < i: lanes wholly below i are skipped */
+    int i = r - 1;
+    for (; i < 4; ++i) {
+        const v4d base = zero + c->dp[r - 1][i - 1];
+        DP_LANE(b0, 0);
+        DP_LANE(b1, 1);
+        DP_LANE(b2, 2);
+        DP_LANE(b3, 3);
+    }
+    for (; i < 8; ++i) {
+        const v4d base = zero + c->dp[r - 1][i - 1];
+        DP_LANE(b1, 1);
+        DP_LANE(b2, 2);
+        DP_LANE(b3, 3);
+    }
+    for (; i < 12; ++i) {
+        const v4d base = zero + c->dp[r - 1][i - 1];
+        DP_LANE(b2, 2);
+        DP_LANE(b3, 3);
+    }
+    for (; i < 16; ++i) {
+        const v4d base = zero + c->dp[r - 1][i - 1];
+        DP_LANE(b3, 3);
+    }
+#undef DP_LANE
+    memcpy(b, &b0, sizeof b0);
+    memcpy(b + 4, &b1, sizeof b1);
+    memcpy(b + 8, &b2, sizeof b2);
+    memcpy(b + 12, &b3, sizeof b3);
+}
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define HAVE_DP_ROW8 1
+static __attribute__((noinline, target("avx512f"))) void dp_row8(const common_ctx *c, int r, double b[16])
+{
+    const v8d zero = {0.0};
+    v8d b0 = zero + INFINITY, b1 = b0, g, v;
+    v8l lt;
+#define DP_LANE(bq, q)                                                                                                 \
+    memcpy(&g, &c->gcost[i][8 * (q)], sizeof g);                                                                       \
+    v = base + g;                                                                                                      \
+    lt = v < bq;                                                                                                       \
+    bq = (v8d)(((v8l)v & lt) | ((v8l)bq & ~lt))
+    /* gcost[i][j] is infinite for j < i: the lane wholly below i is skipped */
+    int i = r - 1;
+    for (; i < 8; ++i) {
+        const v8d base = zero + c->dp[r - 1][i - 1];
+        DP_LANE(b0, 0);
+        DP_LANE(b1, 1);
+    }
+    for (; i < 16; ++i) {
+        const v8d base = zero + c->dp[r - 1][i - 1];
+        DP_LANE(b1, 1);
+    }
+#undef DP_LANE
+    memcpy(b, &b0, sizeof b0);
+    memcpy(b + 8, &b1, sizeof b1);
+}
+#else
+#define HAVE_DP_ROW8 0
+#endif
 
 /* q[m]: 1-D optimal m-point quantisation of the 16 targets (contiguous groups of the sorted values).
  * Row r of the programme, dp[r][j] = min over i of dp[r - 1][i - 1] + cost(i..j), is taken i by i,
@@ -129,45 +288,13 @@ static HOT_CLONES double quantisation_bound(common_ctx *c, int m)
                         c->gcost[i][j] = j < i ? INFINITY : v;
                     }
                 }
-            /* four lanes of four (vector types: the compiler kept the 16 minima in scalars) */
-            const v4d zero = {0.0, 0.0, 0.0, 0.0};
-            v4d b0 = zero + INFINITY, b1 = b0, b2 = b0, b3 = b0, g, v;
-            v4l lt;
-#define DP_LANE(bq, q)                                                                                                 \
-    memcpy(&g, &c->gcost[i][4 * (q)], sizeof g);                                                                       \
-    v = base + g;                                                                                                      \
-    lt = v < bq;                                                                                                       \
-    bq = (v4d)(((v4l)v & lt) | ((v4l)bq & ~lt))
-            /* gcost[i][j] is infinite for j < i: lanes wholly below i are skipped */
-            int i = r - 1;
-            for (; i < 4; ++i) {
-                const v4d base = zero + c->dp[r - 1][i - 1];
-                DP_LANE(b0, 0);
-                DP_LANE(b1, 1);
-                DP_LANE(b2, 2);
-                DP_LANE(b3, 3);
-            }
-            for (; i < 8; ++i) {
-                const v4d base = zero + c->dp[r - 1][i - 1];
-                DP_LANE(b1, 1);
-                DP_LANE(b2, 2);
-                DP_LANE(b3, 3);
-            }
-            for (; i < 12; ++i) {
-                const v4d base = zero + c->dp[r - 1][i - 1];
-                DP_LANE(b2, 2);
-                DP_LANE(b3, 3);
-            }
-            for (; i < 16; ++i) {
-                const v4d base = zero + c->dp[r - 1][i - 1];
-                DP_LANE(b3, 3);
-            }
-#undef DP_LANE
             double b[16];
-            memcpy(b, &b0, sizeof b0);
-            memcpy(b + 4, &b1, sizeof b1);
-            memcpy(b + 8, &b2, sizeof b2);
-            memcpy(b + 12, &b3, sizeof b3);
+#if HAVE_DP_ROW8
+            if (__builtin_cpu_supports("avx512f"))
+                dp_row8(c, r, b);
+            else
+#endif
+                dp_row4(c, r, b);
             for (int j = 0; j < 16; ++j)
                 c->dp[r][j] = r - 1 > j ? 0.0 : b[j];
         }
@@ -181,18 +308,14 @@ static inline int make_pair(int six, int l, int h)
     return six ? (l << 8 | h) : (h << 8 | l);
 }
 
-static inline double anchor(int c)
-{
-    return 2.0 * c / 255.0 - 1.0;
-}
 
 /* Exact score of a pair in the reference order, with early exit once above budget (checked after
  * the first 8 targets). The per-target minimum is exact whatever the order it is taken in, and the
  * 16 terms are added one by one in the reference order, so the sum is bit-identical to the brute
  * force's. Written target-parallel, 8 targets at a time, so that the compiler vectorises it. */
-static inline double exact_score(const common_ctx *c, int pair, double budget)
+static inline __attribute__((always_inline)) double exact_score(const common_ctx *c, const double pal[8],
+                                                                double budget)
 {
-    const double *pal = c->pal[pair];
     double s = 0.0;
     for (int k0 = 0; k0 < 16; k0 += 8) {
         double m[8];
@@ -405,22 +528,30 @@ static int mode_region(common_ctx *c, int six, region *g)
 
 static HOT_CLONES void try_pair(common_ctx *c, int pair)
 {
-    double v = exact_score(c, pair, c->best);
+    double pal[8];
+    small_palette(c->sp, pair, pal);
+    double v = exact_score(c, pal, c->best);
     if (v < c->best || (v == c->best && pair < c->best_pair)) {
         c->best = v;
         c->best_pair = pair;
     }
 }
 
-/* try_pair on pairs[0 .. n), in that order, their palettes fetched from memory first: the 4 MB
- * palette table is read at scattered pairs, and the reads of a list overlap instead of waiting one
- * by one. */
+/* The same with the palette read from its table row: the walk below scores the pairs holding a
+ * value, and on smooth 8-bit maps neighbouring blocks hold the same values, so those rows stay in
+ * the caches and the load is cheaper than building the palette. */
+static HOT_CLONES void try_pair_row(common_ctx *c, int pair)
+{
+    double v = exact_score(c, c->pal[pair], c->best);
+    if (v < c->best || (v == c->best && pair < c->best_pair)) {
+        c->best = v;
+        c->best_pair = pair;
+    }
+}
+
+/* try_pair on pairs[0 .. n), in that order. */
 static void try_pairs(common_ctx *c, const int *pairs, int n)
 {
-    for (int i = 0; i < n; ++i) {
-        __builtin_prefetch(c->pal[pairs[i]]);
-        __builtin_prefetch(c->pal[pairs[i]] + 7);
-    }
     for (int i = 0; i < n; ++i)
         try_pair(c, pairs[i]);
 }
@@ -565,42 +696,44 @@ static void span_search(common_ctx *c, int six)
             return;
         }
     }
-    const int den = six ? 5 : 7;
     int d_lo = g.h_min - g.l_max, d_hi = g.span_max;
     d_lo = d_lo > g.gap ? d_lo : g.gap;
-    int spans[256], n = 0, cand[256], nc = 0;
-    double lb[256], ends[256];
-    for (int d = d_lo; d <= d_hi; ++d) { /* the ends bound first (cheap), then the lattice bound */
-        double e = ends_bound(c, anchor(d) + 1.0 + 2.0 * c->delta + 1e-12);
-        if (e <= c->best) {
-            ends[nc] = e;
-            cand[nc++] = d;
+    int spans[256], n = 0;
+    double lb[256];
+    /* the ends bound is non-increasing in the span (its width grows, each term shrinks), so the spans
+     * it leaves are those from the first it leaves on */
+    int d_first = d_lo;
+    while (d_first <= d_hi && ends_bound(c, anchor(d_first) + 1.0 + 2.0 * c->delta + 1e-12) > c->best)
+        ++d_first;
+    /* the lattice bound of each, and the ends bound of those it leaves */
+    const int nd = d_hi - d_first + 1;
+    double steps[256 + 16], lat[256 + 16];
+    for (int k = 0; k < nd; ++k)
+        steps[k] = c->sp->step[six][d_first + k]; /* (A(d) + 1) / den, tabulated */
+    for (int k = nd > 0 ? nd : 0; k % 16; ++k) /* padding lanes: no step */
+        steps[k] = 0.0;
+    sol_nm_span_bounds_all(c->sorted, steps, nd, c->delta, c->best, lat);
+    for (int k = 0; k < nd; ++k) {
+        if (lat[k] > c->best)
+            continue;
+        const double e = ends_bound(c, anchor(d_first + k) + 1.0 + 2.0 * c->delta + 1e-12);
+        double l = lat[k] > e ? lat[k] : e;
+        if (l > c->best)
+            continue;
+        int q = n++; /* insertion by bound, then span */
+        for (; q > 0 && lb[q - 1] > l; --q) {
+            lb[q] = lb[q - 1];
+            spans[q] = spans[q - 1];
         }
-    }
-    for (int i = 0; i < nc; i += SOL_NM_SPAN_BOUND_LANES) {
-        double step[SOL_NM_SPAN_BOUND_LANES], lat[SOL_NM_SPAN_BOUND_LANES];
-        for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES; ++k)
-            step[k] = i + k < nc ? (anchor(cand[i + k]) + 1.0) / den : 0.0;
-        sol_nm_span_bounds(c->sorted, step, c->delta, c->best, lat);
-        for (int k = 0; k < SOL_NM_SPAN_BOUND_LANES && i + k < nc; ++k) {
-            double l = lat[k] > ends[i + k] ? lat[k] : ends[i + k];
-            if (l > c->best)
-                continue;
-            int q = n++; /* insertion by bound, then span */
-            for (; q > 0 && lb[q - 1] > l; --q) {
-                lb[q] = lb[q - 1];
-                spans[q] = spans[q - 1];
-            }
-            lb[q] = l;
-            spans[q] = cand[i + k];
-        }
+        lb[q] = l;
+        spans[q] = d_first + k;
     }
     sol_nm_span_cuts cuts[SOL_NM_SPAN_LANES];
     for (int i = 0; i < n && lb[i] <= c->best; ++i) {
         if (i % SOL_NM_SPAN_LANES == 0) { /* the cut data of the next four spans to visit */
             double step[SOL_NM_SPAN_LANES];
             for (int k = 0; k < SOL_NM_SPAN_LANES; ++k)
-                step[k] = i + k < n ? (anchor(spans[i + k]) + 1.0) / den : 0.0;
+                step[k] = i + k < n ? c->sp->step[six][spans[i + k]] : 0.0;
             sol_nm_span_cuts4(c->sorted, step, cuts);
         }
         sol_nm_span_cuts *cu = &cuts[i % SOL_NM_SPAN_LANES];
@@ -618,9 +751,10 @@ static void span_search(common_ctx *c, int six)
         double f[256];
         sol_nm_span_phase_fs(cu, l1, l2 - l1 + 1, f);
         int pairs[256], np = 0;
-        for (int l = l1; l <= l2; ++l)
-            if (f[l - l1] <= fstar)
-                pairs[np++] = make_pair(six, l, l + d);
+        for (int l = l1; l <= l2; ++l) { /* branch-free: each written, the kept ones advance */
+            pairs[np] = make_pair(six, l, l + d);
+            np += f[l - l1] <= fstar;
+        }
         try_pairs(c, pairs, np);
     }
 }
@@ -644,6 +778,8 @@ static void try_move(common_ctx *c, int six, int a, int b, int *nl, int *nh)
  * times. Only an incumbent: the search below proves or improves it. */
 static void refine(common_ctx *c, int six, int l, int h)
 {
+    static const double weight[2][8] = {{0.0, 1.0 / 7, 2.0 / 7, 3.0 / 7, 4.0 / 7, 5.0 / 7, 6.0 / 7, 1.0},
+                                        {0.0, 1.0 / 5, 2.0 / 5, 3.0 / 5, 4.0 / 5, 1.0, 0.0, 0.0}};
     const int den = six ? 5 : 7;
     for (int round = 0; round < 3; ++round) {
         double al = anchor(l), ah = anchor(h), step = (ah - al) / den, inv = step > 0.0 ? 1.0 / step : 0.0;
@@ -652,9 +788,10 @@ static void refine(common_ctx *c, int six, int l, int h)
             /* the nearest lattice position (round to nearest by the 1.5 2^52 addition: |k| < 2^51) */
             double t = c->t[p], k = ((t - al) * inv + 0x1.8p52) - 0x1.8p52;
             k = k < 0.0 ? 0.0 : (k > den ? den : k);
-            if (six && fabs(t - (al + k * step)) > fmin(fabs(t + 1.0), fabs(t - 1.0)))
+            const double below = fabs(t + 1.0), above = fabs(t - 1.0); /* the fixed entries' distances */
+            if (six && fabs(t - (al + k * step)) > (above < below ? above : below))
                 continue; /* served by a fixed entry */
-            double b = k / den, a = 1.0 - b;
+            double b = weight[six][(int)k], a = 1.0 - b; /* k / den */
             saa += a * a;
             sab += a * b;
             sbb += b * b;
@@ -879,7 +1016,7 @@ static int narrow_walk(common_ctx *c, const sol_nm_entry_index *ix, const walk_p
                 }
                 alone = 1;
             }
-            try_pair(c, ix->pair[j++]);
+            try_pair_row(c, ix->pair[j++]);
         }
     }
     return 1;
@@ -913,13 +1050,25 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     c.t = t;
     for (int k = 0; k < 16; ++k)
         c.to[k] = t[order[k]];
+    c.sp = small_palettes_get(precision);
     c.pal = sol_nm_palettes(precision);
-    for (int p = 0; p < 16; ++p) { /* insertion sort */
-        int q = p;
-        for (; q > 0 && c.sorted[q - 1] > t[p]; --q)
-            c.sorted[q] = c.sorted[q - 1];
-        c.sorted[q] = t[p];
+    /* sorted: wide blocks by the branch-free network (an insertion sort mispredicts there), narrow
+     * ones by an insertion sort (their few distinct values make its branches predictable, and it
+     * stops early) - the same values in the same order, zeros of either sign aside */
+    double lo = t[0], hi = t[0];
+    for (int p = 1; p < 16; ++p) {
+        lo = t[p] < lo ? t[p] : lo;
+        hi = t[p] > hi ? t[p] : hi;
     }
+    if ((hi - lo) * 127.5 >= WIDE_CODES)
+        sol_nm_sort16(t, c.sorted);
+    else
+        for (int p = 0; p < 16; ++p) {
+            int q = p;
+            for (; q > 0 && c.sorted[q - 1] > t[p]; --q)
+                c.sorted[q] = c.sorted[q - 1];
+            c.sorted[q] = t[p];
+        }
     c.tmin = c.sorted[0];
     c.window_best = -1.0;
     c.tmax = c.sorted[15];

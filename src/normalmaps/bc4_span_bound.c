@@ -22,6 +22,7 @@
 #include "normalmaps_internal.h"
 
 #include <math.h>
+#include <string.h>
 
 /* Compiled for AVX2 as well and picked at run time (as bc4_common.c's hot functions): the four
  * spans are independent lanes, the same operations in either build. */
@@ -40,6 +41,28 @@ static const unsigned char network[63][2] = {
     {11, 15}, {11, 13}, {9, 10},  {11, 12}, {13, 14}, {0, 8},   {4, 12},  {4, 8},   {2, 10},  {6, 14},  {6, 10},
     {2, 4},   {6, 8},   {10, 12}, {1, 9},   {5, 13},  {5, 9},   {3, 11},  {7, 15},  {7, 11},  {3, 5},   {7, 9},
     {11, 13}, {1, 2},   {3, 4},   {5, 6},   {7, 8},   {9, 10},  {11, 12}, {13, 14}};
+
+/* mask ? a : b, lane by lane */
+#define SELECT(vf, vi, mask, a, b) ((vf)(((vi)(a) & (mask)) | ((vi)(b) & ~(mask))))
+
+void sol_nm_sort16(const double in[16], double out[16])
+{
+    /* one-lane vectors with a bitwise select: the compiler turned the scalar form's exchanges into
+     * branches, mispredicted on half of them */
+    typedef double v1d __attribute__((vector_size(sizeof(double))));
+    typedef long long v1l __attribute__((vector_size(sizeof(long long))));
+    v1d u[16];
+    memcpy(u, in, sizeof u);
+    /* fully unrolled: the indices are constants, u stays in registers */
+#pragma GCC unroll 63
+    for (int c = 0; c < 63; ++c) {
+        const v1d x = u[network[c][0]], y = u[network[c][1]];
+        const v1l lt = y < x;
+        u[network[c][0]] = SELECT(v1d, v1l, lt, y, x);
+        u[network[c][1]] = SELECT(v1d, v1l, lt, x, y);
+    }
+    memcpy(out, u, sizeof u);
+}
 
 typedef double v4d __attribute__((vector_size(4 * sizeof(double))));
 typedef long long v4l __attribute__((vector_size(4 * sizeof(long long))));
@@ -73,8 +96,8 @@ static inline __attribute__((always_inline)) void sorted_phases(const double sor
     }
 }
 
-/* The bound in single precision, eight steps at once (what the search spends most of its time on:
- * every span of the region is bounded, most of them only to be dismissed). Steps of the same
+/* The bound in single precision, eight (AVX-512: sixteen) steps at once (what the search spends most
+ * of its time on: every span of the region is bounded, most of them only to be dismissed). Steps of the same
  * operations as above, in floats: the phases u_p = v_p - s round(v_p / s) of v_p = t_p - t_0 (any
  * representatives within one period work, so no correction into [0, s)), sorted by the same network,
  * the 16 cut sequences' sums of squares about their means, the least of them, B_f. The allowance:
@@ -92,71 +115,97 @@ static inline __attribute__((always_inline)) void sorted_phases(const double sor
  * is above it is answered INFINITY without its square root: the bound exceeds limit when r > rho =
  * 4 delta + sqrt(16 delta^2 + limit) (where r^2 - 8 delta r = limit); the lanes are tested in floats
  * with margins far above the tests' own rounding (below). */
-typedef float v8f __attribute__((vector_size(8 * sizeof(float))));
-typedef int v8i __attribute__((vector_size(8 * sizeof(int))));
-#define select8(mask, a, b) ((v8f)(((v8i)(a) & (mask)) | ((v8i)(b) & ~(mask))))
+/* The body, for LANES steps at once (8: the AVX2 and baseline builds; 16: AVX-512, where the 32
+ * vector registers hold the 16 phases): the same operations lane by lane, so the lanes' values do
+ * not depend on the width. */
+#define SPAN_BOUNDS_FN(NAME, LANES, ATTRS)                                                                             \
+    ATTRS void NAME(const double sorted[16], const double step[LANES], double delta, double limit, double out[LANES])            \
+    {                                                                                                                  \
+        typedef float vf __attribute__((vector_size(LANES * sizeof(float))));                                          \
+        typedef int vi __attribute__((vector_size(LANES * sizeof(int))));                                              \
+        const vf zero = {0.0f}, one = zero + 1.0f, magic = zero + 0x1.8p23f;                                           \
+        vf st = zero;                                                                                                  \
+        for (int k = 0; k < LANES; ++k)                                                                                \
+            st[k] = (float)step[k];                                                                                    \
+        const vi has = st > zero;                                                                                      \
+        st = SELECT(vf, vi, has, st, one); /* a lane without a step: any value, answered 0 below */                   \
+        const vf inv = one / st;                                                                                       \
+        vf u[16];                                                                                                      \
+        _Pragma("GCC unroll 16") for (int p = 0; p < 16; ++p)                                                          \
+        {                                                                                                              \
+            /* |v / s| < 2^22, so the 1.5 2^23 addition rounds to nearest */                                          \
+            const vf v = zero + (float)(sorted[p] - sorted[0]);                                                        \
+            const vf m = (v * inv + magic) - magic;                                                                    \
+            u[p] = v - st * m;                                                                                         \
+        }                                                                                                              \
+        _Pragma("GCC unroll 63") for (int c = 0; c < 63; ++c)                                                          \
+        {                                                                                                              \
+            vf x = u[network[c][0]], y = u[network[c][1]];                                                             \
+            vi lt = x < y;                                                                                             \
+            u[network[c][0]] = SELECT(vf, vi, lt, x, y);                                                               \
+            u[network[c][1]] = SELECT(vf, vi, lt, y, x);                                                               \
+        }                                                                                                              \
+        vf sum = zero, sum2 = zero;                                                                                    \
+        _Pragma("GCC unroll 16") for (int p = 0; p < 16; ++p)                                                          \
+        {                                                                                                              \
+            sum += u[p];                                                                                               \
+            sum2 += u[p] * u[p];                                                                                       \
+        }                                                                                                              \
+        const vf st2 = st * st, two_st = st + st;                                                                      \
+        vf b = sum2 - sum * sum * 0.0625f;                                                                             \
+        _Pragma("GCC unroll 15") for (int c = 0; c < 15; ++c)                                                          \
+        { /* cut after u_c: u_c moves up by one period */                                                              \
+            sum += st;                                                                                                 \
+            sum2 += two_st * u[c] + st2;                                                                               \
+            vf var = sum2 - sum * sum * 0.0625f;                                                                       \
+            b = SELECT(vf, vi, var < b, var, b);                                                                       \
+        }                                                                                                              \
+        /* the lanes above the limit, without a square root: the bound exceeds limit when r > rho =                   \
+         * 4 delta + sqrt(16 delta^2 + limit) (where r^2 - 8 delta r = limit), i.e. when                               \
+         * B_f - 2^-10 s^2 > (rho + 4 eta)^2; tested as B_f > (rho + 4 eta)^2 (1 + 2^-12) + 2^-9 s^2                   \
+         * in floats (the margins far above their rounding) */                                                        \
+        const float w = (float)(sorted[15] - sorted[0]);                                                               \
+        const double rho =                                                                                             \
+            limit < INFINITY ? 4.0 * delta + sqrt(16.0 * delta * delta + (limit > 0.0 ? limit : 0.0)) : 0.0;           \
+        const vf eta4 = (w + st) * 0x1p-18f, reach = (float)rho + eta4;                                                \
+        const vi above = b > reach * reach * (1.0f + 0x1p-12f) + st2 * 0x1p-9f;                                        \
+        const double wd = sorted[15] - sorted[0];                                                                      \
+        for (int k = 0; k < LANES; ++k) {                                                                              \
+            if (!has[k]) {                                                                                             \
+                out[k] = 0.0;                                                                                          \
+                continue;                                                                                              \
+            }                                                                                                          \
+            if (limit < INFINITY && above[k]) {                                                                        \
+                out[k] = INFINITY;                                                                                     \
+                continue;                                                                                              \
+            }                                                                                                          \
+            const double s = step[k], eta = 0x1p-20 * (wd + s), bf = (double)b[k] - 0x1p-10 * s * s;                  \
+            const double r = bf > 0.0 ? sqrt(bf) - 4.0 * eta : 0.0, lb = r > 0.0 ? r * (r - 8.0 * delta) : 0.0;       \
+            out[k] = lb > 0.0 ? lb * (1.0 - 1e-9) : 0.0;                                                               \
+        }                                                                                                              \
+    }
 
-SPAN_CLONES void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_BOUND_LANES], double delta,
-                                    double limit, double out[SOL_NM_SPAN_BOUND_LANES])
+SPAN_BOUNDS_FN(sol_nm_span_bounds, 8, SPAN_CLONES)
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+SPAN_BOUNDS_FN(span_bounds16, 16, __attribute__((target("avx512f"))) static)
+#define HAVE_BOUNDS16 1
+#else
+#define HAVE_BOUNDS16 0
+#endif
+
+void sol_nm_span_bounds_all(const double sorted[16], const double *step, int n, double delta, double limit,
+                            double *out)
 {
-    const v8f zero = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f}, one = zero + 1.0f, magic = zero + 0x1.8p23f;
-    v8f st = {(float)step[0], (float)step[1], (float)step[2], (float)step[3],
-              (float)step[4], (float)step[5], (float)step[6], (float)step[7]};
-    const v8i has = st > zero;
-    st = select8(has, st, one); /* a lane without a step: any value, answered 0 below */
-    const v8f inv = one / st;
-    v8f u[16];
-#pragma GCC unroll 16
-    for (int p = 0; p < 16; ++p) {
-        /* |v / s| < 2^22, so the 1.5 2^23 addition rounds to nearest */
-        const v8f v = zero + (float)(sorted[p] - sorted[0]);
-        const v8f m = (v * inv + magic) - magic;
-        u[p] = v - st * m;
+#if HAVE_BOUNDS16
+    if (__builtin_cpu_supports("avx512f")) {
+        for (int i = 0; i < n; i += 16)
+            span_bounds16(sorted, step + i, delta, limit, out + i);
+        return;
     }
-#pragma GCC unroll 63
-    for (int c = 0; c < 63; ++c) {
-        v8f x = u[network[c][0]], y = u[network[c][1]];
-        v8i lt = x < y;
-        u[network[c][0]] = select8(lt, x, y);
-        u[network[c][1]] = select8(lt, y, x);
-    }
-    v8f sum = zero, sum2 = zero;
-#pragma GCC unroll 16
-    for (int p = 0; p < 16; ++p) {
-        sum += u[p];
-        sum2 += u[p] * u[p];
-    }
-    const v8f st2 = st * st, two_st = st + st;
-    v8f b = sum2 - sum * sum * 0.0625f;
-#pragma GCC unroll 15
-    for (int c = 0; c < 15; ++c) { /* cut after u_c: u_c moves up by one period */
-        sum += st;
-        sum2 += two_st * u[c] + st2;
-        v8f var = sum2 - sum * sum * 0.0625f;
-        b = select8(var < b, var, b);
-    }
-    /* the lanes above the limit, without a square root: the bound exceeds limit when r > rho =
-     * 4 delta + sqrt(16 delta^2 + limit) (where r^2 - 8 delta r = limit), i.e. when
-     * B_f - 2^-10 s^2 > (rho + 4 eta)^2; tested as B_f > (rho + 4 eta)^2 (1 + 2^-12) + 2^-9 s^2
-     * in floats (the margins far above their rounding) */
-    const float w = (float)(sorted[15] - sorted[0]);
-    const double rho = limit < INFINITY ? 4.0 * delta + sqrt(16.0 * delta * delta + (limit > 0.0 ? limit : 0.0)) : 0.0;
-    const v8f eta4 = (w + st) * 0x1p-18f, reach = (float)rho + eta4;
-    const v8i above = b > reach * reach * (1.0f + 0x1p-12f) + st2 * 0x1p-9f;
-    const double wd = sorted[15] - sorted[0];
-    for (int k = 0; k < 8; ++k) {
-        if (!has[k]) {
-            out[k] = 0.0;
-            continue;
-        }
-        if (limit < INFINITY && above[k]) {
-            out[k] = INFINITY;
-            continue;
-        }
-        const double s = step[k], eta = 0x1p-20 * (wd + s), bf = (double)b[k] - 0x1p-10 * s * s;
-        const double r = bf > 0.0 ? sqrt(bf) - 4.0 * eta : 0.0, lb = r > 0.0 ? r * (r - 8.0 * delta) : 0.0;
-        out[k] = lb > 0.0 ? lb * (1.0 - 1e-9) : 0.0;
-    }
+#endif
+    for (int i = 0; i < n; i += 8)
+        sol_nm_span_bounds(sorted, step + i, delta, limit, out + i);
 }
 
 /* ---- the same bound at a given phase, for the low anchors of one span ----
@@ -210,13 +259,22 @@ SPAN_CLONES void sol_nm_span_cuts4(const double sorted[16], const double step[SO
 
 void sol_nm_span_cuts_keep(sol_nm_span_cuts *cu, double limit)
 {
+    /* which cuts stay (a bit each) and the least dropped v, in one pass without stores; then the
+     * few kept ones moved down, bit by bit */
+    unsigned keep = 0;
+    double floor = cu->floor;
+    for (int c = 0; c < cu->n; ++c) {
+        const double v = cu->v[c], dropped = v <= limit ? INFINITY : v;
+        keep |= (unsigned)(v <= limit) << c;
+        floor = dropped < floor ? dropped : floor;
+    }
     int n = 0;
-    for (int c = 0; c < cu->n; ++c)
-        if (cu->v[c] <= limit) {
-            cu->v[n] = cu->v[c];
-            cu->mean[n++] = cu->mean[c];
-        } else if (cu->v[c] < cu->floor)
-            cu->floor = cu->v[c];
+    for (; keep; keep &= keep - 1) {
+        const int c = __builtin_ctz(keep);
+        cu->v[n] = cu->v[c];
+        cu->mean[n++] = cu->mean[c];
+    }
+    cu->floor = floor;
     cu->n = n;
 }
 
@@ -228,26 +286,46 @@ double sol_nm_span_phase_bound(const sol_nm_span_cuts *cu, double delta, double 
 }
 
 /* sol_nm_span_phase_f at the phases A(l) = 2 l / 255 - 1 of the low anchors l = l1 .. l1 + count - 1
- * (count <= 256), four at a time: the same operations in the same order per lane, so the values are
+ * (count <= 256), LANES at a time: the same operations in the same order per lane, so the values are
  * those of sol_nm_span_phase_f (the tests compare them). */
-SPAN_CLONES void sol_nm_span_phase_fs(const sol_nm_span_cuts *cu, int l1, int count, double out[256])
-{
-    const v4d zero = {0.0, 0.0, 0.0, 0.0}, magic = zero + 0x1.8p52, s = zero + cu->step, inv = zero + cu->inv;
-    const v4l abs_mask = (v4l){0, 0, 0, 0} + 0x7fffffffffffffffLL;
-    for (int i = 0; i < count; i += 4) {
-        v4d psi;
-        for (int k = 0; k < 4; ++k)
-            psi[k] = (2.0 * (l1 + i + k) / 255.0 - 1.0) - cu->base;
-        v4d f = zero + cu->floor;
-        for (int c = 0; c < cu->n; ++c) {
-            const v4d x = cu->mean[c] - psi, m = (x * inv + magic) - magic;
-            v4d cd = (v4d)((v4l)(x - s * m) & abs_mask) - 1e-14;
-            cd = select4(cd > zero, cd, zero);
-            const v4d v = cu->v[c] + 16.0 * cd * cd;
-            f = select4(v < f, v, f);
-        }
-        f -= cu->slack;
-        for (int k = 0; k < 4 && i + k < count; ++k)
-            out[i + k] = f[k];
+#define PHASE_FS_FN(NAME, LANES, ATTRS)                                                                                \
+    ATTRS void NAME(const sol_nm_span_cuts *cu, int l1, int count, double out[256])                                     \
+    {                                                                                                                  \
+        typedef double vd __attribute__((vector_size(LANES * sizeof(double))));                                        \
+        typedef long long vl __attribute__((vector_size(LANES * sizeof(long long))));                                  \
+        const vd zero = {0.0}, magic = zero + 0x1.8p52, s = zero + cu->step, inv = zero + cu->inv;                     \
+        const vl abs_mask = (vl){0} + 0x7fffffffffffffffLL;                                                            \
+        for (int i = 0; i < count; i += LANES) {                                                                       \
+            vd psi;                                                                                                    \
+            for (int k = 0; k < LANES; ++k)                                                                            \
+                psi[k] = (2.0 * (l1 + i + k) / 255.0 - 1.0) - cu->base;                                                \
+            vd f = zero + cu->floor;                                                                                   \
+            for (int c = 0; c < cu->n; ++c) {                                                                          \
+                const vd x = cu->mean[c] - psi, m = (x * inv + magic) - magic;                                         \
+                vd cd = (vd)((vl)(x - s * m) & abs_mask) - 1e-14;                                                      \
+                cd = SELECT(vd, vl, cd > zero, cd, zero);                                                              \
+                const vd v = cu->v[c] + 16.0 * cd * cd;                                                                \
+                f = SELECT(vd, vl, v < f, v, f);                                                                       \
+            }                                                                                                          \
+            f -= cu->slack;                                                                                            \
+            for (int k = 0; k < LANES && i + k < count; ++k)                                                           \
+                out[i + k] = f[k];                                                                                     \
+        }                                                                                                              \
     }
+
+PHASE_FS_FN(phase_fs4, 4, SPAN_CLONES static)
+#if HAVE_BOUNDS16
+PHASE_FS_FN(phase_fs8, 8, __attribute__((target("avx512f"))) static)
+#endif
+
+/* four lanes at a time (AVX2, baseline), eight where the processor has AVX-512 */
+void sol_nm_span_phase_fs(const sol_nm_span_cuts *cu, int l1, int count, double out[256])
+{
+#if HAVE_BOUNDS16
+    if (__builtin_cpu_supports("avx512f")) {
+        phase_fs8(cu, l1, count, out);
+        return;
+    }
+#endif
+    phase_fs4(cu, l1, count, out);
 }

@@ -629,7 +629,7 @@ static sol_status check_options(const sol_bc5_options *o)
 {
     if ((unsigned)o->precision >= SOL_BC4_PRECISION_COUNT || (unsigned)o->metric > SOL_BC5_MAX ||
         (unsigned)o->encoder > SOL_BC5_FAST || !isfinite(o->threshold_deg) || o->threshold_deg < 0.0 ||
-        (unsigned)o->base > SOL_BC5_BASE_FAST)
+        (unsigned)o->base > SOL_BC5_BASE_FAST || !isfinite(o->gap))
         return SOL_ERR_INVALID_ARG;
     return SOL_OK;
 }
@@ -3086,9 +3086,15 @@ static int window_merge(window_entry *list, int count, const channel_key *k, con
     return kept;
 }
 
-/* Returns 0 (and leaves everything untouched) when the block needs search_unit (see above). */
+/* Returns 0 (and leaves everything untouched) when the block needs search_unit (see above).
+ * shrink = 1 / (1 + gap) in (0, 1] (options.gap; 1: the exact window): every pruning test compares
+ * a lower bound with cut = best * shrink instead of best, so a candidate is dropped once its bound
+ * reaches best / (1 + gap): its objective E >= bound >= best / (1 + gap) >= (final best) / (1 + gap),
+ * and the result is within a factor (1 + gap) of the window's optimum (shrink = 1: cut = best exactly,
+ * the exact search). The entry test (no clamped decode can go below cut) uses cut likewise. */
 static int window_search(const double n[16][3], const sol_bc5_range *r, int base_x, int base_y, int base_least,
-                         const search_request *rq, search_workspace *ws, sol_bc5_block *out, sol_bc5_info *info)
+                         double shrink, const search_request *rq, search_workspace *ws, sol_bc5_block *out,
+                         sol_bc5_info *info)
 {
     if (r->x0_hi - r->x0_lo > 2 * WINDOW_PATH_MAX || r->x1_hi - r->x1_lo > 2 * WINDOW_PATH_MAX ||
         r->y0_hi - r->y0_lo > 2 * WINDOW_PATH_MAX || r->y1_hi - r->y1_lo > 2 * WINDOW_PATH_MAX)
@@ -3110,14 +3116,15 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
         inc.angle[p] = e;
         best = fold_term(best, e * e, use_max);
     }
+    double cut = best * shrink;
     for (int p = 0; p < 16; ++p)
-        if (!(n[p][2] > 0.0) || n[p][2] * n[p][2] <= best * (1.0 + BOUND_SLACK))
+        if (!(n[p][2] > 0.0) || n[p][2] * n[p][2] <= cut * (1.0 + BOUND_SLACK))
             return 0; /* a rim or downward pixel: the loose bounds of search_unit */
     uint64_t candidates = 1, work = 0;
     int bounded = 0;
     if (best > 0.0) {
         window_scratch *w = ws->win;
-        double least_x = INFINITY, least_y = INFINITY, room = best * (1.0 + BOUND_SLACK);
+        double least_x = INFINITY, least_y = INFINITY, room = cut * (1.0 + BOUND_SLACK);
         /* y first: an x pair above room - least_y (sum metric) is dropped by the filter below, so
          * window_channel leaves it out at once. If the pair of least x score is left out, no x pair
          * passes the filter and there is no candidate, whatever least_x then is.
@@ -3191,13 +3198,13 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
 #endif
         for (int i = 0; i < nx && ny > 0 && !bounded; ++i) {
             const window_entry *ex = &w->list[0][i];
-            if (combine(ex->score, w->list[1][0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
+            if (combine(ex->score, w->list[1][0].score, use_max) * (1.0 - BOUND_SLACK) >= cut)
                 break;
             const double *a = pal[ex->pair];
             int x_ready = 0, chunk_start = 0, chunk_end = 0;
             for (int j = 0; j < ny; ++j) {
                 const window_entry *ey = &w->list[1][j];
-                if (combine(ex->score, ey->score, use_max) * (1.0 - BOUND_SLACK) >= best)
+                if (combine(ex->score, ey->score, use_max) * (1.0 - BOUND_SLACK) >= cut)
                     break;
                 if (ex->pair == base_x && ey->pair == base_y)
                     continue; /* the incumbent */
@@ -3223,13 +3230,13 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                     x_ready = 1;
                 }
                 const double *b = pal[ey->pair];
-                double margin = best * (1.0 + BOUND_SLACK);
+                double margin = cut * (1.0 + BOUND_SLACK);
                 if (chunked) {
 #if SEARCH_AVX2
                     if (j >= chunk_end) { /* the next candidates of this x pair under the incumbent */
                         int lanes = 1;
                         while (lanes < 4 && j + lanes < ny &&
-                               combine(ex->score, w->list[1][j + lanes].score, use_max) * (1.0 - BOUND_SLACK) < best)
+                               combine(ex->score, w->list[1][j + lanes].score, use_max) * (1.0 - BOUND_SLACK) < cut)
                             ++lanes;
                         for (int q = j; q < j + lanes; ++q)
                             if (!w->ready[q]) {
@@ -3264,6 +3271,7 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                     continue;
                 if (v < best) { /* complete (below the budget): the exact objective and its indices */
                     best = v;
+                    cut = best * shrink;
                     px = ex->pair;
                     py = ey->pair;
                     memcpy(ix, cx, sizeof ix);
@@ -3366,11 +3374,11 @@ sol_status sol_bc5_search_block(const double normals[16][3], const sol_bc5_range
 /* ---- the three encoders ---- */
 
 /* Common encoder: two independent least-squares BC4 blocks, indices by nearest component (T10).
- * tx, ty: the x and y components of the unit normals. */
-static void encode_common(const double tx[16], const double ty[16], sol_bc4_precision precision, sol_bc5_block *out)
+ * tx, ty: the x and y components of the unit normals; *sx, *sy: the two channels' least sums. */
+static void encode_common(const double tx[16], const double ty[16], sol_bc4_precision precision, sol_bc5_block *out,
+                          double *sx, double *sy)
 {
-    double s;
-    int px = sol_nm_bc4_common(tx, precision, &s), py = sol_nm_bc4_common(ty, precision, &s);
+    int px = sol_nm_bc4_common(tx, precision, sx), py = sol_nm_bc4_common(ty, precision, sy);
     const double(*pal)[8] = sol_nm_palettes(precision);
     out->x.e0 = (uint8_t)(px >> 8);
     out->x.e1 = (uint8_t)(px & 255);
@@ -3414,24 +3422,37 @@ static void encode_unit(const double n[16][3], const double t[3][16], const sol_
         search_unit(n, &rq, ws, out, info);
         return;
     }
+    const double gap = o->gap == 0.0 ? SOL_BC5_DEFAULT_GAP : o->gap; /* <= 0: no gap test, exact window */
     sol_bc5_block base;
+    double limit = -INFINITY; /* the gap test's (1 + gap) LB; -INFINITY: no gap test */
     if (o->encoder == SOL_BC5_FAST || (o->encoder == SOL_BC5_ADAPTIVE && o->base == SOL_BC5_BASE_FAST)) {
         sol_nm_bc4_fast(t[0], &base.x);
         sol_nm_bc4_fast(t[1], &base.y);
-    } else
-        encode_common(t[0], t[1], o->precision, &base);
+    } else {
+        double sx, sy;
+        encode_common(t[0], t[1], o->precision, &base, &sx, &sy);
+        if (o->encoder == SOL_BC5_ADAPTIVE && gap > 0.0) /* the skip test (common base only) */
+            limit = (1.0 + gap) * sol_nm_gap_bound(sx, sy, t, use_max);
+    }
     double err = NAN;
     int search = 0;
     if (o->encoder == SOL_BC5_ADAPTIVE) {
-        /* adaptive: RMS (or max) angle in degrees against the threshold (T13) */
+        /* adaptive: RMS (or max) angle in degrees against the threshold (T13), and the objective
+         * against the gap's limit (options.gap): searched only if both ask for it */
         if (!want_error) {
             const double(*pal)[8] = sol_nm_palettes(o->precision);
-            search = sol_nm_threshold_test(pal[base.x.e0 << 8 | base.x.e1], pal[base.y.e0 << 8 | base.y.e1], &base,
-                                           t, use_max, o->threshold_deg);
+            double lo, hi;
+            sol_nm_chord_bounds(pal[base.x.e0 << 8 | base.x.e1], pal[base.y.e0 << 8 | base.y.e1], &base, t, use_max,
+                                &lo, &hi);
+            int by_level = sol_nm_threshold_level(hi, use_max) <= o->threshold_deg    ? 0
+                           : sol_nm_threshold_level(lo, use_max) > o->threshold_deg ? 1
+                                                                                    : -1;
+            int by_gap = sol_nm_gap_test(lo, hi, limit);
+            search = by_level == 0 || by_gap == 0 ? 0 : by_level == 1 && by_gap == 1 ? 1 : -1;
         }
         if (want_error || search < 0) {
             err = own_index_objective(&base, n, o->precision, use_max);
-            search = !(sol_nm_threshold_level(err, use_max) <= o->threshold_deg);
+            search = !(sol_nm_threshold_level(err, use_max) <= o->threshold_deg) && !(err <= limit);
         }
     } else if (want_error)
         err = own_index_objective(&base, n, o->precision, use_max);
@@ -3450,8 +3471,10 @@ static void encode_unit(const double n[16][3], const double t[3][16], const sol_
                        clamp_code(base.x.e1 + w), clamp_code(base.y.e0 - w), clamp_code(base.y.e0 + w),
                        clamp_code(base.y.e1 - w), clamp_code(base.y.e1 + w)};
     search_request rq = {&r, o->precision, use_max, work_limit(o)};
+    /* the window's relative tolerance (either base): 1 / (1 + gap), 1 = exact */
+    double shrink = gap > 0.0 ? 1.0 / (1.0 + gap) : 1.0;
     if (!window_search(n, &r, base.x.e0 << 8 | base.x.e1, base.y.e0 << 8 | base.y.e1, o->base != SOL_BC5_BASE_FAST,
-                       &rq, ws, out, info))
+                       shrink, &rq, ws, out, info))
         search_unit(n, &rq, ws, out, info);
 }
 
@@ -3630,6 +3653,7 @@ sol_status sol_bc5_encode_image(const sol_image *normals, const sol_bc5_options 
     if (failed)
         return SOL_ERR_NO_MEMORY;
     if (stats) {
+        memset(stats, 0, sizeof *stats); /* padding too: callers compare stats bytewise (make bench) */
         stats->blocks = (uint64_t)nblocks;
         stats->searched_blocks = searched;
         stats->candidates = candidates;

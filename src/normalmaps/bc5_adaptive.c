@@ -124,8 +124,8 @@ AVX2_FN static void chord_terms_avx2(const double a[16], const double c[16], con
 }
 #endif
 
-int sol_nm_threshold_test(const double palx[8], const double paly[8], const sol_bc5_block *b, const double t[3][16],
-                          int use_max, double threshold_deg)
+void sol_nm_chord_bounds(const double palx[8], const double paly[8], const sol_bc5_block *b, const double t[3][16],
+                         int use_max, double *lower, double *upper)
 {
     double a[16], c[16], cc[16], up[16];
     for (int p = 0; p < 16; ++p) {
@@ -164,10 +164,47 @@ int sol_nm_threshold_test(const double palx[8], const double paly[8], const sol_
         hi = (hi4[0] + hi4[1]) + (hi4[2] + hi4[3]);
     }
     double slack = use_max ? TAU : 16.0 * TAU;
-    double L = lo - slack > 0.0 ? (lo - slack) * (1.0 - REL) : 0.0, U = (hi + slack) * (1.0 + REL);
+    *lower = lo - slack > 0.0 ? (lo - slack) * (1.0 - REL) : 0.0;
+    *upper = (hi + slack) * (1.0 + REL);
+}
+
+int sol_nm_threshold_test(const double palx[8], const double paly[8], const sol_bc5_block *b, const double t[3][16],
+                          int use_max, double threshold_deg)
+{
+    double L, U;
+    sol_nm_chord_bounds(palx, paly, b, t, use_max, &L, &U);
     if (sol_nm_threshold_level(U, use_max) <= threshold_deg)
         return 0;
     if (sol_nm_threshold_level(L, use_max) > threshold_deg)
+        return 1;
+    return -1;
+}
+
+/* ---- the gap test: a lower bound of every block's objective ----
+ * (the proof is at sol_bc5_options.gap in sol_normalmaps.h.) The rounding: Sx and Sy are the computed
+ * least sums, at most the computed sum of the exact minimiser, i.e. within 20 ulps relative above
+ * the exact minimum or below it (REL). The computed angle of any decode is within 1e-14 rad of the
+ * true angle (above), so its square is within 2 pi 1e-14 + 1e-28 of the true square; the unit
+ * normals are unit within 2e-16, which moves the chord's xy part and |nz| by at most 3e-16, the
+ * squares by 1e-15: each pixel's computed term is >= its true bound less 1e-13, far inside TAU. So
+ * every computed objective (sum, or max, of the computed squared angles, rounded by 20 ulps at most)
+ * is >= max(0, LB - 16 TAU) (1 - REL) (max metric: one TAU). */
+double sol_nm_gap_bound(double sx, double sy, const double t[3][16], int use_max)
+{
+    double lb = use_max ? (sx + sy) / 16.0 : sx + sy;
+    for (int p = 0; p < 16; ++p) {
+        double z2 = t[2][p] * t[2][p];
+        lb = z2 < lb ? z2 : lb;
+    }
+    double slack = use_max ? TAU : 16.0 * TAU;
+    return lb - slack > 0.0 ? (lb - slack) * (1.0 - REL) : 0.0;
+}
+
+int sol_nm_gap_test(double lower, double upper, double limit)
+{
+    if (upper <= limit)
+        return 0;
+    if (lower > limit)
         return 1;
     return -1;
 }

@@ -55,6 +55,10 @@ size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pa
  * score as sol_nm_channel_argmin on the full range with use_max = 0 and no loose pixels (least
  * score, then least e0 << 8 | e1), by branch and bound over boxes of anchor codes. */
 int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *score);
+/* The palette of pair = e0 << 8 | e1 as the common search computes it (bc4_common.c: from two 26 KB
+ * tables of the anchors' and interpolants' values instead of the 4 MB table): its row of
+ * sol_nm_palettes(precision), bit for bit. */
+void sol_nm_small_palette(sol_bc4_precision precision, int pair, double out[8]);
 /* Lower bounds (bc4_span_bound.c), for SOL_NM_SPAN_BOUND_LANES steps at once, of sum_p min_j
  * (e_j - t_p)^2 over every palette whose lattice entries e_j lie within delta of a lattice phi + step
  * Z (any phase phi; the ends and fixed entries ignored): the least circular sum of squares of the
@@ -66,6 +70,14 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
 #define SOL_NM_SPAN_BOUND_LANES 8
 void sol_nm_span_bounds(const double sorted[16], const double step[SOL_NM_SPAN_BOUND_LANES], double delta,
                         double limit, double out[SOL_NM_SPAN_BOUND_LANES]);
+/* The 16 values in ascending order, by a branch-free sorting network (bc4_span_bound.c; equal values,
+ * -0 and +0 among them, in either order). */
+void sol_nm_sort16(const double in[16], double out[16]);
+/* The same bounds for step[0 .. n), into out[0 .. n): 16 lanes at a time where the processor has
+ * AVX-512, else 8 (the same values either way). step and out hold n rounded up to a multiple of 16,
+ * the steps past n 0 (their lanes answer 0). */
+void sol_nm_span_bounds_all(const double sorted[16], const double *step, int n, double delta, double limit,
+                            double *out);
 /* The same bound at one phase (bc4_span_bound.c): for a span's step, the 16 cut sequences of the
  * targets' phases (v: sum of squares about the mean, mean: relative to base = the least target), of
  * which n are kept; floor: at most every dropped cut's v (INFINITY: none dropped; 0: no bound).
@@ -101,7 +113,7 @@ void sol_nm_span_cuts4(const double sorted[16], const double step[SOL_NM_SPAN_LA
                        sol_nm_span_cuts out[SOL_NM_SPAN_LANES]);
 void sol_nm_span_cuts_keep(sol_nm_span_cuts *cu, double limit);
 /* sol_nm_span_phase_f (below) at the phases A(l) = 2 l / 255 - 1, l = l1 .. l1 + count - 1 (count <=
- * 256), into out[0 .. count): the same values, computed four at a time. */
+ * 256), into out[0 .. count): the same values, computed four (AVX-512: eight) at a time. */
 void sol_nm_span_phase_fs(const sol_nm_span_cuts *cu, int l1, int count, double out[256]);
 double sol_nm_span_phase_bound(const sol_nm_span_cuts *cu, double delta, double phase);
 /* Every palette entry of the 65536 pairs indexed by value (bc4_entries.c): value[0..count) the
@@ -180,6 +192,19 @@ static inline double sol_nm_threshold_level(double err, int use_max)
  * the exact test. */
 int sol_nm_threshold_test(const double palx[8], const double paly[8], const sol_bc5_block *b, const double t[3][16],
                           int use_max, double threshold_deg);
+/* The chord bounds of sol_nm_threshold_test: lower <= the exact objective (sum of dN^2, or max of dN^2
+ * when use_max, as bc5.c computes it) <= upper, for block b's own indices. */
+void sol_nm_chord_bounds(const double palx[8], const double paly[8], const sol_bc5_block *b, const double t[3][16],
+                         int use_max, double *lower, double *upper);
+/* The adaptive encoder's gap bound (bc5_adaptive.c; proof at sol_bc5_options.gap): from the two
+ * channels' least-squares sums sx, sy (sol_nm_bc4_common) and the unit normals t (t[2][p] = nz_p), a
+ * value at most the computed objective (internal units: sum, or max when use_max, of dN^2) of EVERY
+ * block with any anchors and indices: min(sx + sy, min_p nz_p^2) ((sx + sy) / 16 for the max),
+ * lowered for rounding. */
+double sol_nm_gap_bound(double sx, double sy, const double t[3][16], int use_max);
+/* The gap test from bounds lower <= err <= upper of a block's objective: 0 if err <= limit (skip),
+ * 1 if err > limit (search), -1 if the bounds cannot tell. */
+int sol_nm_gap_test(double lower, double upper, double limit);
 /* The unit normals of block (bx, by) of a 3-channel image whose pixels sol_nm_unit_normals accepts,
  * bit for bit as it computes them (the same length and quotients; a finite non-zero float pixel
  * never takes its rescaling path), as n[p][c] and again as t[c][p]. */

@@ -123,7 +123,8 @@ typedef struct sol_bc5_options {
      * above the block's error), the optimal encoder's search restricted to it. */
     int window;
     /* Adaptive: search only blocks whose base RMS angular error (sqrt(mean dN^2), or max dN for
-     * SOL_BC5_MAX, of the base encoder's block) exceeds this many degrees. 0 = search every block.
+     * SOL_BC5_MAX, of the base encoder's block) exceeds this many degrees (and that the gap test below
+     * does not skip). 0 = no threshold: every block the gap test leaves is searched.
      * Where the caller asks for no error (sol_bc5_encode_image, or info NULL) the test is decided from
      * chord bounds of the angles (c <= dN <= c / sqrt(1 - c^2 / 4), chord c, with rounding slack) and
      * the angles are computed only when the bounds straddle the threshold: the same decision as the
@@ -138,7 +139,45 @@ typedef struct sol_bc5_options {
     uint64_t work_limit;
     /* Adaptive: the first step's encoder (see sol_bc5_base). 0 = SOL_BC5_BASE_COMMON. */
     sol_bc5_base base;
+    /* Adaptive, common base: skip the window search of a block whose base encoding is PROVABLY within
+     * a factor (1 + gap) of the optimum over all anchors (not only the window's), so that searching it
+     * could gain at most that. 0 = SOL_BC5_DEFAULT_GAP; negative = no gap test (every block above
+     * threshold_deg is searched, as before this option); NaN or Inf: SOL_ERR_INVALID_ARG. A block is
+     * searched only when BOTH tests ask for it: its level exceeds threshold_deg AND its objective
+     * E_base > (1 + gap) LB. Units: the objective the metric minimises, in rad^2 (sum of dN^2, or the
+     * max of dN^2), so a skipped block's RMS angle (or max angle) is within sqrt(1 + gap) of the
+     * optimum's: gap 0.21 = 10%.
+     * The bound, free from the common encoder (each channel's exact least-squares sum Sx, Sy over all
+     * 65536 anchor pairs, component units 2 v - 1, which sol_bc4_encode_block minimises):
+     *   LB = min(Sx + Sy, min_p nz_p^2)          (SOL_BC5_SUM_SQUARED)
+     *   LB = min((Sx + Sy) / 16, min_p nz_p^2)   (SOL_BC5_MAX: the max is at least the mean)
+     * Proof: take any anchors and indices. If every pixel decodes inside the unit disk (a^2 + b^2 <= 1,
+     * z rebuilt), dN_p >= chord_p = |u_p - n_p| >= sqrt((a_p - nx_p)^2 + (b_p - ny_p)^2) (the chord of
+     * unit vectors is at most the angle; dropping the z difference), so the sum of dN_p^2 is at least
+     * sum_p min_i (x_i - nx_p)^2 + min_j (y_j - ny_p)^2 >= Sx + Sy (the common anchors minimise each
+     * channel's sum over all pairs). If some pixel p decodes with z clamped to 0, its direction lies
+     * on the equator and dN_p >= asin |nz_p| >= |nz_p|, so the objective is at least nz_p^2. Hence
+     * every block, the optimum's included, has objective >= LB. Rounding: LB is lowered to
+     * max(0, LB - 16 TAU) (1 - REL) (TAU = 1e-10 per pixel, REL = 1e-9; max metric: one TAU), which
+     * covers the rounding of the computed angles (within 1e-14 rad of the true ones), of the unit
+     * normals (within 1e-16 of unit length) and of the sums (20 ulps relative) a thousand times over:
+     * the computed objective of every block is >= the lowered LB (bc5_adaptive.c). So a skipped
+     * block's computed objective is <= (1 + gap) times the computed objective of every other block.
+     * The base objective is decided from chord bounds of the angles where the caller asks for no error
+     * (the same decision as the exact angles, see threshold_deg). The fast base has no skip test (its
+     * step 1 computes no least-squares sums: bounding the optimum would cost the common encoder).
+     * The same gap is the window search's relative tolerance, with either base: a candidate is dropped
+     * once its lower bound reaches the incumbent's objective / (1 + gap), so a searched block ends
+     * within a factor (1 + gap) of the window's optimum (blocks the window hands to the optimal
+     * encoder's search, windows wider than 8 codes and normals near the rim, are searched exactly).
+     * So with the common base every block's objective is within (1 + gap) of the window's optimum,
+     * and a skipped one within (1 + gap) of the optimum over all anchors. */
+    double gap;
 } sol_bc5_options;
+
+/* The gap of options.gap = 0, chosen from the measurements of T13 and make bench (experiment
+ * t8_t14_3dc_encoders): a skipped block's RMS angle within 10% of the optimum's. */
+#define SOL_BC5_DEFAULT_GAP 0.21
 
 #define SOL_BC5_DEFAULT_WORK_LIMIT (UINT64_C(1) << 26)
 
