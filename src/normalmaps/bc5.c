@@ -1401,11 +1401,17 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
         if (!use_max) {
             if (sb * (1.0 - 1e-12) >= best)
                 continue;
+            /* lmin: the least level sum that rules a candidate out; levels are at most 254, so a sum of
+             * 16 * 255 is never reached (no rule from the sum where the slack is within rounding) */
             delta = (best - sb) / 254.0;
-            for (lmin = 254; lmin > 0 && (sb + delta * (lmin - 1)) * (1.0 - 1e-12) >= best; --lmin)
-                ;
-            while (!((sb + delta * lmin) * (1.0 - 1e-12) >= best))
-                ++lmin;
+            if (delta > 0.0) {
+                for (lmin = 254; lmin > 0 && (sb + delta * (lmin - 1)) * (1.0 - 1e-12) >= best; --lmin)
+                    ;
+                while (lmin < 16 * 255 && !((sb + delta * lmin) * (1.0 - 1e-12) >= best))
+                    ++lmin;
+            } else {
+                lmin = 16 * 255;
+            }
         }
         if (++sc->gen == 0) { /* the stamps' wrap-around: forget them all */
             memset(sc->stamp, 0, sizeof sc->stamp);
@@ -1523,7 +1529,7 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                     if (use_max) {
                         lvl = g >= best ? 255 : 0;
                     } else {
-                        double r = (g - base[k]) / delta * (1.0 - 1e-9);
+                        double r = delta > 0.0 ? (g - base[k]) / delta * (1.0 - 1e-9) : 0.0;
                         lvl = r <= 0.0 ? 0 : (r >= 254.0 ? 254 : (unsigned)r);
                     }
                     sc->lv[c][k] = (uint8_t)lvl;
