@@ -2082,6 +2082,11 @@ static void survey_block(int family, double spread, double n[16][3])
             n[p][0] = cos(fa), n[p][1] = sin(fa), n[p][2] = 0.0;
         } else if (family == 2) { /* an arc, every other pixel pointing away */
             n[p][0] = rho * cos(fa), n[p][1] = rho * sin(fa), n[p][2] = p % 2 ? -h : h;
+        } else if (family == 3) { /* a rim arc, every third pixel jittered a hair above or below */
+            n[p][0] = cos(fa), n[p][1] = sin(fa), n[p][2] = p % 3 ? 0.0 : 0.01 * (SURVEY_U() - 0.5);
+        } else if (family == 7) { /* an arc just below the rim */
+            double hh = 0.02 * SURVEY_U() * (1 + spread);
+            n[p][0] = sqrt(1 - hh * hh) * cos(fa), n[p][1] = sqrt(1 - hh * hh) * sin(fa), n[p][2] = -hh;
         } else if (family == 5) { /* one azimuth, heights varied */
             double hh = h * (1 + spread * (SURVEY_U() - 0.5) * 0.5);
             hh = hh > 1 ? 1 : hh;
@@ -2596,4 +2601,83 @@ Test(normalmaps, gap_option_is_as_documented_T13)
         }
     }
     sol_image_free(&img);
+}
+
+/* Survey blocks that the search still left bounded at the default work limit (0.34-0.61 s, 0.2-0.8
+ * million candidates): arcs of 2 rad pointing away, on the rim with every third pixel a hair off it,
+ * and just below the rim; sum metric, every precision. The pair screen of bc5.c (per y pair, the x
+ * values' per-pixel levels) proves them with 15-1000 candidates. Reference: the search before the
+ * screen with a work limit of 2^34 (error and anchors, 1.5-3 s per block), and literal brute force
+ * in a +-2 window around the result. */
+Test(normalmaps, screened_survey_blocks_are_proven_exactly, .timeout = 120)
+{
+    static const struct {
+        int family;
+        sol_bc4_precision precision;
+        double error;
+        int anchors[4];
+    } cases[] = {
+        {0, SOL_BC4_INTERP_16BIT, 5.3267074105994254, {69, 0, 254, 8}},
+        {0, SOL_BC4_INTERP_8BIT, 5.3263532482167841, {73, 0, 252, 9}},
+        {0, SOL_BC4_INTERP_FLOAT, 5.326706132287053, {69, 0, 254, 8}},
+        {3, SOL_BC4_INTERP_16BIT, 0.029544267545474782, {59, 0, 51, 204}},
+        {3, SOL_BC4_INTERP_8BIT, 0.029327433772419392, {58, 0, 50, 204}},
+        {3, SOL_BC4_INTERP_FLOAT, 0.029540300235867831, {59, 0, 51, 204}},
+        {7, SOL_BC4_INTERP_16BIT, 0.0450631685951264, {0, 80, 246, 35}},
+        {7, SOL_BC4_INTERP_8BIT, 0.04488589341179712, {16, 80, 246, 35}},
+        {7, SOL_BC4_INTERP_FLOAT, 0.045064974558192777, {0, 80, 246, 35}},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c)
+        expect_survey_case(cases[c].family, 2.0, SOL_BC5_SUM_SQUARED, cases[c].precision, cases[c].error,
+                           cases[c].anchors, c);
+}
+
+/* The pair screen's bound (bc5.c), candidate by candidate: it never rules out a candidate whose
+ * objective E is below the incumbent (incumbent E (1 + 1e-9)), on blocks pointing away, at the rim and
+ * below it, sum and max metric; and it is close: on the arc pointing away it rules out every candidate
+ * near the optimum at the incumbent 0.99 E, so a bound raised by 2% would rule out candidates that beat
+ * the incumbent (the first check fails). Candidates: every x and y pair within +-2 codes of the
+ * optimum's (up to 625 per block; fewer where an anchor is near code 0). */
+Test(normalmaps, pair_screen_bound_holds_and_is_close, .timeout = 120)
+{
+    static const struct {
+        int family;
+        sol_bc5_metric metric;
+        sol_bc4_precision precision;
+        int anchors[4];
+        int tight; /* check the close side */
+    } cases[] = {
+        {0, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_16BIT, {69, 0, 254, 8}, 1},
+        {3, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_16BIT, {59, 0, 51, 204}, 0},
+        {7, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, {16, 80, 246, 35}, 0},
+        {6, SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, {0, 42, 0, 4}, 0},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        double n[16][3];
+        survey_block(cases[c].family, 2.0, n);
+        const int *an = cases[c].anchors;
+        sol_bc5_block b = {.x = {.e0 = (uint8_t)an[0], .e1 = (uint8_t)an[1]}, .y = {.e0 = (uint8_t)an[2], .e1 = (uint8_t)an[3]}};
+        sol_bc5_range r = range_around(&b, 2);
+        int tried = 0, close = 0;
+        for (int a0 = r.x0_lo; a0 <= r.x0_hi; ++a0)
+            for (int a1 = r.x1_lo; a1 <= r.x1_hi; ++a1)
+                for (int b0 = r.y0_lo; b0 <= r.y0_hi; ++b0)
+                    for (int b1 = r.y1_lo; b1 <= r.y1_hi; ++b1) {
+                        sol_bc5_block cand = {.x = {.e0 = (uint8_t)a0, .e1 = (uint8_t)a1},
+                                              .y = {.e0 = (uint8_t)b0, .e1 = (uint8_t)b1}};
+                        double e;
+                        cr_assert_eq(sol_bc5_choose_indices(&cand, n, cases[c].precision, cases[c].metric, &e), SOL_OK);
+                        const double obj = cases[c].metric == SOL_BC5_MAX ? e * e : e;
+                        const int use_max = cases[c].metric == SOL_BC5_MAX;
+                        const int px = a0 << 8 | a1, py = b0 << 8 | b1;
+                        cr_assert_eq(sol_nm_screen_rules_out(n, use_max, obj * (1.0 + 1e-9), cases[c].precision, px, py), 0,
+                                     "case %zu: %d,%d,%d,%d ruled out at its own objective", c, a0, a1, b0, b1);
+                        ++tried;
+                        if (cases[c].tight)
+                            close += sol_nm_screen_rules_out(n, use_max, obj * 0.99, cases[c].precision, px, py) == 1;
+                    }
+        cr_assert(tried >= 225, "case %zu: %d candidates", c, tried); /* 625 less those clamped at code 0 */
+        if (cases[c].tight)
+            cr_assert_eq(close, tried, "case %zu: %d of %d ruled out at 0.99 E", c, close, tried);
+    }
 }

@@ -285,8 +285,9 @@ static double joint_objective(const double a[8], const double b[8], const double
  * chord c between the unit directions gives dN = 2 asin(c / 2), so dN^2 >= c^2 + c^4 / 12 (all the
  * series' terms are positive). c^2 is computed from components (no 2 - 2 cos cancellation); c is
  * lowered by 1e-6 relative and 1e-15 absolute to cover its rounding and that of sol_angle3's atan2,
- * so the bound stays below the computed angle squared. */
-static inline double angle2_lower_bound(double a, double b, const double n[3])
+ * so the bound stays below the computed angle squared (angle2_lower_bound, below: decode_chord2
+ * computes c^2, chord2_angle2_lower the rest). */
+static inline double decode_chord2(double a, double b, const double n[3])
 {
     double r2 = a * a + b * b, c2;
     if (r2 <= 1.0) {
@@ -298,6 +299,14 @@ static inline double angle2_lower_bound(double a, double b, const double n[3])
         double inv = 1.0 / sqrt(r2);
         c2 = (a * inv - n[0]) * (a * inv - n[0]) + (b * inv - n[1]) * (b * inv - n[1]) + n[2] * n[2];
     }
+    return c2;
+}
+
+/* angle2_lower_bound's conversion of the squared chord c2 to the dN^2 bound: non-decreasing in c2 (in
+ * each branch, and at the switch the asin branch gives (2 asin(c / 2))^2 >= c^2 (1 + c^2 / 12) for the
+ * larger c), so it maps a least chord to a bound of every decode's angle. */
+static inline double chord2_angle2_lower(double c2)
+{
     double c = sqrt(c2) * (1.0 - 1e-6) - 1e-15; /* relative and absolute rounding of c and of dN */
     if (c > 0.2) { /* large angles (rims, pixels pointing away): the series is loose, use dN itself.
                     * There c and the computed angle (atan2 of a cross product and a dot product of
@@ -309,6 +318,11 @@ static inline double angle2_lower_bound(double a, double b, const double n[3])
         return e * e;
     }
     return c > 0.0 ? c * c * (1.0 + c * c / 12.0) : 0.0;
+}
+
+static inline double angle2_lower_bound(double a, double b, const double n[3])
+{
+    return chord2_angle2_lower(decode_chord2(a, b, n));
 }
 
 /* A lower bound of the joint objective with the pixels visited in `order` (worst first, so that
@@ -721,6 +735,7 @@ typedef struct search_workspace {
     struct value_set *vset;   /* value-level usability (see there), allocated on demand */
     struct value_mask *vtab; /* VALUE_CODES entries */
     sol_nm_couple *couple;   /* the coupled row bounds' scratch (bc5_couple.c), allocated on demand */
+    struct pair_screen *screen; /* the pair screen's tables (see there), allocated on demand */
     uint32_t vgen;
     struct key_mask *ktab; /* merge_keyed's per-value masks (VALUE_CODES entries), allocated on demand */
     uint32_t kgen;
@@ -1268,6 +1283,351 @@ static int y_filter_pass(const y_filter *f, const double b[8])
         if (!hit)
             return 0;
     }
+    return 1;
+}
+
+/* ---- the pair screen (issue 13: the arcs and cones pointing away, the jittered rims) ----
+ *
+ * On these blocks the per-candidate bounds reject nearly every candidate they meet (the coupled
+ * cosine of bc5_away.c, or joint_objective_lower for rims), but the lists stay long: the x list keeps
+ * ~14000 pairs under every row bound (the y list's values leave each x pair some partner), and the
+ * candidates met, 1-5 million, each cost 16 x 64 decodes. The screen decides them ahead of the
+ * enumeration, one y pair B at a time, through the x VALUES instead of the x pairs:
+ *  - with B fixed, a candidate (A, B) gives pixel p the error e_p = dN^2 of its chosen decode
+ *    (a_i, b_j), at least angle2_lower_bound(a_i, b_j, n_p) >= chord2_angle2_lower(min over i, j of
+ *    the squared chord) (that conversion is non-decreasing), i.e. e_p >= min_i g_p(a_i) with
+ *        g_p(v) = max(theta0_p^2, chord2_angle2_lower(min_j decode_chord2(v, b_j, n_p)))
+ *    (theta0^2 = away_off: the hemisphere bound, 0 unless p points away). g depends on one x value,
+ *    so it is computed once per distinct value and y pair, not per candidate;
+ *  - a per-pixel floor base_p that holds for every candidate with B (B's channel side alone, as the
+ *    quick bound computes it): pointing away theta0^2 + k (loose distance of my)^2, a rim pixel
+ *    (loose) the loose distance of ny to B squared (dN >= chord >= the y component's distance, the
+ *    component of a clamped decode lying in B's loose intervals), a tight pixel min(m1_y, nz^2)
+ *    (unclamped: chord^2 >= (b - ny)^2; clamped: chord^2 >= nz^2); the latter two lowered for rounding
+ *    as quick_term. So e_p >= max(base_p, min_i g_p(a_i)) for every x pair A;
+ *  - sum metric: the slack S = best - sum_p base_p is split in 254 steps delta, and each value keeps
+ *    per pixel the level floor((max(g, base) - base) / delta) (lowered by 1e-9 relative, at most
+ *    254): a candidate's objective is at least sum_p base_p + delta L, L the sum over pixels of the
+ *    least level of A's 8 values, and it cannot beat the incumbent once (sum base + delta L)
+ *    (1 - 1e-12) >= best (the 1e-12 covers the objective's own summation rounding);
+ *  - only values that can serve a pixel under its budget T_p = best - sum_{q != p} base_q are
+ *    computed: pixel_y_intervals (the coupling filter's balls, with x and y swapped: the decode is
+ *    symmetric in its components) gives a superset of them as intervals of x values; every other
+ *    value keeps level 255, which means e_p > T_p, so the objective exceeds the incumbent. A pixel
+ *    whose ball constrains nothing (pixel_y_intervals -1) is left out (it counts base_p);
+ *  - max metric: a value gets 255 for pixel p when g_p >= best or it lies outside p's intervals (T_p =
+ *    best), else 0; a candidate whose least level is 255 at some pixel cannot beat the incumbent.
+ * A candidate (A, B) passes when it can still beat the incumbent at the time of the screen; the
+ * enumeration then visits only the passing candidates of each row (in the same order, through the
+ * same bounds and exact evaluation), so it returns the same block: every candidate skipped has an
+ * objective at or above the incumbent. Values are kept by their code (value_set below: K / Q exactly);
+ * the (rare) two doubles that round the same K are both evaluated, and the least g kept. Work: 1 per
+ * pair tested (eight 16-byte minima), 8 per value and pixel evaluated (8 decodes), 8 per x pair set up. */
+#define SCREEN_CODES 65536
+#define SCREEN_PASS_MAX (1u << 19)
+#define SCREEN_TESTS_MAX (1u << 23)
+
+typedef struct pair_screen {
+    uint8_t lv[SCREEN_CODES][16];  /* per x value code, per pixel (visiting order): the level */
+    double val[SCREEN_CODES][2];   /* the distinct doubles of each code */
+    uint8_t nval[SCREEN_CODES];
+    uint32_t stamp[SCREEN_CODES];  /* marked in the current y pair (then reset) */
+    uint16_t done[SCREEN_CODES];   /* bit k: lv[code][k] computed in the current y pair */
+    uint16_t marked[SCREEN_CODES]; /* bit k: jm[code][k] != 0 */
+    uint8_t jm[SCREEN_CODES][16];  /* bit e: the code lies in y entry e's intervals of pixel k */
+    uint32_t touched[SCREEN_CODES];
+    uint64_t bits[SCREEN_CODES / 64];
+    uint16_t xcode[65536][8];      /* the x list's value codes */
+    uint32_t start[65537];         /* row r's passing y positions: col[start[r] .. start[r + 1]) */
+    uint32_t jstart[65537];        /* y pair j's passing rows: row[jstart[j] .. jstart[j + 1]) */
+    uint32_t row[SCREEN_PASS_MAX], col[SCREEN_PASS_MAX];
+    uint32_t gen;
+} pair_screen;
+
+/* The levels of 8 values of one x pair, least per pixel (columns masked by keep), then either 1
+ * (some pixel at 255: ruled out) or 0 with *sum the sum of the levels. */
+static inline int screen_levels(const pair_screen *sc, const uint16_t code[8], const uint8_t keep[16], unsigned *sum)
+{
+#if defined(__SSE2__)
+    __m128i m = _mm_loadu_si128((const __m128i *)sc->lv[code[0]]);
+    for (int e = 1; e < 8; ++e)
+        m = _mm_min_epu8(m, _mm_loadu_si128((const __m128i *)sc->lv[code[e]]));
+    m = _mm_and_si128(m, _mm_loadu_si128((const __m128i *)keep));
+    if (_mm_movemask_epi8(_mm_cmpeq_epi8(m, _mm_set1_epi8((char)-1))))
+        return 1;
+    __m128i s = _mm_sad_epu8(m, _mm_setzero_si128());
+    *sum = (unsigned)(_mm_cvtsi128_si32(s) + _mm_cvtsi128_si32(_mm_srli_si128(s, 8)));
+    return 0;
+#else
+    unsigned t = 0;
+    for (int k = 0; k < 16; ++k) {
+        unsigned l = sc->lv[code[0]][k];
+        for (int e = 1; e < 8; ++e)
+            l = sc->lv[code[e]][k] < l ? sc->lv[code[e]][k] : l;
+        l &= keep[k];
+        if (l == 255)
+            return 1;
+        t += l;
+    }
+    *sum = t;
+    return 0;
+#endif
+}
+
+/* Builds the screen of rows x[0 .. nx) against y[0 .. ny) (y sides ys, pixels in `order`) at incumbent
+ * best: 1 if built, 0 if not (a value code with more than two doubles, more passes than the screen
+ * holds, or the work limit reached; then the caller enumerates without it). */
+static int pair_screen_build(pair_screen *sc, const double n[16][3], const int order[16], unsigned loose,
+                             const away_info *aw, const double away_off[16], int use_max, double best,
+                             const double (*pal)[8], sol_bc4_precision precision, const sol_nm_pair *xl, size_t nx,
+                             const sol_nm_pair *yl, size_t ny, const channel_side *ys, uint64_t *work,
+                             uint64_t limit)
+{
+    const double half_q = precision == SOL_BC4_INTERP_FLOAT ? 4462.5 : 32767.5;
+    const long top = lround(2.0 * half_q);
+    /* the rows to test, sum over y pairs of the x prefix whose combined score leaves room (both lists
+     * sorted by score, so the prefix shrinks as j grows): beyond SCREEN_TESTS_MAX the screen would
+     * cost more than the enumeration it replaces (the cones pointing away: 16493 x 4000 pairs of
+     * which the enumeration meets 12190) */
+    size_t tests = 0;
+    for (size_t j = 0, m = nx; j < ny && tests <= SCREEN_TESTS_MAX; ++j) {
+        while (m > 0 && !(combine(xl[m - 1].score, yl[j].score, use_max) * (1.0 - BOUND_SLACK) < best))
+            --m;
+        tests += m;
+    }
+    *work += nx + ny;
+    if (tests > SCREEN_TESTS_MAX)
+        return 0;
+    memset(sc->bits, 0, sizeof sc->bits);
+    for (size_t i = 0; i < nx; ++i)
+        for (int e = 0; e < 8; ++e) {
+            double v = pal[xl[i].pair][e];
+            long k = lround((v + 1.0) * half_q);
+            if (!((sc->bits[k >> 6] >> (k & 63)) & 1)) {
+                sc->bits[k >> 6] |= UINT64_C(1) << (k & 63);
+                sc->nval[k] = 1;
+                sc->val[k][0] = v;
+                sc->stamp[k] = 0;
+                sc->done[k] = sc->marked[k] = 0;
+                memset(sc->jm[k], 0, 16);
+                memset(sc->lv[k], 255, 16);
+            } else if (v != sc->val[k][0] && (sc->nval[k] == 1 || v != sc->val[k][1])) {
+                if (sc->nval[k] == 2)
+                    return 0;
+                sc->val[k][1] = v;
+                sc->nval[k] = 2;
+            }
+            sc->xcode[i][e] = (uint16_t)k;
+        }
+    *work += 8 * nx;
+    size_t passes = 0;
+    for (size_t j = 0; j < ny; ++j) {
+        sc->jstart[j] = (uint32_t)passes;
+        if (*work >= limit) {
+            return 0;
+        }
+        /* the rows whose combined score leaves room (x sorted by score): x[0 .. m) */
+        size_t lo = 0, hi = nx;
+        while (lo < hi) {
+            size_t mid = lo + (hi - lo) / 2;
+            if (combine(xl[mid].score, yl[j].score, use_max) * (1.0 - BOUND_SLACK) < best)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        const size_t m = lo;
+        if (m == 0)
+            continue;
+        const double *b = pal[yl[j].pair];
+        const channel_side *y = &ys[j];
+        double base[16], sb = 0.0;
+        int dead = 0;
+        for (int k = 0; k < 16 && !use_max; ++k) {
+            const int p = order[k];
+            if ((aw->mask >> p) & 1) {
+                base[k] = (away_off[k] + y->lt[k]) * (1.0 - 1e-12);
+            } else {
+                double t = (loose >> p) & 1 ? sol_nm_loose_term(b, n[p][1])
+                                            : (y->m1[k] < n[p][2] * n[p][2] ? y->m1[k] : n[p][2] * n[p][2]);
+                t = t * (1.0 - 3e-6) - 5e-15;
+                base[k] = t > 0.0 ? t : 0.0;
+            }
+            sb += base[k];
+        }
+        double delta = 0.0;
+        unsigned lmin = 0;
+        if (!use_max) {
+            if (sb * (1.0 - 1e-12) >= best)
+                continue;
+            /* lmin: the least level sum that rules a candidate out; levels are at most 254, so a sum of
+             * 16 * 255 is never reached (no rule from the sum where the slack is within rounding) */
+            delta = (best - sb) / 254.0;
+            if (delta > 0.0) {
+                for (lmin = 254; lmin > 0 && (sb + delta * (lmin - 1)) * (1.0 - 1e-12) >= best; --lmin)
+                    ;
+                while (lmin < 16 * 255 && !((sb + delta * lmin) * (1.0 - 1e-12) >= best))
+                    ++lmin;
+            } else {
+                lmin = 16 * 255;
+            }
+        }
+        if (++sc->gen == 0) { /* the stamps' wrap-around: forget them all */
+            memset(sc->stamp, 0, sizeof sc->stamp);
+            sc->gen = 1;
+        }
+        uint32_t ntouched = 0;
+        int npx = 0, pk[16]; /* the constrained pixels (visiting positions), in visiting order */
+        /* phase 1: per constrained pixel and y entry b_e, mark the x value codes inside the entry's
+         * intervals (bit e of jm[code][k]) */
+        for (int k = 0; k < 16 && !dead; ++k) {
+            const int p = order[k];
+            const double T = (use_max ? best : best - sb + base[k]) * (1.0 + 1e-9);
+            double q[3] = {n[p][0], n[p][1], n[p][2]}, R2 = T;
+            if ((aw->mask >> p) & 1) {
+                if (!(aw->w[p] > 0.0))
+                    continue;
+                R2 = (T - aw->off[p]) / aw->w[p];
+                q[0] = aw->m[0][p];
+                q[1] = aw->m[1][p];
+                q[2] = 0.0;
+            }
+            if (R2 < 0.0) {
+                dead = 1;
+                break;
+            }
+            R2 = R2 * (1.0 + 1e-9) + 1e-15;
+            const double qs[3] = {q[1], q[0], q[2]}; /* x and y swapped: intervals of x values */
+            int any = 0, unconstrained = 0;
+            for (int e = 0; e < 8 && !unconstrained; ++e) {
+                int dup = 0;
+                for (int f = 0; f < e && !dup; ++f)
+                    dup = b[f] == b[e];
+                if (dup)
+                    continue;
+                const double one[8] = {b[e], b[e], b[e], b[e], b[e], b[e], b[e], b[e]};
+                double ilo[16], ihi[16];
+                int cnt = pixel_y_intervals(one, qs, R2, 1e-9, ilo, ihi);
+                if (cnt < 0) {
+                    unconstrained = 1; /* the pixel constrains nothing */
+                    break;
+                }
+                for (int u = 0; u < cnt; ++u) {
+                    long k0 = (long)floor((ilo[u] + 1.0) * half_q) - 1, k1 = (long)ceil((ihi[u] + 1.0) * half_q) + 1;
+                    k0 = k0 < 0 ? 0 : k0;
+                    k1 = k1 > top ? top : k1;
+                    for (long w = k0 >> 6; w <= k1 >> 6 && k0 <= k1; ++w) {
+                        uint64_t bits = sc->bits[w];
+                        if (w == k0 >> 6)
+                            bits &= ~UINT64_C(0) << (k0 & 63);
+                        if (w == k1 >> 6 && (k1 & 63) != 63)
+                            bits &= (UINT64_C(1) << ((k1 & 63) + 1)) - 1;
+                        for (; bits; bits &= bits - 1) {
+                            long code = 64 * w + __builtin_ctzll(bits);
+                            if (sc->stamp[code] != sc->gen) {
+                                sc->stamp[code] = sc->gen;
+                                sc->touched[ntouched++] = (uint32_t)code;
+                            }
+                            sc->jm[code][k] |= (uint8_t)(1u << e);
+                            sc->marked[code] |= (uint16_t)(1u << k);
+                            sc->lv[code][k] = 0;
+                            any = 1;
+                            ++*work;
+                        }
+                    }
+                }
+            }
+            if (unconstrained) { /* undo its marks: it counts base only */
+                for (uint32_t t = 0; t < ntouched; ++t) {
+                    sc->jm[sc->touched[t]][k] = 0;
+                    sc->marked[sc->touched[t]] &= (uint16_t)~(1u << k);
+                    sc->lv[sc->touched[t]][k] = 255;
+                }
+                continue;
+            }
+            if (!any) {
+                dead = 1;
+                break;
+            }
+            pk[npx++] = k;
+        }
+        /* phase 2: per row, the least level per pixel of its 8 values and their sum (screen_levels);
+         * a level not computed yet counts 0 (base_p alone: a valid bound), so a row that this rules out
+         * needs nothing more; otherwise its values' missing levels are computed (once per y pair: the
+         * decodes with the entries whose intervals hold the value) and the row tested again */
+        uint8_t keep[16];
+        for (int k = 0; k < 16; ++k)
+            keep[k] = 0;
+        for (int h = 0; h < npx; ++h)
+            keep[pk[h]] = 255;
+        for (size_t i = 0; i < m && !dead; ++i) {
+            const uint16_t *code = sc->xcode[i];
+            unsigned sum;
+            ++*work;
+            if (screen_levels(sc, code, keep, &sum) || (!use_max && sum >= lmin))
+                continue;
+            int fresh = 0;
+            for (int e = 0; e < 8; ++e) {
+                const long c = code[e];
+                if (sc->done[c] == sc->marked[c])
+                    continue;
+                fresh = 1;
+                for (unsigned todo = sc->marked[c] & ~sc->done[c]; todo; todo &= todo - 1) {
+                    const int k = __builtin_ctz(todo), p = order[k];
+                    double c2 = INFINITY;
+                    for (int d = 0; d < sc->nval[c]; ++d)
+                        for (unsigned f = sc->jm[c][k]; f; f &= f - 1) {
+                            double t = decode_chord2(sc->val[c][d], b[__builtin_ctz(f)], n[p]);
+                            c2 = t < c2 ? t : c2;
+                            ++*work;
+                        }
+                    double g = chord2_angle2_lower(c2);
+                    *work += 2;
+                    g = g > away_off[k] ? g : away_off[k];
+                    unsigned lvl;
+                    if (use_max) {
+                        lvl = g >= best ? 255 : 0;
+                    } else {
+                        double r = delta > 0.0 ? (g - base[k]) / delta * (1.0 - 1e-9) : 0.0;
+                        lvl = r <= 0.0 ? 0 : (r >= 254.0 ? 254 : (unsigned)r);
+                    }
+                    sc->lv[c][k] = (uint8_t)lvl;
+                }
+                sc->done[c] = sc->marked[c];
+            }
+            if (fresh) {
+                ++*work;
+                if (screen_levels(sc, code, keep, &sum) || (!use_max && sum >= lmin))
+                    continue;
+            }
+            if (passes == SCREEN_PASS_MAX) {
+                passes = SIZE_MAX;
+                break;
+            }
+            sc->row[passes++] = (uint32_t)i;
+        }
+        for (uint32_t t = 0; t < ntouched; ++t) {
+            const uint32_t c = sc->touched[t];
+            memset(sc->jm[c], 0, 16);
+            memset(sc->lv[c], 255, 16);
+            sc->done[c] = sc->marked[c] = 0;
+        }
+        if (passes == SIZE_MAX)
+            return 0;
+    }
+    sc->jstart[ny] = (uint32_t)passes;
+    /* per row, its passing y positions in increasing order */
+    memset(sc->start, 0, (nx + 1) * sizeof *sc->start);
+    for (size_t t = 0; t < passes; ++t)
+        ++sc->start[sc->row[t] + 1];
+    for (size_t i = 0; i < nx; ++i)
+        sc->start[i + 1] += sc->start[i];
+    for (size_t j = 0; j < ny; ++j)
+        for (uint32_t t = sc->jstart[j]; t < sc->jstart[j + 1]; ++t)
+            sc->col[sc->start[sc->row[t]]++] = (uint32_t)j;
+    for (size_t i = nx; i > 0; --i)
+        sc->start[i] = sc->start[i - 1];
+    sc->start[0] = 0;
+    *work += 2 * passes;
     return 1;
 }
 
@@ -2283,6 +2643,39 @@ static void order_worst_first(const double err[16], int order[16])
         }
 }
 
+/* The pair screen on one candidate, for the tests (normalmaps_internal.h): search_unit's set-up of
+ * the loose pixels and pixels pointing away at incumbent best (pixels in their own order), then
+ * pair_screen_build on one-pair lists whose scores leave room. */
+int sol_nm_screen_rules_out(const double n[16][3], int use_max, double best, sol_bc4_precision precision, int pair_x,
+                            int pair_y)
+{
+    const double(*pal)[8] = sol_nm_palettes(precision);
+    pair_screen *sc = calloc(1, sizeof *sc);
+    if (!sc)
+        return -1;
+    unsigned loose = 0;
+    for (int p = 0; p < 16; ++p)
+        if (n[p][2] * n[p][2] <= best * (1.0 + BOUND_SLACK))
+            loose |= 1u << p;
+    away_info aw;
+    away_info_init(&aw, n, loose);
+    int order[16];
+    double away_off[16];
+    for (int k = 0; k < 16; ++k) {
+        order[k] = k;
+        away_off[k] = aw.off[k];
+    }
+    channel_side ys;
+    channel_side_init(pal[pair_y], n, order, 1, &aw, &ys);
+    sol_nm_pair xl = {0.0, (uint16_t)pair_x}, yl = {0.0, (uint16_t)pair_y};
+    uint64_t work = 0;
+    int built = pair_screen_build(sc, n, order, loose, &aw, away_off, use_max, best, pal, precision, &xl, 1, &yl, 1,
+                                  &ys, &work, UINT64_MAX);
+    int out = built ? sc->start[1] == 0 : -1;
+    free(sc);
+    return out;
+}
+
 /* Branch and bound over (x pair, y pair) inside the range, for unit normals n.
  * 1. Incumbent: the better (first on ties) of the per-channel least-squares pairs (the common
  *    anchors) and the full-span 6-value pairs (0, 255) whose entries -1 and +1 reach the rim, both
@@ -2522,6 +2915,12 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             candidates += evals;
             work += 8 * nx + 32 * evals;
         }
+        /* the pair screen (see there): every candidate that can still beat the incumbent, per row */
+        int screened = 0;
+        size_t screen_base = 0; /* the screen's row 0 is x list position screen_base */
+        if (filter && !solved && (ws->screen || (ws->screen = calloc(1, sizeof *ws->screen))))
+            screened = pair_screen_build(ws->screen, n, order, loose, &aw, away_off, use_max, best, pal, precision,
+                                         ws->x, nx, ws->y, ny, ws->yside, &work, rq->work_limit);
         channel_side xside;
         y_filter yf;
         /* joint_objective_away's use: while it rejects at least 1 in 8 candidates it meets (after 1024;
@@ -2557,15 +2956,32 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     y_index_init(&yix, ws->y, ny, pal, ws->ybucket);
                     work += 8 * ny;
                 }
+                if (screened) { /* the lists changed: the screen again, on the rest, at the new incumbent */
+                    screen_base = i;
+                    screened = pair_screen_build(ws->screen, n, order, loose, &aw, away_off, use_max, best, pal,
+                                                 precision, ws->x + i, nx - i, ws->y, ny, ws->yside, &work,
+                                                 rq->work_limit);
+                }
                 if (combine(ws->x[i].score, ws->y[0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                     break;
             }
+            if (screened && ws->screen->start[i - screen_base] == ws->screen->start[i - screen_base + 1])
+                continue; /* no candidate of the row can beat the incumbent */
             const double *a = pal[ws->x[i].pair];
             if (quick)
                 channel_side_init(a, n, order, 0, &aw, &xside);
             int filtered = 0;
             size_t lo_word = 0, hi_word = 0; /* the marked words of ymark */
-            if (filter) {
+            if (screened) { /* the row's passing y positions (at least one, see above) */
+                const pair_screen *sc = ws->screen;
+                const size_t row = i - screen_base;
+                filtered = 1;
+                lo_word = sc->col[sc->start[row]] >> 6;
+                hi_word = (sc->col[sc->start[row + 1] - 1] >> 6) + 1;
+                for (uint32_t t = sc->start[row]; t < sc->start[row + 1]; ++t)
+                    ws->ymark[sc->col[t] >> 6] |= UINT64_C(1) << (sc->col[t] & 63);
+                work += sc->start[row + 1] - sc->start[row];
+            } else if (filter) {
                 filtered = y_filter_init(&yf, a, &xside, n, order, loose, &aw, away_off, group, use_max, best, &yix);
                 work += 64;
                 if (filtered < 0)
@@ -2604,7 +3020,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     bounded = 1;
                     break;
                 }
-                if (filtered) {
+                if (filtered && !screened) {
                     work += 4;
                     if (!y_filter_pass(&yf, pal[ws->y[j].pair]))
                         continue;
@@ -3313,6 +3729,7 @@ static sol_status workspace_alloc(search_workspace *ws)
     ws->vset = NULL;
     ws->vtab = NULL;
     ws->couple = NULL;
+    ws->screen = NULL;
     ws->vgen = 0;
     ws->ktab = NULL;
     ws->kgen = 0;
@@ -3342,6 +3759,7 @@ static void workspace_free(search_workspace *ws)
     free(ws->ktab);
     free(ws->kkey);
     sol_nm_couple_free(ws->couple);
+    free(ws->screen);
     free(ws->win);
 }
 

@@ -178,6 +178,11 @@ void sol_nm_couple_reduce(sol_nm_couple *cs, const double n[16][3], int use_max,
 int sol_nm_couple_descent(sol_nm_couple *cs, const double n[16][3], int use_max, const double (*pal)[8],
                           sol_bc4_precision precision, const sol_nm_pair *xl, size_t nx, const sol_nm_pair *yl,
                           size_t ny, int start_x, int out[][2], uint64_t *work);
+/* The exact search's pair screen (bc5.c) on one candidate, for the tests: 1 if it rules out the x pair
+ * pair_x with the y pair pair_y (e0 << 8 | e1) at incumbent best (their objective, sum or max of dN^2,
+ * is then at least best), 0 if it lets the candidate through, -1 if out of memory. */
+int sol_nm_screen_rules_out(const double n[16][3], int use_max, double best, sol_bc4_precision precision, int pair_x,
+                            int pair_y);
 /* The adaptive encoder's threshold level of an objective err (sum of dN^2, or max dN^2 when
  * use_max): the RMS angle sqrt(err / 16) (or the max angle sqrt(err)) in degrees. The block is
  * searched when it exceeds options.threshold_deg. Monotone in err. */

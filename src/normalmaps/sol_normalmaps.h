@@ -245,7 +245,10 @@ sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_optio
  * pixels pointing away also keep only the anchor pairs whose entries can meet an actual value of
  * the other channel's list inside each pixel's ball under the incumbent, and merge pairs whose such
  * entries are identical (again whenever the incumbent halves its distance to the hemisphere bound),
- * which decides candidates tied with the incumbent to 1e-10 and closer. Cost: about
+ * which decides candidates tied with the incumbent to 1e-10 and closer. Where those lists stay long
+ * (arcs pointing away or along the rim), a pair screen decides the candidates ahead of the
+ * enumeration, one y pair at a time, from per-pixel bounds of each x VALUE (a sum of per-pixel
+ * minima over the x pair's 8 values); it skips only candidates that cannot beat the incumbent. Cost: about
  * 0.1-200 ms per block on smooth to rough maps, 1-100 ms for varied or equal normals pointing away or
  * at rims; the work bound (work_limit) caps the rest - near-ties the bounds cannot separate (e.g.
  * smooth blocks pointing away or along a rim, measured in issue 13), where info->bounded reports that
