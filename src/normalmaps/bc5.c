@@ -1200,6 +1200,31 @@ static uint32_t interval_items(const y_index *ix, const double *lo, const double
     return s;
 }
 
+/* The ball that loose pixel p's decode must reach within the angle budget t (the metric's units): its
+ * centre q (the normal, or for a pixel pointing away its rim target with z 0) and squared radius *R2
+ * (t, or (t - off) / w pointing away: away_info's rim bound), widened for rounding. Returns 0 if the
+ * pixel takes no part (pointing away with no positive weight), -1 if the budget is below the pixel's
+ * floor (no decode reaches it), else 1. */
+static int pixel_ball(const away_info *aw, const double n[16][3], int p, double t, double q[3], double *R2)
+{
+    double r2 = t;
+    q[0] = n[p][0];
+    q[1] = n[p][1];
+    q[2] = n[p][2];
+    if ((aw->mask >> p) & 1) {
+        if (!(aw->w[p] > 0.0))
+            return 0;
+        r2 = (t - aw->off[p]) / aw->w[p];
+        q[0] = aw->m[0][p];
+        q[1] = aw->m[1][p];
+        q[2] = 0.0;
+    }
+    if (r2 < 0.0)
+        return -1;
+    *R2 = r2 * (1.0 + 1e-9) + 1e-15;
+    return 1;
+}
+
 /* Builds the filter for x palette a (its channel side xs, pixels in `order`): 1 if it filters, 0 if
  * no pixel constrains y, -1 if no y pair can beat the budget with a. */
 static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs, const double n[16][3],
@@ -1225,18 +1250,12 @@ static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs,
             }
         if (!use_max)
             t = (budget - rest * (1.0 - 1e-9)) / mult;
-        double q3[3] = {n[p][0], n[p][1], n[p][2]}, R2 = t;
-        if ((aw->mask >> p) & 1) {
-            if (!(aw->w[p] > 0.0))
-                continue;
-            R2 = (t - aw->off[p]) / aw->w[p];
-            q3[0] = aw->m[0][p];
-            q3[1] = aw->m[1][p];
-            q3[2] = 0.0;
-        }
-        if (R2 < 0.0)
+        double q3[3], R2;
+        int ball = pixel_ball(aw, n, p, t, q3, &R2);
+        if (ball == 0)
+            continue;
+        if (ball < 0)
             return -1;
-        R2 = R2 * (1.0 + 1e-9) + 1e-15;
         int i = f->np;
         int cnt = pixel_y_intervals(a, q3, R2, 1e-9, f->lo[i], f->hi[i]);
         if (cnt < 0)
@@ -1482,20 +1501,14 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
         for (int k = 0; k < 16 && !dead; ++k) {
             const int p = order[k];
             const double T = (use_max ? best : best - sb + base[k]) * (1.0 + 1e-9);
-            double q[3] = {n[p][0], n[p][1], n[p][2]}, R2 = T;
-            if ((aw->mask >> p) & 1) {
-                if (!(aw->w[p] > 0.0))
-                    continue;
-                R2 = (T - aw->off[p]) / aw->w[p];
-                q[0] = aw->m[0][p];
-                q[1] = aw->m[1][p];
-                q[2] = 0.0;
-            }
-            if (R2 < 0.0) {
+            double q[3], R2;
+            int ball = pixel_ball(aw, n, p, T, q, &R2);
+            if (ball == 0)
+                continue;
+            if (ball < 0) {
                 dead = 1;
                 break;
             }
-            R2 = R2 * (1.0 + 1e-9) + 1e-15;
             const double qs[3] = {q[1], q[0], q[2]}; /* x and y swapped: intervals of x values */
             int any = 0, unconstrained = 0;
             for (int e = 0; e < 8 && !unconstrained; ++e) {
