@@ -973,13 +973,27 @@ typedef struct pair_classes {
     uint64_t *work;
 } pair_classes;
 
-static size_t merge_classes(sol_nm_pair *list, size_t count, const double (*pal)[8], const pair_classes *pc,
-                            uint32_t *slots)
+/* Clears the slots of a hash set for count pairs (a power of two >= 2 count, at least 64: at most half
+ * full) and returns their number. */
+static size_t slots_clear(uint32_t *slots, size_t count)
 {
     size_t size = 64;
     while (size < 2 * count)
         size *= 2;
     memset(slots, 0, size * sizeof *slots);
+    return size;
+}
+
+/* A slot's check bits: 15 bits of the hash above the position's 17. */
+static uint32_t slot_tag(uint64_t hash)
+{
+    return (uint32_t)(hash >> 49) << 17;
+}
+
+static size_t merge_classes(sol_nm_pair *list, size_t count, const double (*pal)[8], const pair_classes *pc,
+                            uint32_t *slots)
+{
+    const size_t size = slots_clear(slots, count);
     size_t kept = 0;
     for (size_t i = 0; i < count; ++i) {
         const double *a = pal[list[i].pair];
@@ -987,7 +1001,7 @@ static size_t merge_classes(sol_nm_pair *list, size_t count, const double (*pal)
             *pc->work += 16;
         uint64_t hash = pc->hash(pc->ctx, a);
         size_t h = (size_t)hash & (size - 1);
-        uint32_t tag = (uint32_t)(hash >> 49) << 17; /* 15 bits of the hash beside the position */
+        uint32_t tag = slot_tag(hash);
         int dup = 0;
         for (; slots[h]; h = (h + 1) & (size - 1))
             if ((slots[h] & ~SLOT_POS) == tag && pc->equal(pc->ctx, pal[list[(slots[h] & SLOT_POS) - 1].pair], a)) {
@@ -1945,10 +1959,7 @@ static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[
                            int npix, search_workspace *ws, uint64_t *work)
 {
     uint32_t *slots = ws->slots;
-    size_t size = 64;
-    while (size < 2 * count)
-        size *= 2;
-    memset(slots, 0, size * sizeof *slots);
+    const size_t size = slots_clear(slots, count);
     size_t kept = 0;
     for (size_t i = 0; i < count; ++i) {
         PREFETCH_PAIR(pal, list, i, count);
@@ -1959,7 +1970,7 @@ static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[
         key_fn(ctx, a, key.m, key.seed);
         uint64_t hash = masks_hash(a, key.m, key.seed, npix);
         size_t h = (size_t)hash & (size - 1);
-        uint32_t tag = (uint32_t)(hash >> 49) << 17;
+        uint32_t tag = slot_tag(hash);
         int dup = 0;
         for (; slots[h]; h = (h + 1) & (size - 1)) {
             if ((slots[h] & ~SLOT_POS) != tag)
