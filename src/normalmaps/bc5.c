@@ -3886,9 +3886,7 @@ static void encode_unit(const double n[16][3], const double t[3][16], const sol_
             double lo, hi;
             sol_nm_chord_bounds(pal[base.x.e0 << 8 | base.x.e1], pal[base.y.e0 << 8 | base.y.e1], &base, t, use_max,
                                 &lo, &hi);
-            int by_level = sol_nm_threshold_level(hi, use_max) <= o->threshold_deg    ? 0
-                           : sol_nm_threshold_level(lo, use_max) > o->threshold_deg ? 1
-                                                                                    : -1;
+            int by_level = sol_nm_threshold_decide(lo, hi, use_max, o->threshold_deg);
             int by_gap = sol_nm_gap_test(lo, hi, limit);
             search = by_level == 0 || by_gap == 0 ? 0 : by_level == 1 && by_gap == 1 ? 1 : -1;
         }

@@ -168,16 +168,21 @@ void sol_nm_chord_bounds(const double palx[8], const double paly[8], const sol_b
     *upper = (hi + slack) * (1.0 + REL);
 }
 
+int sol_nm_threshold_decide(double lower, double upper, int use_max, double threshold_deg)
+{
+    if (sol_nm_threshold_level(upper, use_max) <= threshold_deg)
+        return 0;
+    if (sol_nm_threshold_level(lower, use_max) > threshold_deg)
+        return 1;
+    return -1;
+}
+
 int sol_nm_threshold_test(const double palx[8], const double paly[8], const sol_bc5_block *b, const double t[3][16],
                           int use_max, double threshold_deg)
 {
     double L, U;
     sol_nm_chord_bounds(palx, paly, b, t, use_max, &L, &U);
-    if (sol_nm_threshold_level(U, use_max) <= threshold_deg)
-        return 0;
-    if (sol_nm_threshold_level(L, use_max) > threshold_deg)
-        return 1;
-    return -1;
+    return sol_nm_threshold_decide(L, U, use_max, threshold_deg);
 }
 
 /* ---- the gap test: a lower bound of every block's objective ----

@@ -201,6 +201,9 @@ int sol_nm_threshold_test(const double palx[8], const double paly[8], const sol_
  * when use_max, as bc5.c computes it) <= upper, for block b's own indices. */
 void sol_nm_chord_bounds(const double palx[8], const double paly[8], const sol_bc5_block *b, const double t[3][16],
                          int use_max, double *lower, double *upper);
+/* sol_nm_threshold_test's decision from bounds lower <= err <= upper of a block's objective: 0 if
+ * level(err) <= threshold_deg (keep the base), 1 if above (search), -1 if the bounds cannot tell. */
+int sol_nm_threshold_decide(double lower, double upper, int use_max, double threshold_deg);
 /* The adaptive encoder's gap bound (bc5_adaptive.c; proof at sol_bc5_options.gap): from the two
  * channels' least-squares sums sx, sy (sol_nm_bc4_common) and the unit normals t (t[2][p] = nz_p), a
  * value at most the computed objective (internal units: sum, or max when use_max, of dN^2) of EVERY
