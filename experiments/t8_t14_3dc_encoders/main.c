@@ -887,7 +887,8 @@ static void t13_defaults(const exp_run *exp, t13_crops *c, const t13_overhead *o
  * (sol_normalmaps.h), so a skipped block is within (1 + gap) of the optimum. Per gap: searched
  * blocks, error left above the optimum and above searching every block (gap off), time over the
  * fast and the common encoder. Rows into a table, exp_number keys T13-gap-<gap>-* and T13-default-gap. */
-static const double T13_GAPS[] = {-1.0, 0.02, 0.05, 0.1, SOL_BC5_DEFAULT_GAP, 0.5, 1.0};
+/* the gaps of the sweep, here and in make bench's bench_gaps (-1: off) */
+static const double GAP_SWEEP[] = {-1.0, 0.02, 0.05, 0.1, SOL_BC5_DEFAULT_GAP, 0.5, 1.0};
 static void t13_gap_sweep(const exp_run *exp, t13_crops *c, const t13_overhead *ov)
 {
     exp_table *t = exp_table_new("T13: adaptive gap (skip a block whose base error is provably within 1 + gap of the "
@@ -895,8 +896,8 @@ static void t13_gap_sweep(const exp_run *exp, t13_crops *c, const t13_overhead *
                                  "gap,searched blocks %,error left vs optimum %,error above searching every block %,"
                                  "core-ns per block,time / fast encoder,time / common encoder");
     double total_off = 0.0;
-    for (size_t i = 0; i < sizeof T13_GAPS / sizeof T13_GAPS[0]; ++i) {
-        const double gap = T13_GAPS[i];
+    for (size_t i = 0; i < sizeof GAP_SWEEP / sizeof GAP_SWEEP[0]; ++i) {
+        const double gap = GAP_SWEEP[i];
         uint64_t searched, cand;
         double total, ns = threshold_point(c, 0.0, SOL_BC5_BASE_COMMON, gap, &searched, &cand, &total);
         if (gap < 0.0)
@@ -921,7 +922,7 @@ static void t13_gap_sweep(const exp_run *exp, t13_crops *c, const t13_overhead *
             snprintf(key, sizeof key, "T13-gap-%02d-over-common-timing", (int)lrint(100.0 * gap));
             exp_number(exp, key, "%.2f", ns / ov->common_ns);
         }
-        exp_progress("T13 gap", i + 1, sizeof T13_GAPS / sizeof T13_GAPS[0]);
+        exp_progress("T13 gap", i + 1, sizeof GAP_SWEEP / sizeof GAP_SWEEP[0]);
     }
     exp_progress_done("T13 gap");
     exp_number(exp, "T13-default-gap", "%.2f", SOL_BC5_DEFAULT_GAP);
@@ -1356,7 +1357,6 @@ static void bench_thresholds(exp_table *t, exp_table *summary, const bench_ref *
 /* The adaptive encoder's gap (options.gap; common base, threshold 0, window 4) on one map: per gap
  * the searched blocks, time over the fast and the common encoder, error left above the optimum and
  * above searching every block (gap off). */
-static const double BENCH_GAPS[] = {-1.0, 0.02, 0.05, 0.1, SOL_BC5_DEFAULT_GAP, 0.5, 1.0};
 static exp_table *bench_gap_table_new(void)
 {
     return exp_table_new("make bench: adaptive encoder gap (common base, threshold 0, window 4): a block is searched "
@@ -1373,8 +1373,8 @@ static double bench_cpu_s(const encoder *e, const sol_image *src, uint8_t *block
 static void bench_gaps(exp_table *t, const bench_ref *r)
 {
     double total_off = 0.0;
-    for (size_t i = 0; i < sizeof BENCH_GAPS / sizeof BENCH_GAPS[0]; ++i) {
-        const double gap = BENCH_GAPS[i];
+    for (size_t i = 0; i < sizeof GAP_SWEEP / sizeof GAP_SWEEP[0]; ++i) {
+        const double gap = GAP_SWEEP[i];
         encoder e = {"adaptive", ENC_SOL, {.encoder = SOL_BC5_ADAPTIVE, .gap = gap}, 0};
         uint8_t *blocks = alloc_blocks(r->src);
         sol_bc5_image_stats st;
