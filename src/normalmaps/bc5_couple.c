@@ -62,11 +62,20 @@ static void next_generation(sol_nm_couple *cs)
     }
 }
 
+/* The code of entry value v (v = k / half_q - 1 for an integer k in 0 .. 2 half_q, to within a few
+ * 1e-16): the nearest integer to (v + 1) half_q, which is >= 0, so truncating after adding 0.5 rounds
+ * it as lround would (the argument lies within 1e-10 of an integer, far from a half) without the
+ * library call (2-3% of a block pointing away, issue 13). */
+static inline long value_code(double v, double half_q)
+{
+    return (long)((v + 1.0) * half_q + 0.5);
+}
+
 /* The cached row of per-pixel angle^2 floors of entry value v (its code on the q grid); *stale = 1
  * if it was not filled in this generation (it now counts as filled: the caller fills it). */
 static float *entry_row(sol_nm_couple *cs, double v, double half_q, int *stale)
 {
-    long k = lround((v + 1.0) * half_q);
+    long k = value_code(v, half_q);
     *stale = cs->stamp[k] != cs->gen;
     cs->stamp[k] = cs->gen;
     return cs->e2[k];
@@ -99,7 +108,7 @@ static int list_spans(sol_nm_couple *cs, const sol_nm_pair *list, size_t count, 
     memset(cs->bits, 0, sizeof cs->bits);
     for (size_t i = 0; i < count; ++i)
         for (int e = 0; e < 8; ++e) {
-            long k = lround((pal[list[i].pair][e] + 1.0) * half_q);
+            long k = value_code(pal[list[i].pair][e], half_q);
             cs->bits[k >> 6] |= UINT64_C(1) << (k & 63);
         }
     /* the COUPLE_SPANS - 1 widest gaps between consecutive codes (by code: values are affine in them) */
@@ -313,13 +322,21 @@ static size_t best_partner(sol_nm_couple *cs, const double n[16][3], int c, int 
             float *t = entry_row(cs, a[e], half_q, &stale);
             if (stale) {
                 *work += 64;
+                /* the 8 decodes (a_e, b_j): z (0 where clamped) and the norm divided by (1 unless
+                 * clamped) depend on the entries only, so once for the 16 pixels; each cosine is then
+                 * the same expression of the same doubles as written per pixel (a clamped decode's
+                 * 0 * nz adds a zero), so the same bits */
+                double zj[8], dj[8];
+                for (int j = 0; j < 8; ++j) {
+                    double r = a[e] * a[e] + b[j] * b[j], zz = 1.0 - r;
+                    zj[j] = zz > 0.0 ? sqrt(zz) : 0.0;
+                    dj[j] = r > 1.0 ? sqrt(r) : 1.0;
+                }
                 for (int p = 0; p < 16; ++p) {
                     const double m[3] = {n[p][c], n[p][1 - c], n[p][2]};
                     double best = -INFINITY;
                     for (int j = 0; j < 8; ++j) {
-                        double r = a[e] * a[e] + b[j] * b[j], zz = 1.0 - r;
-                        double v = (a[e] * m[0] + b[j] * m[1] + (zz > 0.0 ? sqrt(zz) * m[2] : 0.0)) /
-                                   (r > 1.0 ? sqrt(r) : 1.0);
+                        double v = (a[e] * m[0] + b[j] * m[1] + zj[j] * m[2]) / dj[j];
                         best = v > best ? v : best;
                     }
                     double ang = acos(best < 1.0 ? best : 1.0);
