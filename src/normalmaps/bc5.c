@@ -741,6 +741,7 @@ typedef struct search_workspace {
     uint32_t kgen;
     struct pair_key *kkey; /* merge_keyed's keys of the kept pairs, grown on demand */
     size_t kkey_cap;
+    sol_nm_pair *sort_tmp; /* sort_pairs' scratch (65536 pairs), allocated on demand */
 } search_workspace;
 
 static int compare_pairs(const void *pa, const void *pb)
@@ -749,6 +750,57 @@ static int compare_pairs(const void *pa, const void *pb)
     if (a->score != b->score)
         return a->score < b->score ? -1 : 1;
     return (a->pair > b->pair) - (a->pair < b->pair);
+}
+
+/* Sorts list by (score, pair) as qsort with compare_pairs does (a total order on distinct pairs, so
+ * the same sequence), by LSD radix over the pair's two bytes and then the score's eight (a score
+ * >= 0 orders as its bits; -0 counts as +0, as the comparison has it), skipping the digits that
+ * every element shares; tmp holds count elements. qsort itself if a score is negative or NaN (the
+ * lists' scores are sums of squares and offsets, never) or tmp is NULL. Issue 13: the lists of blocks
+ * pointing away hold 10^4 - 4 10^4 pairs, and qsort's calls cost 3-5 ms of such a block. */
+static void sort_pairs(sol_nm_pair *list, size_t count, sol_nm_pair *tmp)
+{
+    for (size_t i = 0; tmp && i < count; ++i) {
+        list[i].score += 0.0; /* -0 -> +0 */
+        if (!(list[i].score >= 0.0))
+            tmp = NULL;
+    }
+    if (!tmp || count > UINT32_MAX) {
+        qsort(list, count, sizeof *list, compare_pairs);
+        return;
+    }
+    sol_nm_pair *from = list, *to = tmp;
+    for (int d = 0; d < 10; ++d) {
+        uint32_t hist[256] = {0};
+        for (size_t i = 0; i < count; ++i) {
+            uint64_t bits;
+            memcpy(&bits, &from[i].score, sizeof bits);
+            unsigned digit = d < 2 ? (from[i].pair >> (8 * d)) & 255u : (unsigned)(bits >> (8 * (d - 2))) & 255u;
+            ++hist[digit];
+        }
+        int shared = 0;
+        for (int k = 0; k < 256; ++k)
+            shared |= hist[k] == count;
+        if (shared)
+            continue;
+        uint32_t at = 0;
+        for (int k = 0; k < 256; ++k) {
+            uint32_t c = hist[k];
+            hist[k] = at;
+            at += c;
+        }
+        for (size_t i = 0; i < count; ++i) {
+            uint64_t bits;
+            memcpy(&bits, &from[i].score, sizeof bits);
+            unsigned digit = d < 2 ? (from[i].pair >> (8 * d)) & 255u : (unsigned)(bits >> (8 * (d - 2))) & 255u;
+            to[hist[digit]++] = from[i];
+        }
+        sol_nm_pair *t = from;
+        from = to;
+        to = t;
+    }
+    if (from != list)
+        memcpy(list, from, count * sizeof *list);
 }
 
 static double combine(double sx, double sy, int use_max)
@@ -2796,8 +2848,10 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
         double room = best * (1.0 + BOUND_SLACK);
         size_t nx = collect_within(&cx, use_max ? room : room - sy_min * (1.0 - BOUND_SLACK), ws->x, pre_x);
         size_t ny = collect_within(&cy, use_max ? room : room - sx_min * (1.0 - BOUND_SLACK), ws->y, pre_y);
-        qsort(ws->x, nx, sizeof *ws->x, compare_pairs);
-        qsort(ws->y, ny, sizeof *ws->y, compare_pairs);
+        if (!ws->sort_tmp)
+            ws->sort_tmp = malloc(65536 * sizeof *ws->sort_tmp); /* NULL: sort_pairs uses qsort */
+        sort_pairs(ws->x, nx, ws->sort_tmp);
+        sort_pairs(ws->y, ny, ws->sort_tmp);
         int valued = 0; /* the value-level filter and merge ran */
         int all_equal = 1; /* 16 equal normals: equal_block_solve below decides them */
         for (int p = 1; p < 16; ++p)
@@ -2828,21 +2882,22 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             ny = merge_keyed(ws->y, ny, &ky, pal, precision, ws);
         }
         /* the coupled row bounds (bc5_couple.c): for rims and pixels pointing away whose lists are long,
-         * drop the pairs whose every candidate the channels' coupling rules out; then coordinate
-         * descent from the incumbent's x pair for a better incumbent (its candidates evaluated exactly)
-         * and, if it improved, the reduction again under it. Both lists keep their order and only
-         * pairs that cannot beat the incumbent go: the enumeration's result is unchanged except
-         * that a descent candidate met first wins exact ties. */
+         * coordinate descent from the incumbent's x pair for a better incumbent (its candidates
+         * evaluated exactly), then drop the pairs whose every candidate the channels' coupling rules
+         * out under it. Both lists keep their order and only pairs that cannot beat the incumbent go:
+         * the enumeration's result is unchanged except that a descent candidate met first wins exact
+         * ties. (The reduction ran before the descent too until issue 13's survey showed it wasted
+         * there: at the incumbent before the descent it kept 95-99% of the pairs of blocks pointing
+         * away (away-zvar: x 25098 -> 24852) at 15-40 ms, while under the descent's incumbent it cuts
+         * them to a few (half-away-arc: 19736 x 40789 -> 2 x 21); the descent on the unreduced lists
+         * costs about the same, and finds the same candidates on the survey.) */
         int coupled = 0;
         double couple_at = -1.0; /* the incumbent at which the reduction runs again on the lists' rest */
         if (loose && !all_equal && nx * ny > 4096 && (ws->couple || (ws->couple = sol_nm_couple_new()))) {
-            sol_nm_couple_reduce(ws->couple, n, use_max, best * (1.0 + BOUND_SLACK), pal, precision, ws->x, &nx,
-                                 ws->y, &ny, &work);
             coupled = 1;
             int cand[4][2];
             int nc = sol_nm_couple_descent(ws->couple, n, use_max, pal, precision, ws->x, nx, ws->y, ny, px, cand,
                                            &work);
-            double was = best;
             for (int k = 0; k < nc; ++k) {
                 ++candidates;
                 work += 512;
@@ -2853,9 +2908,8 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     py = cand[k][1];
                 }
             }
-            if (best < was)
-                sol_nm_couple_reduce(ws->couple, n, use_max, best * (1.0 + BOUND_SLACK), pal, precision, ws->x,
-                                     &nx, ws->y, &ny, &work);
+            sol_nm_couple_reduce(ws->couple, n, use_max, best * (1.0 + BOUND_SLACK), pal, precision, ws->x, &nx,
+                                 ws->y, &ny, &work);
             couple_at = best - (best - floor_all) / 16.0;
         }
         /* visit pixels worst-first (by the incumbent's per-pixel error) when rejecting candidates */
@@ -3759,6 +3813,7 @@ static sol_status workspace_alloc(search_workspace *ws)
     ws->kgen = 0;
     ws->kkey = NULL;
     ws->kkey_cap = 0;
+    ws->sort_tmp = NULL;
     ws->win = calloc(1, sizeof *ws->win); /* zeroed: window_scratch's padding columns */
     if (!ws->x || !ws->y || !ws->slots || !ws->win) {
         free(ws->x);
@@ -3782,6 +3837,7 @@ static void workspace_free(search_workspace *ws)
     free(ws->vtab);
     free(ws->ktab);
     free(ws->kkey);
+    free(ws->sort_tmp);
     sol_nm_couple_free(ws->couple);
     free(ws->screen);
     free(ws->win);
