@@ -2301,6 +2301,32 @@ Test(normalmaps, coupled_survey_blocks_are_proven_exactly)
     }
 }
 
+/* issue 13 (this session's survey speed-ups: the coupled reduction once, after the descent; the lists
+ * sorted by radix; the value-level filter not repeated against an unchanged list): sum-metric survey
+ * blocks pointing away, at a rim below the horizon, and with every other pixel pointing away, whose
+ * search took those paths keep the error and anchors of the search before them (main 6e59f3a, its
+ * survey run), proven (not bounded) and equal to brute force in a +-2 window. */
+Test(normalmaps, reordered_reductions_keep_the_survey_results)
+{
+    static const struct {
+        int family;
+        double spread;
+        sol_bc4_precision precision;
+        double error;
+        int anchors[4];
+    } cases[] = {
+        {2, 0.3, SOL_BC4_INTERP_16BIT, 0.41730338653635829, {3, 5, 150, 115}},
+        {2, 0.03, SOL_BC4_INTERP_FLOAT, 0.32195341132580479, {2, 3, 135, 131}},
+        {5, 0.1, SOL_BC4_INTERP_16BIT, 4.3651361994334064, {6, 3, 172, 167}},
+        {0, 0.03, SOL_BC4_INTERP_FLOAT, 0.17520762654563746, {1, 2, 150, 146}},
+        {7, 0.1, SOL_BC4_INTERP_16BIT, 0.0029670501826751334, {2, 3, 163, 150}},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        expect_survey_case(cases[c].family, cases[c].spread, SOL_BC5_SUM_SQUARED, cases[c].precision, cases[c].error,
+                           cases[c].anchors, c);
+    }
+}
+
 static int pair_order(const void *a, const void *b)
 {
     const sol_nm_pair *x = a, *y = b;

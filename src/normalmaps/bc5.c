@@ -755,8 +755,9 @@ static int compare_pairs(const void *pa, const void *pb)
 /* Sorts list by (score, pair) as qsort with compare_pairs does (a total order on distinct pairs, so
  * the same sequence), by LSD radix over the pair's two bytes and then the score's eight (a score
  * >= 0 orders as its bits; -0 counts as +0, as the comparison has it), skipping the digits that
- * every element shares; tmp holds count elements. qsort itself if a score is negative or NaN (the
- * lists' scores are sums of squares and offsets, never) or tmp is NULL. Issue 13: the lists of blocks
+ * every element shares; tmp holds count elements. qsort itself for lists shorter than 1024 (most
+ * blocks: ten passes over 256 buckets cost more there), if a score is negative or NaN (the lists'
+ * scores are sums of squares and offsets, never) or if tmp is NULL. Issue 13: the lists of blocks
  * pointing away hold 10^4 - 4 10^4 pairs, and qsort's calls cost 3-5 ms of such a block. */
 static void sort_pairs(sol_nm_pair *list, size_t count, sol_nm_pair *tmp)
 {
@@ -765,7 +766,7 @@ static void sort_pairs(sol_nm_pair *list, size_t count, sol_nm_pair *tmp)
         if (!(list[i].score >= 0.0))
             tmp = NULL;
     }
-    if (!tmp || count > UINT32_MAX) {
+    if (!tmp || count < 1024 || count > UINT32_MAX) {
         qsort(list, count, sizeof *list, compare_pairs);
         return;
     }
@@ -2609,6 +2610,7 @@ static int value_reduce(const double n[16][3], const away_info *aw, int use_max,
         return 1;
     }
     value_table t = {ws->vtab, 0, 0, &pr, ws->vset, work};
+    size_t filtered_at[2] = {SIZE_MAX, SIZE_MAX}; /* the other list's count at each channel's last filter */
     for (int round = 0; round < 2; ++round) {
         for (int c = 0; c < 2; ++c) {
             sol_nm_pair *list = c ? yl : xl, *other = c ? xl : yl;
@@ -2621,7 +2623,13 @@ static int value_reduce(const double n[16][3], const away_info *aw, int use_max,
             }
             t.gen = ws->vgen;
             t.c = c;
-            *count = usable_filter(list, *count, pal, &t);
+            /* the filter again against the same other list (lists only shrink: the same count is the
+             * same set, so the same values) would keep every pair it met: usability depends on the
+             * value, the pixel reach and the other list's values alone (issue 13: round 1 repeated
+             * round 0's x pass whenever the y pass dropped nothing, most blocks pointing away) */
+            if (filtered_at[c] != ocount)
+                *count = usable_filter(list, *count, pal, &t);
+            filtered_at[c] = ocount;
             if (round == 1 && *count > 1) {
                 *count = merge_usable(list, *count, pal, &t, c ? ty : tx, ws);
                 /* and the classes of the budget-based key (each merge keeps the first of its classes,
