@@ -563,20 +563,20 @@ static AVX2_FN void quick_terms_avx2(const channel_side *xs, const channel_side 
 }
 #endif
 
+/* nz[k] = n[order[k]][2] (set once per block by the caller: the AVX2 form's loads). */
 static double joint_objective_quick(const channel_side *xs, const channel_side *ys, const double n[16][3],
-                                    const int order[16], const double away_off[16], int use_max, double budget,
-                                    uint64_t *work)
+                                    const int order[16], const double nz[16], const double away_off[16], int use_max,
+                                    double budget, uint64_t *work)
 {
 #if SEARCH_AVX2
     if (search_avx2()) { /* every pixel's term at once, then the sum and the stop as below */
-        double nz[16], e2[16], s = 0.0;
-        for (int k = 0; k < 16; ++k)
-            nz[k] = n[order[k]][2];
+        double e2[16], s = 0.0;
         quick_terms_avx2(xs, ys, nz, away_off, e2);
         fold_terms_until(&s, e2, 16, use_max, budget, work);
         return s;
     }
 #endif
+    (void)nz;
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
         ++*work;
@@ -2866,9 +2866,11 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             order[p] = p;
         }
         order_worst_first(pixel_err, order);
-        double away_off[16]; /* theta0^2 of the pixels pointing away, in visiting order */
-        for (int k = 0; k < 16; ++k)
+        double away_off[16], nz_ord[16]; /* theta0^2 of the pixels pointing away, and nz, in visiting order */
+        for (int k = 0; k < 16; ++k) {
             away_off[k] = aw.off[order[k]];
+            nz_ord[k] = n[order[k]][2];
+        }
         /* the y list's channel sides for the quick bound (without memory, the search runs without it) */
         int quick = 1;
         if (ny > ws->yside_cap) {
@@ -3053,7 +3055,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                  * the value-reduced lists (blocks near their hemisphere bound) take 1e-12 instead,
                  * which still covers the different summation orders of bound and objective */
                 double margin = best * (1.0 + (valued ? 1e-12 : BOUND_SLACK));
-                if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, away_off, use_max, margin, &work) >= margin)
+                if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, nz_ord, away_off, use_max, margin, &work) >= margin)
                     continue;
                 if (quick && aw.mask && (away_tried < 1024 || 8 * away_hits >= away_tried || (candidates & 15) == 0)) {
                     ++away_tried;
@@ -3394,7 +3396,7 @@ static double window_quick(const channel_side *xs, const channel_side *ys, const
         return window_quick_avx2(xs, ys, nz, use_max, budget, work);
 #endif
     static const double away_off[16] = {0};
-    return joint_objective_quick(xs, ys, n, order, away_off, use_max, budget, work);
+    return joint_objective_quick(xs, ys, n, order, nz, away_off, use_max, budget, work);
 }
 
 /* The quick bound of up to 4 consecutive candidates of one x pair (y list positions j..j+lanes-1)
