@@ -2707,3 +2707,233 @@ Test(normalmaps, pair_screen_bound_holds_and_is_close, .timeout = 120)
             cr_assert_eq(close, tried, "case %zu: %d of %d ruled out at 0.99 E", c, close, tried);
     }
 }
+
+/* The survey block the search still left bounded at the default work limit (0.7 s, 0.57 million
+ * candidates): a cone of 2 rad pointing away, max metric, 8-bit decoder (case 0). Its optimum is set
+ * by one pixel pointing nearly straight away (nz = -0.99): the decode nearest that pixel's rim
+ * direction, with thousands of x pairs and tens of thousands of y pairs holding it (exact ties); the
+ * pixel floor of bc5.c finds the enumeration's first candidate attaining that pixel's least term and
+ * proves it. Reference: the search before the floor with a work limit of 2^34 (2.8 s, 4865774
+ * candidates: error 1.4400040151105158, anchors 0,42,0,4), and literal brute force in a +-2 window
+ * around the result. Cases 1-2: the same cone with the 16-bit and exact decoders (proven before the
+ * floor, in 0.3 s; reference: that search), now decided the same way, with the same anchors. */
+Test(normalmaps, floored_survey_blocks_are_proven_exactly)
+{
+    static const struct {
+        sol_bc4_precision precision;
+        double error;
+        int anchors[4];
+    } cases[] = {
+        {SOL_BC4_INTERP_8BIT, 1.4400040151105158, {0, 42, 0, 4}},
+        {SOL_BC4_INTERP_16BIT, 1.4400040147885624, {0, 52, 123, 1}},
+        {SOL_BC4_INTERP_FLOAT, 1.4400040147885635, {238, 24, 131, 4}},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c)
+        expect_survey_case(6, 2.0, SOL_BC5_MAX, cases[c].precision, cases[c].error, cases[c].anchors, c);
+}
+
+/* A pixel's term as the objective computes it for the decode (a, b): the squared angle between
+ * (a, b, z rebuilt) and n (sol_angle3). */
+static double decode_term(double a, double b, const double n[3])
+{
+    double zz = 1.0 - a * a - b * b, u[3] = {a, b, zz > 0.0 ? sqrt(zz) : 0.0}, e = sol_angle3(u, n);
+    return e * e;
+}
+
+/* The pixel floor (bc5.c, max metric) is exact: for a candidate's values and a pixel whose least term
+ * over the 64 decodes is m (literal, as the objective computes it), it decides (every decode at or
+ * above the incumbent) at incumbent m and never at the next double above m (one decode is below it),
+ * so a rule raised by 2% (or by one ulp) fails the second check and a looser one the first. Pixels:
+ * the survey's cones, arcs and rims (pointing away, at the rim, just below it, up), the axes and
+ * near-axis directions, straight up and down, denormal offsets; pairs: the survey optima and their
+ * +-2 neighbours, random pairs, the 6-value pair (0, 255); every precision. The floor may decline
+ * (ball constraining nothing: terms near (pi / 2)^2 or above, straight down), never wrongly decide. */
+Test(normalmaps, pixel_floor_is_exact, .timeout = 120)
+{
+    static const double special[][3] = {
+        {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {1, 1e-9, 0}, {1e-300, -1, 0},
+        {0.6, 0.8, -1e-6}, {0.6, -0.8, 1e-6}, {0.07, -0.1, -0.99}, {1e-9, 1e-9, -1}, {0.3, 0.4, 0.866},
+        {-0.5, 0.5, -0.7071}, {4.9e-324, 1, 0}, {0.01, 0.0, -0.99995},
+    };
+    unsigned long long s = 12345;
+    int checks = 0, decided = 0;
+    for (int blk = 0; blk < 10; ++blk) {
+        double raw[16][3], n[16][3];
+        if (blk < 6) {
+            static const int fam[6] = {6, 0, 3, 7, 2, 6};
+            survey_block(fam[blk], blk == 5 ? 0.3 : 2.0, raw);
+        } else if (blk == 6) {
+            memcpy(raw, special, sizeof raw);
+        } else {
+            for (int p = 0; p < 16; ++p)
+                for (int c = 0; c < 3; ++c) {
+                    s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+                    raw[p][c] = (double)(s >> 11) / 9007199254740992.0 * 2.0 - 1.0;
+                }
+            raw[blk][2] = blk == 7 ? 0.0 : -fabs(raw[blk][2]); /* a rim pixel, pixels pointing away */
+        }
+        cr_assert_eq(sol_nm_unit_normals(raw, n), SOL_OK);
+        for (int pr = 0; pr < 3; ++pr) {
+            const double(*pal)[8] = sol_nm_palettes((sol_bc4_precision)pr);
+            for (int t = 0; t < 12; ++t) {
+                int px, py;
+                if (t == 0) {
+                    px = py = 0x00ff;
+                } else if (t < 4) { /* the block 0 optimum and neighbours */
+                    px = (0 << 8 | 42) + (t - 2);
+                    py = (0 << 8 | 4) + (t - 2) * 256 + (t == 3);
+                } else {
+                    s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+                    px = (int)(s >> 20) & 0xffff;
+                    py = (int)(s >> 40) & 0xffff;
+                }
+                px &= 0xffff;
+                py &= 0xffff;
+                double m[16], up[16], far[16];
+                for (int p = 0; p < 16; ++p) {
+                    m[p] = INFINITY;
+                    for (int i = 0; i < 8; ++i)
+                        for (int j = 0; j < 8; ++j) {
+                            double e = decode_term(pal[px][i], pal[py][j], n[p]);
+                            m[p] = e < m[p] ? e : m[p];
+                        }
+                    up[p] = nextafter(m[p], INFINITY);
+                    far[p] = m[p] * 1.02;
+                }
+                const sol_bc4_precision prec = (sol_bc4_precision)pr;
+                int at[16], above[16], above2[16];
+                cr_assert(sol_nm_floor_rules_out(n, m, prec, px, py, at) == 0 &&
+                              sol_nm_floor_rules_out(n, up, prec, px, py, above) == 0 &&
+                              sol_nm_floor_rules_out(n, far, prec, px, py, above2) == 0,
+                          "out of memory");
+                for (int p = 0; p < 16; ++p) {
+                    cr_assert(above[p] == 0 && above2[p] == 0,
+                              "block %d prec %d pair %d,%d pixel %d: decided above its least term %.17g", blk, pr, px,
+                              py, p, m[p]);
+                    ++checks;
+                    decided += at[p];
+                    if (m[p] < 2.0) /* angles below 1.41 rad: the balls constrain */
+                        cr_assert_eq(at[p], 1, "block %d prec %d pair %d,%d pixel %d: not decided at its least term %.17g",
+                                     blk, pr, px, py, p, m[p]);
+                }
+            }
+        }
+    }
+    cr_assert(decided > checks / 2, "%d of %d decided", decided, checks);
+}
+
+/* ---- the per-channel pair lists of tight channels (anchor_bounds.c enumerate_pairs, issue 13) ---- */
+
+/* Literal list of the pairs of score <= budget (the reference order's sum or max, every pair), sorted. */
+static size_t tight_brute_list(const sol_nm_channel *ch, double budget, sol_nm_pair *out)
+{
+    size_t n = 0;
+    for (int pair = 0; pair < 65536; ++pair) {
+        const double *pal = ch->palettes[pair];
+        double s = 0.0;
+        for (int k = 0; k < 16; ++k) {
+            double v = ch->t[ch->order[k]], m = (pal[0] - v) * (pal[0] - v);
+            for (int i = 1; i < 8; ++i) {
+                double d = (pal[i] - v) * (pal[i] - v);
+                m = d < m ? d : m;
+            }
+            s = ch->use_max ? (m > s ? m : s) : s + m;
+        }
+        if (s <= budget) {
+            out[n].score = s;
+            out[n++].pair = (uint16_t)pair;
+        }
+    }
+    return n;
+}
+
+/* sol_nm_channel_collect on channels with every pixel tight (the optimal search's ordinary lists),
+ * with the AVX2 lattice bound (score_lower_avx2) and the scalar one, and with the mean bound's mask
+ * (sum metric): the same pairs and bit-identical scores as the literal list, for narrow, medium and
+ * wide blocks, flat and two-valued ones, at budgets from the least score to well above it. */
+Test(normalmaps, tight_collect_equals_brute_force_scalar_and_avx2, .timeout = 240)
+{
+    sol_nm_pair *want = malloc(65536 * sizeof *want), *got = malloc(65536 * sizeof *got);
+    cr_assert(want && got);
+    for (int trial = 0; trial < 24; ++trial) {
+        double t[16], c = 1.8 * uniform() - 0.9, w = trial % 4 == 0 ? 0.002 : trial % 4 == 1 ? 0.02 : trial % 4 == 2 ? 0.15 : 0.8;
+        for (int p = 0; p < 16; ++p) {
+            double v = c + w * (uniform() - 0.5);
+            if (trial % 6 == 5)
+                v = c; /* flat */
+            if (trial % 6 == 4)
+                v = p % 3 ? c : c + 2.0 / 255.0; /* two values */
+            t[p] = fmin(1.0, fmax(-1.0, v));
+        }
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        int use_max = trial % 5 == 3;
+        sol_nm_channel ch;
+        sol_nm_channel_init(&ch, t, prec, use_max, 0, 0, 255, 0, 255);
+        double least;
+        sol_nm_channel_argmin(&ch, &least);
+        for (int level = 0; level < 3; ++level) {
+            double budget = level == 0 ? least : least * (level == 1 ? 1.5 : 4.0) + (level == 1 ? 1e-6 : 1e-4);
+            size_t nw = tight_brute_list(&ch, budget, want);
+            for (int simd = 0; simd < 2; ++simd) {
+                sol_nm_simd_disable = !simd;
+                size_t ng = sol_nm_channel_collect(&ch, budget, got);
+                sol_nm_simd_disable = 0;
+                cr_assert_eq(ng, nw, "trial %d level %d simd %d: %zu pairs, want %zu", trial, level, simd, ng, nw);
+                qsort(got, ng, sizeof *got, pair_order);
+                for (size_t j = 0; j < ng; ++j) {
+                    cr_assert_eq(got[j].pair, want[j].pair, "trial %d: pair %d vs %d", trial, got[j].pair, want[j].pair);
+                    cr_assert(memcmp(&got[j].score, &want[j].score, sizeof got[j].score) == 0,
+                              "trial %d pair %d: %.17g vs %.17g", trial, got[j].pair, got[j].score, want[j].score);
+                }
+            }
+        }
+    }
+    free(want);
+    free(got);
+}
+
+/* The mean bound is attained: on a flat channel (16 equal targets c, float decoder, delta ~ 0) a pair
+ * whose nearest entry e lies at d = |e - c| scores 16 d^2 exactly, and f(d) = 16 d^2 is the bound's
+ * own function, so at the budget T = that score the pair sits at the bound's reach D(T) = d. It must
+ * be collected; a reach lowered by 2% (the bound raised) would drop it from the mask. Several pairs
+ * and distances, spans narrow and wide, both modes. */
+Test(normalmaps, mean_bound_is_attained_on_flat_channels)
+{
+    const int pairs[] = {200 << 8 | 100, 100 << 8 | 200, 255 << 8 | 0, 140 << 8 | 120, 30 << 8 | 31, 90 << 8 | 20};
+    const double offsets[] = {0.3, 0.5, 0.45, 0.1};
+    const double(*pal)[8] = sol_nm_palettes(SOL_BC4_INTERP_FLOAT);
+    sol_nm_pair *got = malloc(65536 * sizeof *got);
+    cr_assert(got);
+    for (size_t q = 0; q < sizeof pairs / sizeof *pairs; ++q)
+        for (size_t o = 0; o < sizeof offsets / sizeof *offsets; ++o) {
+            /* c between two entries of the pair, offsets[o] of the gap from the lower */
+            const double *e = pal[pairs[q]];
+            double sorted[8];
+            memcpy(sorted, e, sizeof sorted);
+            for (int i = 1; i < 8; ++i)
+                for (int j = i; j > 0 && sorted[j - 1] > sorted[j]; --j) {
+                    double tmp = sorted[j];
+                    sorted[j] = sorted[j - 1];
+                    sorted[j - 1] = tmp;
+                }
+            int i = 0;
+            while (i < 6 && !(sorted[i + 1] > sorted[i]))
+                ++i;
+            double c = sorted[i] + offsets[o] * (sorted[i + 1] - sorted[i]), t[16];
+            for (int p = 0; p < 16; ++p)
+                t[p] = c;
+            double m = INFINITY;
+            for (int k = 0; k < 8; ++k)
+                m = fmin(m, (e[k] - c) * (e[k] - c));
+            double budget = 0.0;
+            for (int p = 0; p < 16; ++p)
+                budget += m;
+            sol_nm_channel ch;
+            sol_nm_channel_init(&ch, t, SOL_BC4_INTERP_FLOAT, 0, 0, 0, 255, 0, 255);
+            size_t ng = sol_nm_channel_collect(&ch, budget, got), found = 0;
+            for (size_t j = 0; j < ng; ++j)
+                found |= got[j].pair == pairs[q];
+            cr_assert(found, "pair %04x, c %.17g: not collected at its own score %.17g", pairs[q], c, budget);
+        }
+    free(got);
+}
