@@ -2835,3 +2835,119 @@ Test(normalmaps, pair_screen_bound_holds_and_is_close, .timeout = 120)
             cr_assert_eq(close, tried, "case %zu: %d of %d ruled out at 0.99 E", c, close, tried);
     }
 }
+
+/* ---- the per-channel pair lists of tight channels (anchor_bounds.c enumerate_pairs, issue 13) ---- */
+
+/* Literal list of the pairs of score <= budget (the reference order's sum or max, every pair), sorted. */
+static size_t tight_brute_list(const sol_nm_channel *ch, double budget, sol_nm_pair *out)
+{
+    size_t n = 0;
+    for (int pair = 0; pair < 65536; ++pair) {
+        const double *pal = ch->palettes[pair];
+        double s = 0.0;
+        for (int k = 0; k < 16; ++k) {
+            double v = ch->t[ch->order[k]], m = (pal[0] - v) * (pal[0] - v);
+            for (int i = 1; i < 8; ++i) {
+                double d = (pal[i] - v) * (pal[i] - v);
+                m = d < m ? d : m;
+            }
+            s = ch->use_max ? (m > s ? m : s) : s + m;
+        }
+        if (s <= budget) {
+            out[n].score = s;
+            out[n++].pair = (uint16_t)pair;
+        }
+    }
+    return n;
+}
+
+/* sol_nm_channel_collect on channels with every pixel tight (the optimal search's ordinary lists),
+ * with the AVX2 lattice bound (score_lower_avx2) and the scalar one, and with the mean bound's mask
+ * (sum metric): the same pairs and bit-identical scores as the literal list, for narrow, medium and
+ * wide blocks, flat and two-valued ones, at budgets from the least score to well above it. */
+Test(normalmaps, tight_collect_equals_brute_force_scalar_and_avx2, .timeout = 240)
+{
+    sol_nm_pair *want = malloc(65536 * sizeof *want), *got = malloc(65536 * sizeof *got);
+    cr_assert(want && got);
+    for (int trial = 0; trial < 24; ++trial) {
+        double t[16], c = 1.8 * uniform() - 0.9, w = trial % 4 == 0 ? 0.002 : trial % 4 == 1 ? 0.02 : trial % 4 == 2 ? 0.15 : 0.8;
+        for (int p = 0; p < 16; ++p) {
+            double v = c + w * (uniform() - 0.5);
+            if (trial % 6 == 5)
+                v = c; /* flat */
+            if (trial % 6 == 4)
+                v = p % 3 ? c : c + 2.0 / 255.0; /* two values */
+            t[p] = fmin(1.0, fmax(-1.0, v));
+        }
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        int use_max = trial % 5 == 3;
+        sol_nm_channel ch;
+        sol_nm_channel_init(&ch, t, prec, use_max, 0, 0, 255, 0, 255);
+        double least;
+        sol_nm_channel_argmin(&ch, &least);
+        for (int level = 0; level < 3; ++level) {
+            double budget = level == 0 ? least : least * (level == 1 ? 1.5 : 4.0) + (level == 1 ? 1e-6 : 1e-4);
+            size_t nw = tight_brute_list(&ch, budget, want);
+            for (int simd = 0; simd < 2; ++simd) {
+                sol_nm_simd_disable = !simd;
+                size_t ng = sol_nm_channel_collect(&ch, budget, got);
+                sol_nm_simd_disable = 0;
+                cr_assert_eq(ng, nw, "trial %d level %d simd %d: %zu pairs, want %zu", trial, level, simd, ng, nw);
+                qsort(got, ng, sizeof *got, pair_order);
+                for (size_t j = 0; j < ng; ++j) {
+                    cr_assert_eq(got[j].pair, want[j].pair, "trial %d: pair %d vs %d", trial, got[j].pair, want[j].pair);
+                    cr_assert(memcmp(&got[j].score, &want[j].score, sizeof got[j].score) == 0,
+                              "trial %d pair %d: %.17g vs %.17g", trial, got[j].pair, got[j].score, want[j].score);
+                }
+            }
+        }
+    }
+    free(want);
+    free(got);
+}
+
+/* The mean bound is attained: on a flat channel (16 equal targets c, float decoder, delta ~ 0) a pair
+ * whose nearest entry e lies at d = |e - c| scores 16 d^2 exactly, and f(d) = 16 d^2 is the bound's
+ * own function, so at the budget T = that score the pair sits at the bound's reach D(T) = d. It must
+ * be collected; a reach lowered by 2% (the bound raised) would drop it from the mask. Several pairs
+ * and distances, spans narrow and wide, both modes. */
+Test(normalmaps, mean_bound_is_attained_on_flat_channels)
+{
+    const int pairs[] = {200 << 8 | 100, 100 << 8 | 200, 255 << 8 | 0, 140 << 8 | 120, 30 << 8 | 31, 90 << 8 | 20};
+    const double offsets[] = {0.3, 0.5, 0.45, 0.1};
+    const double(*pal)[8] = sol_nm_palettes(SOL_BC4_INTERP_FLOAT);
+    sol_nm_pair *got = malloc(65536 * sizeof *got);
+    cr_assert(got);
+    for (size_t q = 0; q < sizeof pairs / sizeof *pairs; ++q)
+        for (size_t o = 0; o < sizeof offsets / sizeof *offsets; ++o) {
+            /* c between two entries of the pair, offsets[o] of the gap from the lower */
+            const double *e = pal[pairs[q]];
+            double sorted[8];
+            memcpy(sorted, e, sizeof sorted);
+            for (int i = 1; i < 8; ++i)
+                for (int j = i; j > 0 && sorted[j - 1] > sorted[j]; --j) {
+                    double tmp = sorted[j];
+                    sorted[j] = sorted[j - 1];
+                    sorted[j - 1] = tmp;
+                }
+            int i = 0;
+            while (i < 6 && !(sorted[i + 1] > sorted[i]))
+                ++i;
+            double c = sorted[i] + offsets[o] * (sorted[i + 1] - sorted[i]), t[16];
+            for (int p = 0; p < 16; ++p)
+                t[p] = c;
+            double m = INFINITY;
+            for (int k = 0; k < 8; ++k)
+                m = fmin(m, (e[k] - c) * (e[k] - c));
+            double budget = 0.0;
+            for (int p = 0; p < 16; ++p)
+                budget += m;
+            sol_nm_channel ch;
+            sol_nm_channel_init(&ch, t, SOL_BC4_INTERP_FLOAT, 0, 0, 0, 255, 0, 255);
+            size_t ng = sol_nm_channel_collect(&ch, budget, got), found = 0;
+            for (size_t j = 0; j < ng; ++j)
+                found |= got[j].pair == pairs[q];
+            cr_assert(found, "pair %04x, c %.17g: not collected at its own score %.17g", pairs[q], c, budget);
+        }
+    free(got);
+}

@@ -153,6 +153,53 @@ Test(scene_gltf, normal_and_base_colour_textures_are_sampled_and_planned)
     cleanup();
 }
 
+/* glTF normalTexture.scale multiplies the sampled normal's x and y before renormalising (glTF 2.0,
+ * material.normalTextureInfo): at 0.5 the quad's centre normal is normalize(0.18 T + 0.24 B + 0.8 N);
+ * at 0 the map is flat (the geometric normal -z); at -1 the relief flips. A scale beyond a double's
+ * range is refused (assimp's JSON reader rejects the file). */
+Test(scene_gltf, normal_texture_scale_scales_xy_before_renormalising)
+{
+    use_dir("nscale");
+    write_textures();
+    const struct {
+        const char *scale;
+        double t, b, n;
+    } cases[] = {{"0.5", 0.18, 0.24, 0.8}, {"0", 0, 0, 1}, {"-1", -0.36, -0.48, 0.8}};
+    for (int k = 0; k < 3; ++k) {
+        char mat[160];
+        snprintf(mat, sizeof mat, "{\"name\":\"tiles\",\"normalTexture\":{\"index\":0,\"scale\":%s}}", cases[k].scale);
+        write_quad_gltf("quad.gltf", mat);
+        sol_scene s;
+        sol_scene_error e;
+        cr_assert_eq(sol_scene_load(in_dir("quad.gltf"), &s, &e), SOL_OK, "%s", e.message);
+        double pos[3] = {0, 0, -3}, at[3] = {0, 0, 0};
+        memcpy(s.camera.position, pos, sizeof pos);
+        memcpy(s.camera.look_at, at, sizeof at);
+        s.camera.fov_deg = 40;
+        sol_scene_plan p;
+        cr_assert_eq(sol_scene_plan_build(&s, &p), SOL_OK);
+        sol_render_options o = {32, 18, 1, 0};
+        sol_render_result ref;
+        cr_assert_eq(sol_scene_render(&s, &p, &o, &ref, NULL), SOL_OK);
+        const float *n = &ref.normals.data[3 * (9 * 32 + 16)];
+        double len = sqrt(cases[k].t * cases[k].t + cases[k].b * cases[k].b + cases[k].n * cases[k].n);
+        /* world: T = +x, B = +y, N = -z */
+        cr_expect(fabs(n[0] - cases[k].t / len) < 0.01 && fabs(n[1] - cases[k].b / len) < 0.01 &&
+                      fabs(n[2] + cases[k].n / len) < 0.01,
+                  "scale %s: normal (%f, %f, %f)", cases[k].scale, n[0], n[1], n[2]);
+        sol_render_result_free(&ref);
+        sol_scene_free(&s);
+    }
+    write_quad_gltf("quad.gltf", "{\"name\":\"tiles\",\"normalTexture\":{\"index\":0,\"scale\":1e999}}");
+    sol_scene s;
+    sol_scene_error e;
+    sol_status st = sol_scene_load(in_dir("quad.gltf"), &s, &e);
+    cr_expect_neq(st, SOL_OK, "an infinite normalTexture.scale was accepted");
+    if (st == SOL_OK)
+        sol_scene_free(&s);
+    cleanup();
+}
+
 /* ClearCoatTest (assimp-testmodels, unmodified): RibsNormal.png is a normal texture of material 9
  * ("BaseNorm_Base"), PartialCoating_Alpha.png an 8-bit base-colour texture of material 5; the
  * JPEG normal texture (PlasticWrap_normals.jpg) is not read. */

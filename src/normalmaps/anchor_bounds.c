@@ -265,6 +265,67 @@ static inline double score_lower(const sol_nm_channel *ch, double al, double s, 
     return sum;
 }
 
+/* score_lower's bound for 4 visiting positions per instruction (AVX2), over all 16 pixels at once: the
+ * same per-pixel terms by the same operations (the nearest lattice point by rounding, floor(u + 0.5)
+ * being (int)(u + 0.5) for u > 0, clamped to 0..divisions; the distance lowered by delta and clamped
+ * at 0, squared; the 6-value mode's -1 and +1 by min; 0 for loose pixels; no FMA), summed (or their
+ * max) in lanes and lowered by a relative 1e-12: a sum of 16 non-negative terms in another order
+ * differs from score_pair's by at most ~16 ulps relative, so the lowered value stays below the
+ * computed score even where the bound equals the score (a flat channel served by -1 or +1). *used is
+ * 16: with the whole sum the skip after a rejection (see enumerate_pairs) jumps over the high anchors
+ * the lattice bound rules out, instead of the few that a sum stopped just above the budget allows.
+ * enumerate_pairs keeps exactly the pairs whose score (score_pair) fits the budget, whichever valid
+ * bound filtered them, so the lists are the scalar form's (the tests compare both with the brute
+ * force). */
+typedef struct lattice_lanes {
+    double t[16], tight[16], six_min[16]; /* in visiting order; tight: all-ones bits or 0 */
+} lattice_lanes;
+
+static void lattice_lanes_init(const sol_nm_channel *ch, lattice_lanes *ll)
+{
+    for (int k = 0; k < 16; ++k) {
+        int p = ch->order[k];
+        double t = ch->t[p], lo = (t + 1.0) * (t + 1.0), hi = (t - 1.0) * (t - 1.0);
+        uint64_t bits = (ch->loose >> p) & 1 ? 0 : ~UINT64_C(0);
+        ll->t[k] = t;
+        memcpy(&ll->tight[k], &bits, sizeof bits);
+        ll->six_min[k] = lo < hi ? lo : hi;
+    }
+}
+
+#if LOOSE_AVX2
+static __attribute__((target("avx2"))) double score_lower_avx2(const sol_nm_channel *ch, const lattice_lanes *ll,
+                                                               double al, double s, int divisions, int six,
+                                                               double delta, double budget, int *used)
+{
+    const __m256d inv = _mm256_set1_pd(s > 0.0 ? 1.0 / s : 0.0), vs = _mm256_set1_pd(s), val = _mm256_set1_pd(al);
+    const __m256d zero = _mm256_setzero_pd(), half = _mm256_set1_pd(0.5), top = _mm256_set1_pd((double)divisions);
+    const __m256d vd = _mm256_set1_pd(delta), sign = _mm256_set1_pd(-0.0);
+    __m256d acc = zero;
+    for (int k = 0; k < 16; k += 4) {
+        __m256d t = _mm256_loadu_pd(ll->t + k);
+        __m256d u = _mm256_mul_pd(_mm256_sub_pd(t, val), inv);
+        /* (int)(u + 0.5) for u > 0, else 0; then at most divisions (u <= 0 gives floor(0.5) = 0) */
+        __m256d kk = _mm256_floor_pd(_mm256_add_pd(_mm256_max_pd(u, zero), half));
+        kk = _mm256_min_pd(kk, top);
+        __m256d d = _mm256_sub_pd(_mm256_andnot_pd(sign, _mm256_sub_pd(t, _mm256_add_pd(val, _mm256_mul_pd(kk, vs)))), vd);
+        d = _mm256_max_pd(d, zero);
+        __m256d term = _mm256_mul_pd(d, d);
+        if (six)
+            term = _mm256_min_pd(term, _mm256_loadu_pd(ll->six_min + k));
+        term = _mm256_and_pd(term, _mm256_loadu_pd(ll->tight + k));
+        acc = ch->use_max ? _mm256_max_pd(acc, term) : _mm256_add_pd(acc, term);
+    }
+    __m128d h = ch->use_max ? _mm_max_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1))
+                            : _mm_add_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1));
+    h = ch->use_max ? _mm_max_sd(h, _mm_unpackhi_pd(h, h)) : _mm_add_sd(h, _mm_unpackhi_pd(h, h));
+    double sum = _mm_cvtsd_f64(h) * (1.0 - 1e-12);
+    (void)budget;
+    *used = 16;
+    return sum;
+}
+#endif
+
 /* ---- enumeration of the pairs that can score <= budget ----
  *
  * Tight terms: a pair can only score <= budget if the smallest and the largest target each lie
@@ -295,6 +356,9 @@ static double anchor_value(int code)
     return 2.0 * code / 255.0 - 1.0;
 }
 
+/* divisions / k for the 8-value mode (the same correctly rounded quotients, folded at compile time). */
+static const double scale7[8] = {0.0, 7.0 / 1, 7.0 / 2, 7.0 / 3, 7.0 / 4, 7.0 / 5, 7.0 / 6, 7.0 / 7};
+
 /* High anchors H in [hmin, hmax] whose palette (low anchor L, D intervals) has an entry within r of t. */
 static anchor_mask reachable(double t, int low, int divisions, int six_value, double r, int hmin, int hmax)
 {
@@ -305,7 +369,7 @@ static anchor_mask reachable(double t, int low, int divisions, int six_value, do
         return m;
     }
     for (int k = 1; k <= divisions; ++k) {
-        double scale = (double)divisions / k;
+        double scale = divisions == 7 ? scale7[k] : (double)divisions / k;
         double ah_lo = al + scale * (t - r - al), ah_hi = al + scale * (t + r - al);
         int h_lo = (int)ceil((ah_lo + 1.0) * 127.5 - 1e-6), h_hi = (int)floor((ah_hi + 1.0) * 127.5 + 1e-6);
         if (h_lo < hmin)
@@ -326,6 +390,69 @@ static double rounding_delta(sol_bc4_precision precision)
     if (precision == SOL_BC4_INTERP_16BIT)
         return 1.0 / 65535.0;
     return 0.0;
+}
+
+/* The mean bound of the sum metric (every pixel tight). For any point c, the distance to the set S of
+ * a pair's decoded entries is 1-Lipschitz: dist(t_p, S) >= dist(c, S) - a_p with a_p = |t_p - c|. So
+ * the pair's score sum_p dist(t_p, S)^2 >= f(dist(c, S)) with f(d) = sum_p max(0, d - a_p)^2, which
+ * is non-decreasing in d. A pair can score <= T only if f(dist(c, S)) <= T, i.e. dist(c, S) <= D(T),
+ * D(T) the largest d with f(d) <= T: some entry within D(T) of c, that is some lattice point
+ * A(L) + k s within D(T) + delta of c (the decoder moves each entry by at most delta; reachable()
+ * also covers the anchors themselves and the 6-value mode's -1 and +1). c is the targets' mean, where
+ * f grows fastest: for a block of width w the mask keeps the lattice points within about
+ * sqrt(T / 16) + w / 2 of it, where the three extreme pixels' masks keep those within sqrt(T) of all
+ * three (an interval of width 2 sqrt(T) - w): on the narrow blocks of smooth maps about 4x fewer high
+ * anchors per low anchor, each of which the lattice bound would otherwise reject on its own (issue 13:
+ * the lists' enumeration was ~70% of the optimal encoder's time on the terrain-derived map, perf).
+ * D(T) is found by bisection on f in doubles, from T raised by a relative 1e-9, and raised by a
+ * relative 1e-9 and 1e-12 absolute: far above the rounding of f, of a_p and of the computed scores,
+ * so only pairs that cannot score <= T leave the mask, and the pairs collected (and the argmin) are
+ * the same. */
+typedef struct mean_bound {
+    double c, a[16];
+    double tb, reach; /* the last budget asked and its D, with the slack above */
+} mean_bound;
+
+static void mean_bound_init(mean_bound *mb, const double t[16])
+{
+    double c = 0.0;
+    for (int p = 0; p < 16; ++p)
+        c += t[p];
+    c /= 16.0;
+    mb->c = c;
+    for (int p = 0; p < 16; ++p)
+        mb->a[p] = fabs(t[p] - c);
+    mb->tb = -1.0;
+    mb->reach = INFINITY;
+}
+
+static double mean_bound_f(const mean_bound *mb, double d)
+{
+    double f = 0.0;
+    for (int p = 0; p < 16; ++p) {
+        double e = d - mb->a[p];
+        f += e > 0.0 ? e * e : 0.0;
+    }
+    return f;
+}
+
+/* D(tb) with its slack (see above), cached for the last tb. */
+static double mean_bound_reach(mean_bound *mb, double tb)
+{
+    if (tb == mb->tb)
+        return mb->reach;
+    const double t_up = tb * (1.0 + 1e-9);
+    double lo = 0.0, hi = sqrt(t_up) + 2.0; /* f(hi) >= (hi - 2)^2 = t_up: every a_p <= 2 */
+    for (int it = 0; it < 60 && hi - lo > 1e-13 * hi; ++it) {
+        double mid = 0.5 * (lo + hi);
+        if (mean_bound_f(mb, mid) <= t_up)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    mb->tb = tb;
+    mb->reach = hi * (1.0 + 1e-9) + 1e-12;
+    return mb->reach;
 }
 
 /* Visits candidate pairs: argmin (budget shrinks to the best score; *best_pair updated with the
@@ -378,6 +505,20 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
             }
         return n;
     }
+    /* the lattice bound 4 pixels at a time where AVX2 runs (score_lower_avx2) */
+    lattice_lanes lat_ll;
+#if LOOSE_AVX2
+    const int lat = !sol_nm_simd_disable && __builtin_cpu_supports("avx2");
+#else
+    const int lat = 0;
+#endif
+    if (lat)
+        lattice_lanes_init(ch, &lat_ll);
+    /* the mean bound (see mean_bound): sum metric, every pixel tight */
+    const int meanb = !ch->use_max && ch->loose == 0;
+    mean_bound mb = {0.0, {0.0}, -1.0, INFINITY};
+    if (meanb)
+        mean_bound_init(&mb, ch->t);
     for (int six = 0; six < 2; ++six) {
         /* 8-value: e0 > e1, low anchor e1; 6-value: e0 <= e1, low anchor e0 */
         int low_lo = six ? ch->e0_lo : ch->e1_lo, low_hi = six ? ch->e0_hi : ch->e1_hi;
@@ -401,17 +542,27 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
             if (!((ch->loose >> ch->order[0]) & 1) && anchor_value(low) > t0 + sqrt(tb) + delta &&
                 (!six || (t0 + 1.0) * (t0 + 1.0) > tb))
                 continue;
-            /* the three extreme pixels' reachable masks (a loose pixel constrains nothing) */
+            const int divisions = six ? 5 : 7;
             mask_set_range(&m, hmin, high_hi);
+            if (meanb) { /* the mean bound's mask first: the most selective on narrow blocks */
+                double reach = mean_bound_reach(&mb, tb) + delta;
+                /* 8-value entries are >= A(low) - delta: none within reach of c if A(low) is above c + reach
+                 * (6-value: unless -1 or +1 is within reach, which reachable() then lets through) */
+                if (!six && anchor_value(low) > mb.c + reach)
+                    continue;
+                anchor_mask b = reachable(mb.c, low, divisions, six, reach, hmin, high_hi);
+                for (int w = 0; w < 4; ++w)
+                    m.w[w] &= b.w[w];
+            }
+            /* the three extreme pixels' reachable masks (a loose pixel constrains nothing) */
             double r = sqrt(tb) + delta;
             for (int k = 0; k < 3 && (m.w[0] | m.w[1] | m.w[2] | m.w[3]); ++k) {
                 if ((ch->loose >> ch->order[k]) & 1)
                     continue;
-                anchor_mask b = reachable(ch->t[ch->order[k]], low, six ? 5 : 7, six, r, hmin, high_hi);
+                anchor_mask b = reachable(ch->t[ch->order[k]], low, divisions, six, r, hmin, high_hi);
                 for (int w = 0; w < 4; ++w)
                     m.w[w] &= b.w[w];
             }
-            const int divisions = six ? 5 : 7;
             int next_high = 0;
             if (tb != skip_budget) { /* argmin: the budget shrank */
                 skip_budget = tb;
@@ -429,7 +580,12 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
                     int pair = six ? (low << 8 | high) : (high << 8 | low);
                     double al = anchor_value(low), spacing = (anchor_value(high) - al) / divisions;
                     int used;
+#if LOOSE_AVX2
+                    double lb = lat ? score_lower_avx2(ch, &lat_ll, al, spacing, divisions, six, delta, tb, &used)
+                                    : score_lower(ch, al, spacing, divisions, six, delta, tb, &used);
+#else
                     double lb = score_lower(ch, al, spacing, divisions, six, delta, tb, &used);
+#endif
                     if (lb > tb) {
                         /* the lattice bound's pixel distances move by at most one code (2 / 255) per
                          * step of the high anchor, so the L2 norm of the `used` pixels' distances (or

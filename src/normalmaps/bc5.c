@@ -563,20 +563,20 @@ static AVX2_FN void quick_terms_avx2(const channel_side *xs, const channel_side 
 }
 #endif
 
+/* nz[k] = n[order[k]][2] (set once per block by the caller: the AVX2 form's loads). */
 static double joint_objective_quick(const channel_side *xs, const channel_side *ys, const double n[16][3],
-                                    const int order[16], const double away_off[16], int use_max, double budget,
-                                    uint64_t *work)
+                                    const int order[16], const double nz[16], const double away_off[16], int use_max,
+                                    double budget, uint64_t *work)
 {
 #if SEARCH_AVX2
     if (search_avx2()) { /* every pixel's term at once, then the sum and the stop as below */
-        double nz[16], e2[16], s = 0.0;
-        for (int k = 0; k < 16; ++k)
-            nz[k] = n[order[k]][2];
+        double e2[16], s = 0.0;
         quick_terms_avx2(xs, ys, nz, away_off, e2);
         fold_terms_until(&s, e2, 16, use_max, budget, work);
         return s;
     }
 #endif
+    (void)nz;
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
         ++*work;
@@ -2733,19 +2733,18 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     sol_nm_channel_init(&cx, tx, precision, use_max, 0, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi);
     sol_nm_channel_init(&cy, ty, precision, use_max, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi);
     double sx_min, sy_min;
-    /* the least-squares pairs. A flat channel (16 equal targets: flat blocks, equal normals, a rim
-     * block on an axis) on the full range with the sum metric goes to bc4_common.c's search: the same
-     * pair and score as sol_nm_channel_argmin (its documented contract, tested), decided by a walk
-     * over the entry values instead of scoring every tied pair (x = -1: 33151 pairs) */
+    /* the least-squares pairs. On the full range with the sum metric they come from bc4_common.c's
+     * search: the same pair and score as sol_nm_channel_argmin, bit for bit (its documented contract,
+     * tested against the brute force and against sol_nm_channel_argmin on random, flat, few-valued and
+     * map blocks), at a few microseconds a channel instead of the enumeration's ~100 (issue 13: the two
+     * argmin enumerations were ~30% of the optimal encoder's time on the terrain-derived map, perf).
+     * Flat channels (16 equal targets: flat blocks, equal normals, a rim block on an axis) are decided
+     * there by a walk over the entry values instead of scoring every tied pair (x = -1: 33151 pairs). */
     const int full = r->x0_lo == 0 && r->x0_hi == 255 && r->x1_lo == 0 && r->x1_hi == 255 && r->y0_lo == 0 &&
                      r->y0_hi == 255 && r->y1_lo == 0 && r->y1_hi == 255;
-    int flat_x = full && !use_max, flat_y = flat_x;
-    for (int p = 1; p < 16; ++p) {
-        flat_x &= tx[p] == tx[0];
-        flat_y &= ty[p] == ty[0];
-    }
-    int px = flat_x ? sol_nm_bc4_common(tx, precision, &sx_min) : sol_nm_channel_argmin(&cx, &sx_min);
-    int py = flat_y ? sol_nm_bc4_common(ty, precision, &sy_min) : sol_nm_channel_argmin(&cy, &sy_min);
+    const int common = full && !use_max;
+    int px = common ? sol_nm_bc4_common(tx, precision, &sx_min) : sol_nm_channel_argmin(&cx, &sx_min);
+    int py = common ? sol_nm_bc4_common(ty, precision, &sy_min) : sol_nm_channel_argmin(&cy, &sy_min);
     const double(*pal)[8] = cx.palettes;
     double best = joint_objective(pal[px], pal[py], n, use_max, INFINITY, NULL, NULL);
     uint64_t candidates = 1;
@@ -2867,9 +2866,11 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             order[p] = p;
         }
         order_worst_first(pixel_err, order);
-        double away_off[16]; /* theta0^2 of the pixels pointing away, in visiting order */
-        for (int k = 0; k < 16; ++k)
+        double away_off[16], nz_ord[16]; /* theta0^2 of the pixels pointing away, and nz, in visiting order */
+        for (int k = 0; k < 16; ++k) {
             away_off[k] = aw.off[order[k]];
+            nz_ord[k] = n[order[k]][2];
+        }
         /* the y list's channel sides for the quick bound (without memory, the search runs without it) */
         int quick = 1;
         if (ny > ws->yside_cap) {
@@ -3054,7 +3055,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                  * the value-reduced lists (blocks near their hemisphere bound) take 1e-12 instead,
                  * which still covers the different summation orders of bound and objective */
                 double margin = best * (1.0 + (valued ? 1e-12 : BOUND_SLACK));
-                if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, away_off, use_max, margin, &work) >= margin)
+                if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, nz_ord, away_off, use_max, margin, &work) >= margin)
                     continue;
                 if (quick && aw.mask && (away_tried < 1024 || 8 * away_hits >= away_tried || (candidates & 15) == 0)) {
                     ++away_tried;
@@ -3395,7 +3396,7 @@ static double window_quick(const channel_side *xs, const channel_side *ys, const
         return window_quick_avx2(xs, ys, nz, use_max, budget, work);
 #endif
     static const double away_off[16] = {0};
-    return joint_objective_quick(xs, ys, n, order, away_off, use_max, budget, work);
+    return joint_objective_quick(xs, ys, n, order, nz, away_off, use_max, budget, work);
 }
 
 /* The quick bound of up to 4 consecutive candidates of one x pair (y list positions j..j+lanes-1)

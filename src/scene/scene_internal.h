@@ -30,6 +30,9 @@ typedef struct sol_mesh_texture {
 typedef struct sol_mesh_material {
     char name[64];
     int base_tex, normal_tex; /* indices into sol_mesh.tex, -1 = none */
+    /* glTF normalTexture.scale (default 1): the sampled tangent-space normal's x and y are
+     * multiplied by it before renormalising (glTF 2.0 spec, material.normalTextureInfo) */
+    double normal_scale;
     /* KHR_materials_anisotropy (read from the .gltf JSON, scene_mesh.c): alpha = roughness^2,
      * strength and rotation (radians, from the tangent towards the bitangent) */
     int aniso;

@@ -7,8 +7,8 @@
  * camera and the punctual lights (KHR_lights_punctual). A file assimp cannot read, or whose
  * vertices are not finite, or that holds no triangle, is rejected with assimp's message.
  * Base-colour textures (glTF baseColorTexture, else the diffuse texture, e.g. OBJ map_Kd) and
- * normal textures (glTF normalTexture) that are PNG files beside the model are loaded (a missing
- * one is an error naming it), with the first UV channel and assimp's tangent frames
+ * normal textures (glTF normalTexture, with its scale) that are PNG files beside the model are
+ * loaded (a missing one is an error naming it), with the first UV channel and assimp's tangent frames
  * (aiProcess_CalcTangentSpace); assimp's aiProcess_TransformUVCoords bakes KHR_texture_transform
  * (offset, scale, rotation) into the UVs. The renderer samples them after the planned effects
  * (albedo-*, normal-map-bc5) prepared them. Embedded or non-PNG images are not read (the colour
@@ -329,13 +329,35 @@ static sol_status load_texture(const struct aiMaterial *mat, enum aiTextureType 
     }
     t->normal = normal;
     t->material = mi;
-    snprintf(t->name, sizeof t->name, "%s", name.data);
+    snprintf(t->name, sizeof t->name, "%.127s", name.data);
     *index = m->tex_count++;
     return SOL_OK;
 }
 
+/* glTF normalTexture.scale, which assimp's glTF 2.0 importer keeps as the material property
+ * "$tex.scale" of the first normals texture (AI_MATKEY_GLTF_TEXTURE_SCALE in assimp/GltfMaterial.h);
+ * 1 when absent (the spec's default, and every non-glTF file). Any finite value is accepted, as the
+ * spec puts no range on it (0 flattens the map, a negative one flips its relief). A number beyond a
+ * double's range is already refused by assimp's JSON reader; a non-finite value reaching here anyway
+ * is an error naming its JSON pointer. */
+static sol_status read_normal_scale(const struct aiMaterial *mat, int i, sol_mesh_material *mm, char *msg,
+                                    size_t msg_size)
+{
+    ai_real scale = 1;
+    unsigned one = 1;
+    mm->normal_scale = 1;
+    if (aiGetMaterialFloatArray(mat, "$tex.scale", aiTextureType_NORMALS, 0, &scale, &one) != aiReturn_SUCCESS)
+        return SOL_OK;
+    if (!isfinite(scale)) {
+        snprintf(msg, msg_size, "/materials/%d/normalTexture/scale: must be finite", i);
+        return SOL_ERR_NONFINITE;
+    }
+    mm->normal_scale = scale;
+    return SOL_OK;
+}
+
 /* The model's materials: names, base-colour textures (glTF baseColorTexture, else the diffuse
- * one, e.g. OBJ map_Kd) and normal textures (glTF normalTexture). */
+ * one, e.g. OBJ map_Kd) and normal textures (glTF normalTexture, with its scale). */
 static sol_status load_materials(const struct aiScene *sc, const char *model, sol_mesh *m, char *msg, size_t msg_size)
 {
     if (sc->mNumMaterials == 0)
@@ -358,6 +380,8 @@ static sol_status load_materials(const struct aiScene *sc, const char *model, so
             st = load_texture(mat, aiTextureType_DIFFUSE, 0, model, (int)i, m, &mm->base_tex, msg, msg_size);
         if (st == SOL_OK)
             st = load_texture(mat, aiTextureType_NORMALS, 1, model, (int)i, m, &mm->normal_tex, msg, msg_size);
+        if (st == SOL_OK)
+            st = read_normal_scale(mat, (int)i, mm, msg, msg_size);
         if (st != SOL_OK)
             return st;
     }

@@ -877,6 +877,8 @@ static int gbuffer_sample(const frame *f, double sx, double sy, surface *sf)
     if (mm && mm->normal_tex >= 0 && has_tan && pmesh && pmesh->tex[mm->normal_tex].data) {
         double tn[3]; /* assimp's v is up; the image's row 0 is the top */
         tex_sample(&pmesh->tex[mm->normal_tex], h.mh.uv[0], 1 - h.mh.uv[1], tn);
+        tn[0] *= mm->normal_scale; /* glTF normalTexture.scale: (x s, y s, z), renormalised below */
+        tn[1] *= mm->normal_scale;
         for (int i = 0; i < 3; ++i)
             sf->n[i] = tn[0] * sf->t_axis[i] + tn[1] * sf->b_axis[i] + tn[2] * h.n[i];
         if (v_norm(sf->n) == 0 || sol_dot3(sf->n, h.n) <= 0)
