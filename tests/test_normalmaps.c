@@ -2836,6 +2836,120 @@ Test(normalmaps, pair_screen_bound_holds_and_is_close, .timeout = 120)
     }
 }
 
+/* The survey block the search still left bounded at the default work limit (0.7 s, 0.57 million
+ * candidates): a cone of 2 rad pointing away, max metric, 8-bit decoder (case 0). Its optimum is set
+ * by one pixel pointing nearly straight away (nz = -0.99): the decode nearest that pixel's rim
+ * direction, with thousands of x pairs and tens of thousands of y pairs holding it (exact ties); the
+ * pixel floor of bc5.c finds the enumeration's first candidate attaining that pixel's least term and
+ * proves it. Reference: the search before the floor with a work limit of 2^34 (2.8 s, 4865774
+ * candidates: error 1.4400040151105158, anchors 0,42,0,4), and literal brute force in a +-2 window
+ * around the result. Cases 1-2: the same cone with the 16-bit and exact decoders (proven before the
+ * floor, in 0.3 s; reference: that search), now decided the same way, with the same anchors. */
+Test(normalmaps, floored_survey_blocks_are_proven_exactly)
+{
+    static const struct {
+        sol_bc4_precision precision;
+        double error;
+        int anchors[4];
+    } cases[] = {
+        {SOL_BC4_INTERP_8BIT, 1.4400040151105158, {0, 42, 0, 4}},
+        {SOL_BC4_INTERP_16BIT, 1.4400040147885624, {0, 52, 123, 1}},
+        {SOL_BC4_INTERP_FLOAT, 1.4400040147885635, {238, 24, 131, 4}},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c)
+        expect_survey_case(6, 2.0, SOL_BC5_MAX, cases[c].precision, cases[c].error, cases[c].anchors, c);
+}
+
+/* A pixel's term as the objective computes it for the decode (a, b): the squared angle between
+ * (a, b, z rebuilt) and n (sol_angle3). */
+static double decode_term(double a, double b, const double n[3])
+{
+    double zz = 1.0 - a * a - b * b, u[3] = {a, b, zz > 0.0 ? sqrt(zz) : 0.0}, e = sol_angle3(u, n);
+    return e * e;
+}
+
+/* The pixel floor (bc5.c, max metric) is exact: for a candidate's values and a pixel whose least term
+ * over the 64 decodes is m (literal, as the objective computes it), it decides (every decode at or
+ * above the incumbent) at incumbent m and never at the next double above m (one decode is below it),
+ * so a rule raised by 2% (or by one ulp) fails the second check and a looser one the first. Pixels:
+ * the survey's cones, arcs and rims (pointing away, at the rim, just below it, up), the axes and
+ * near-axis directions, straight up and down, denormal offsets; pairs: the survey optima and their
+ * +-2 neighbours, random pairs, the 6-value pair (0, 255); every precision. The floor may decline
+ * (ball constraining nothing: terms near (pi / 2)^2 or above, straight down), never wrongly decide. */
+Test(normalmaps, pixel_floor_is_exact, .timeout = 120)
+{
+    static const double special[][3] = {
+        {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {1, 1e-9, 0}, {1e-300, -1, 0},
+        {0.6, 0.8, -1e-6}, {0.6, -0.8, 1e-6}, {0.07, -0.1, -0.99}, {1e-9, 1e-9, -1}, {0.3, 0.4, 0.866},
+        {-0.5, 0.5, -0.7071}, {4.9e-324, 1, 0}, {0.01, 0.0, -0.99995},
+    };
+    unsigned long long s = 12345;
+    int checks = 0, decided = 0;
+    for (int blk = 0; blk < 10; ++blk) {
+        double raw[16][3], n[16][3];
+        if (blk < 6) {
+            static const int fam[6] = {6, 0, 3, 7, 2, 6};
+            survey_block(fam[blk], blk == 5 ? 0.3 : 2.0, raw);
+        } else if (blk == 6) {
+            memcpy(raw, special, sizeof raw);
+        } else {
+            for (int p = 0; p < 16; ++p)
+                for (int c = 0; c < 3; ++c) {
+                    s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+                    raw[p][c] = (double)(s >> 11) / 9007199254740992.0 * 2.0 - 1.0;
+                }
+            raw[blk][2] = blk == 7 ? 0.0 : -fabs(raw[blk][2]); /* a rim pixel, pixels pointing away */
+        }
+        cr_assert_eq(sol_nm_unit_normals(raw, n), SOL_OK);
+        for (int pr = 0; pr < 3; ++pr) {
+            const double(*pal)[8] = sol_nm_palettes((sol_bc4_precision)pr);
+            for (int t = 0; t < 12; ++t) {
+                int px, py;
+                if (t == 0) {
+                    px = py = 0x00ff;
+                } else if (t < 4) { /* the block 0 optimum and neighbours */
+                    px = (0 << 8 | 42) + (t - 2);
+                    py = (0 << 8 | 4) + (t - 2) * 256 + (t == 3);
+                } else {
+                    s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+                    px = (int)(s >> 20) & 0xffff;
+                    py = (int)(s >> 40) & 0xffff;
+                }
+                px &= 0xffff;
+                py &= 0xffff;
+                double m[16], up[16], far[16];
+                for (int p = 0; p < 16; ++p) {
+                    m[p] = INFINITY;
+                    for (int i = 0; i < 8; ++i)
+                        for (int j = 0; j < 8; ++j) {
+                            double e = decode_term(pal[px][i], pal[py][j], n[p]);
+                            m[p] = e < m[p] ? e : m[p];
+                        }
+                    up[p] = nextafter(m[p], INFINITY);
+                    far[p] = m[p] * 1.02;
+                }
+                const sol_bc4_precision prec = (sol_bc4_precision)pr;
+                int at[16], above[16], above2[16];
+                cr_assert(sol_nm_floor_rules_out(n, m, prec, px, py, at) == 0 &&
+                              sol_nm_floor_rules_out(n, up, prec, px, py, above) == 0 &&
+                              sol_nm_floor_rules_out(n, far, prec, px, py, above2) == 0,
+                          "out of memory");
+                for (int p = 0; p < 16; ++p) {
+                    cr_assert(above[p] == 0 && above2[p] == 0,
+                              "block %d prec %d pair %d,%d pixel %d: decided above its least term %.17g", blk, pr, px,
+                              py, p, m[p]);
+                    ++checks;
+                    decided += at[p];
+                    if (m[p] < 2.0) /* angles below 1.41 rad: the balls constrain */
+                        cr_assert_eq(at[p], 1, "block %d prec %d pair %d,%d pixel %d: not decided at its least term %.17g",
+                                     blk, pr, px, py, p, m[p]);
+                }
+            }
+        }
+    }
+    cr_assert(decided > checks / 2, "%d of %d decided", decided, checks);
+}
+
 /* ---- the per-channel pair lists of tight channels (anchor_bounds.c enumerate_pairs, issue 13) ---- */
 
 /* Literal list of the pairs of score <= budget (the reference order's sum or max, every pair), sorted. */

@@ -736,6 +736,7 @@ typedef struct search_workspace {
     struct value_mask *vtab; /* VALUE_CODES entries */
     sol_nm_couple *couple;   /* the coupled row bounds' scratch (bc5_couple.c), allocated on demand */
     struct pair_screen *screen; /* the pair screen's tables (see there), allocated on demand */
+    struct pixel_floor *floor;  /* the pixel floor's value sets (see there), allocated on demand */
     uint32_t vgen;
     struct key_mask *ktab; /* merge_keyed's per-value masks (VALUE_CODES entries), allocated on demand */
     uint32_t kgen;
@@ -1656,6 +1657,241 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
     sc->start[0] = 0;
     *work += 2 * passes;
     return 1;
+}
+
+/* ---- the pixel floor (max metric; issue 13: blocks decided by one pixel's best decode) ----
+ *
+ * With the max metric a candidate (A, B) beats the incumbent E only if EVERY pixel's term is below E.
+ * Pixel p's term is f_p(a_i, b_j) = decoded_angle(a_i, b_j, n_p)^2 for the index pair (i, j) that
+ * best_pixel_index picks: whichever pair it picks, the term is that function of the decode's two
+ * VALUES and n_p alone (joint_objective computes it so), and the values lie in Vx and Vy, the distinct
+ * values of the x and y lists' palettes (a candidate that can beat E has both pairs in the lists: the
+ * lists only ever lose pairs that cannot). So if for one pixel p
+ *     f_p(a, b) >= E   for every a in Vx and b in Vy,
+ * no candidate's objective is below E: the incumbent is optimal, and since the enumeration replaces
+ * its incumbent only by a strictly lower objective, the incumbent is also what the enumeration would
+ * return (same block, same tie rule: no candidate is skipped that could have replaced it). This
+ * decides the blocks whose optimum is one pixel's best lattice decode: a pixel pointing away takes
+ * the decode whose rim direction is nearest its own, the other pixels have room, and the lists keep
+ * thousands of pairs each, with as many exact ties of that pixel's term (issue 13's last work-limited
+ * block: 14732 x 36093 pairs).
+ * The test of pixel p runs over Vx; for each a, pixel_y_intervals gives the intervals of b whose
+ * decode (a, b) lies in pixel p's ball for the budget E (pixel_ball: |u - n_p|^2 <= E as dN >= chord,
+ * or for a pixel pointing away |u - m_p|^2 <= (E - theta0^2) / k, the rim bound above; both widened
+ * against rounding), a superset of {b : f_p(a, b) < E}; each b of Vy in them is bounded below by
+ * angle2_lower_bound (<= f_p) and, where that is below E, f_p is computed exactly, as
+ * joint_objective does: one f_p(a, b) < E and the pixel cannot decide. The pixels tested are those
+ * whose own term in the incumbent is E (the others have a decode below E: the incumbent's).
+ * Values are kept by their codes as in the pair screen (K = round((v + 1) Q / 2), at most two
+ * doubles per code, else no test). Work: 8 per x pair and y pair read, 1 per x value, 1 per y code
+ * looked at, 2 per lower bound, 32 per exact angle (a sixteenth of an exact evaluation). */
+typedef struct value_codes {
+    uint64_t bits[SCREEN_CODES / 64];
+    double val[SCREEN_CODES][2];
+    uint8_t nval[SCREEN_CODES];
+} value_codes;
+
+enum { FLOOR_POINTS = 8, FLOOR_TRIES = 4096 };
+
+typedef struct pixel_floor {
+    value_codes v[2]; /* the x and y lists' values */
+    double half_q;
+    /* floor_scan's least term below the incumbent and up to FLOOR_POINTS decodes attaining it (npts;
+     * FLOOR_POINTS + 1 if more) */
+    double least, pts[FLOOR_POINTS][2];
+    int npts;
+    uint8_t ymark[65536]; /* floor_first: bit k where the y list's pair holds point k's y value */
+} pixel_floor;
+
+/* The distinct values of list[0 .. n) by code; 0 if a code holds more than two doubles. */
+static int value_codes_init(value_codes *vc, const sol_nm_pair *list, size_t n, const double (*pal)[8], double half_q)
+{
+    memset(vc->bits, 0, sizeof vc->bits);
+    for (size_t i = 0; i < n; ++i) {
+        PREFETCH_PAIR(pal, list, i, n);
+        for (int e = 0; e < 8; ++e) {
+            double v = pal[list[i].pair][e];
+            long k = lround((v + 1.0) * half_q);
+            if (!((vc->bits[k >> 6] >> (k & 63)) & 1)) {
+                vc->bits[k >> 6] |= UINT64_C(1) << (k & 63);
+                vc->nval[k] = 1;
+                vc->val[k][0] = v;
+            } else if (v != vc->val[k][0] && (vc->nval[k] == 1 || v != vc->val[k][1])) {
+                if (vc->nval[k] == 2)
+                    return 0;
+                vc->val[k][1] = v;
+                vc->nval[k] = 2;
+            }
+        }
+    }
+    return 1;
+}
+
+/* The value sets of the lists xl[0 .. nx), yl[0 .. ny): 1, or 0 if a code holds more than two
+ * doubles (then the floor is not used). */
+static int pixel_floor_init(pixel_floor *pf, const double (*pal)[8], sol_bc4_precision precision,
+                            const sol_nm_pair *xl, size_t nx, const sol_nm_pair *yl, size_t ny, uint64_t *work)
+{
+    pf->half_q = precision == SOL_BC4_INTERP_FLOAT ? 4462.5 : 32767.5;
+    *work += 8 * (nx + ny);
+    return value_codes_init(&pf->v[0], xl, nx, pal, pf->half_q) && value_codes_init(&pf->v[1], yl, ny, pal, pf->half_q);
+}
+
+/* 1 if f_p(a, b) >= best for every a, b of the value sets (pixel p decides the block), else 0 (or
+ * -1: the ball constrains nothing). least = 0: stops at the first decode below best; least = 1: scans
+ * them all, leaving in pf the least term below best and the decodes attaining it. */
+static int floor_scan(pixel_floor *pf, const double n[16][3], const away_info *aw, int p, double best, int least,
+                      uint64_t *work)
+{
+    pf->least = best;
+    pf->npts = 0;
+    double q[3], R2;
+    int ball = pixel_ball(aw, n, p, best * (1.0 + 1e-9), q, &R2);
+    if (ball < 0)
+        return 1; /* the pixel's floor theta0^2 is above the budget: no decode reaches it */
+    if (ball == 0)
+        return -1;
+    const double half_q = pf->half_q;
+    const long top = lround(2.0 * half_q);
+    const value_codes *vx = &pf->v[0], *vy = &pf->v[1];
+    for (long w = 0; w <= top >> 6; ++w)
+        for (uint64_t xbits = vx->bits[w]; xbits; xbits &= xbits - 1) {
+            const long c = 64 * w + __builtin_ctzll(xbits);
+            for (int d = 0; d < vx->nval[c]; ++d) {
+                const double a = vx->val[c][d], one[8] = {a, a, a, a, a, a, a, a};
+                double lo[16], hi[16];
+                int cnt = pixel_y_intervals(one, q, R2, 1e-9, lo, hi);
+                ++*work;
+                if (cnt < 0)
+                    return -1; /* the ball constrains nothing */
+                for (int u = 0; u < cnt; ++u) {
+                    long k0 = (long)floor((lo[u] + 1.0) * half_q) - 1, k1 = (long)ceil((hi[u] + 1.0) * half_q) + 1;
+                    k0 = k0 < 0 ? 0 : k0;
+                    k1 = k1 > top ? top : k1;
+                    for (long v = k0 >> 6; v <= k1 >> 6 && k0 <= k1; ++v) {
+                        uint64_t bits = vy->bits[v];
+                        if (v == k0 >> 6)
+                            bits &= ~UINT64_C(0) << (k0 & 63);
+                        if (v == k1 >> 6 && (k1 & 63) != 63)
+                            bits &= (UINT64_C(1) << ((k1 & 63) + 1)) - 1;
+                        ++*work;
+                        for (; bits; bits &= bits - 1) {
+                            const long k = 64 * v + __builtin_ctzll(bits);
+                            for (int f = 0; f < vy->nval[k]; ++f) {
+                                const double b = vy->val[k][f];
+                                *work += 2;
+                                if (angle2_lower_bound(a, b, n[p]) > pf->least)
+                                    continue;
+                                *work += 32;
+                                const double e = decoded_angle(a, b, n[p]);
+                                if (!(e * e < best))
+                                    continue;
+                                if (!least)
+                                    return 0;
+                                if (e * e < pf->least) {
+                                    pf->least = e * e;
+                                    pf->npts = 0;
+                                }
+                                if (e * e == pf->least) {
+                                    if (pf->npts < FLOOR_POINTS) {
+                                        pf->pts[pf->npts][0] = a;
+                                        pf->pts[pf->npts][1] = b;
+                                    }
+                                    pf->npts += pf->npts <= FLOOR_POINTS;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    return pf->least == best;
+}
+
+/* The first candidate in the enumeration's order (x list position i, then y list position j) whose
+ * objective is pf->least, among those holding one of the decodes that attain it (pf->pts, all of
+ * them: npts <= FLOOR_POINTS), after at most FLOOR_TRIES exact evaluations: 1 with *fi, *fj, else
+ * 0. floor_scan's least term of one pixel is at most every candidate's objective (the max over
+ * pixels of their terms), and a candidate attains it only if that pixel's chosen decode is one of
+ * the points; so this candidate is the first of the lists whose objective is the least of all. */
+static int floor_first(pixel_floor *pf, const double n[16][3], const double (*pal)[8], const sol_nm_pair *xl,
+                       size_t nx, const sol_nm_pair *yl, size_t ny, size_t *fi, size_t *fj, uint64_t *candidates,
+                       uint64_t *work)
+{
+    if (pf->npts < 1 || pf->npts > FLOOR_POINTS)
+        return 0;
+    for (size_t j = 0; j < ny; ++j) {
+        unsigned m = 0;
+        for (int k = 0; k < pf->npts; ++k)
+            for (int e = 0; e < 8; ++e)
+                m |= (unsigned)(pal[yl[j].pair][e] == pf->pts[k][1]) << k;
+        pf->ymark[j] = (uint8_t)m;
+    }
+    *work += 8 * ny + 8 * nx;
+    const double budget = nextafter(pf->least, INFINITY);
+    int tries = 0;
+    for (size_t i = 0; i < nx; ++i) {
+        unsigned mx = 0;
+        for (int k = 0; k < pf->npts; ++k)
+            for (int e = 0; e < 8; ++e)
+                mx |= (unsigned)(pal[xl[i].pair][e] == pf->pts[k][0]) << k;
+        for (size_t j = 0; mx && j < ny; ++j) {
+            if (!(pf->ymark[j] & mx))
+                continue;
+            if (tries++ == FLOOR_TRIES)
+                return 0;
+            ++*candidates;
+            *work += 512;
+            if (joint_objective(pal[xl[i].pair], pal[yl[j].pair], n, 1, budget, NULL, NULL) == pf->least) {
+                *fi = i;
+                *fj = j;
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
+/* At the set-up's incumbent (palettes a, b, objective best): 1 if a pixel whose term in it is best
+ * decides the block (floor_scan); 2 if the first such pixel's least term is attained (floor_first:
+ * *fi, *fj); else 0. */
+static int pixel_floor_solve(pixel_floor *pf, const double n[16][3], const away_info *aw, const double (*pal)[8],
+                             const double a[8], const double b[8], double best, const sol_nm_pair *xl, size_t nx,
+                             const sol_nm_pair *yl, size_t ny, size_t *fi, size_t *fj, uint64_t *candidates,
+                             uint64_t *work)
+{
+    int first = 1;
+    for (int p = 0; p < 16; ++p) {
+        int i, j;
+        double e = best_pixel(a, b, n[p], &i, &j);
+        *work += 32;
+        if (!(e * e >= best))
+            continue;
+        int r = floor_scan(pf, n, aw, p, best, first, work);
+        if (r == 1)
+            return 1;
+        if (r == 0 && first) {
+            first = 0;
+            if (floor_first(pf, n, pal, xl, nx, yl, ny, fi, fj, candidates, work))
+                return 2;
+        }
+    }
+    return 0;
+}
+
+/* Whether a pixel whose term in the incumbent (palettes a, b) is the incumbent's objective best decides
+ * the block (floor_decides). */
+static int pixel_floor_decides(pixel_floor *pf, const double n[16][3], const away_info *aw, const double a[8],
+                               const double b[8], double best, uint64_t *work)
+{
+    for (int p = 0; p < 16; ++p) {
+        int i, j;
+        double e = best_pixel(a, b, n[p], &i, &j);
+        *work += 32;
+        if (e * e >= best && floor_scan(pf, n, aw, p, best, 0, work) == 1)
+            return 1;
+    }
+    return 0;
 }
 
 /* ---- value-level usability of entries (rims and pixels pointing away) ----
@@ -2700,6 +2936,32 @@ int sol_nm_screen_rules_out(const double n[16][3], int use_max, double best, sol
     return out;
 }
 
+/* The pixel floor on one candidate's values, for the tests (normalmaps_internal.h): per pixel p,
+ * search_unit's set-up of the loose pixels and pixels pointing away at incumbent best[p], then
+ * floor_scan of pixel p with the value sets of the one-pair lists pair_x, pair_y. */
+int sol_nm_floor_rules_out(const double n[16][3], const double best[16], sol_bc4_precision precision, int pair_x,
+                           int pair_y, int out[16])
+{
+    const double(*pal)[8] = sol_nm_palettes(precision);
+    pixel_floor *pf = malloc(sizeof *pf);
+    if (!pf)
+        return -1;
+    sol_nm_pair xl = {0.0, (uint16_t)pair_x}, yl = {0.0, (uint16_t)pair_y};
+    uint64_t work = 0;
+    int built = pixel_floor_init(pf, pal, precision, &xl, 1, &yl, 1, &work);
+    for (int p = 0; built && p < 16; ++p) {
+        unsigned loose = 0;
+        for (int q = 0; q < 16; ++q)
+            if (n[q][2] * n[q][2] <= best[p] * (1.0 + BOUND_SLACK))
+                loose |= 1u << q;
+        away_info aw;
+        away_info_init(&aw, n, loose);
+        out[p] = floor_scan(pf, n, &aw, p, best[p], 0, &work) == 1;
+    }
+    free(pf);
+    return built ? 0 : -1;
+}
+
 /* Branch and bound over (x pair, y pair) inside the range, for unit normals n.
  * 1. Incumbent: the better (first on ties) of the per-channel least-squares pairs (the common
  *    anchors) and the full-span 6-value pairs (0, 255) whose entries -1 and +1 reach the rim, both
@@ -2857,6 +3119,25 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                                      &nx, ws->y, &ny, &work);
             couple_at = best - (best - floor_all) / 16.0;
         }
+        int solved = 0;
+        /* the pixel floor (see there): with the max metric one pixel may decide the block, now (the
+         * incumbent, or the enumeration's first candidate attaining that pixel's least term) or at a
+         * later incumbent (the value sets stay valid as the lists shrink); for long lists only, like the
+         * stages above (short ones enumerate quickly; floor_first's tries would not pay) */
+        int floored = 0;
+        if (use_max && nx * ny > 4096 && (ws->floor || (ws->floor = malloc(sizeof *ws->floor)))) {
+            floored = pixel_floor_init(ws->floor, pal, precision, ws->x, nx, ws->y, ny, &work);
+            size_t fi, fj;
+            int fs = floored ? pixel_floor_solve(ws->floor, n, &aw, pal, pal[px], pal[py], best, ws->x, nx, ws->y, ny,
+                                                 &fi, &fj, &candidates, &work)
+                             : 0;
+            if (fs == 2) {
+                best = ws->floor->least;
+                px = ws->x[fi].pair;
+                py = ws->y[fj].pair;
+            }
+            solved = fs != 0;
+        }
         /* visit pixels worst-first (by the incumbent's per-pixel error) when rejecting candidates */
         int order[16];
         double pixel_err[16];
@@ -2882,13 +3163,13 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 quick = 0;
             }
         }
-        for (size_t j = 0; quick && j < ny; ++j)
+        for (size_t j = 0; quick && !solved && j < ny; ++j)
             channel_side_init(pal[ws->y[j].pair], n, order, 1, &aw, &ws->yside[j]);
         /* the coupling filter: for rims and pixels pointing away, when the lists are long */
         int filter = 0;
         y_index yix;
         int group[16]; /* the first pixel with a bit-identical normal */
-        if (quick && loose && nx * ny > 4096) {
+        if (quick && loose && !solved && nx * ny > 4096) {
             size_t words = (ny + 63) / 64;
             if (ws->ybucket_cap < 8 * ny) {
                 y_item *grown = realloc(ws->ybucket, 8 * ny * sizeof *grown);
@@ -2917,7 +3198,6 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 }
             }
         }
-        int solved = 0;
         if (filter && (loose & 1)) {
             int equal = 1;
             for (int p = 1; p < 16; ++p)
@@ -3073,6 +3353,10 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     best = v;
                     px = ws->x[i].pair;
                     py = ws->y[j].pair;
+                    if (floored && pixel_floor_decides(ws->floor, n, &aw, pal[px], pal[py], best, &work)) {
+                        solved = 1;
+                        break;
+                    }
                 }
             }
             if (filtered)
@@ -3755,6 +4039,7 @@ static sol_status workspace_alloc(search_workspace *ws)
     ws->vtab = NULL;
     ws->couple = NULL;
     ws->screen = NULL;
+    ws->floor = NULL;
     ws->vgen = 0;
     ws->ktab = NULL;
     ws->kgen = 0;
@@ -3785,6 +4070,7 @@ static void workspace_free(search_workspace *ws)
     free(ws->kkey);
     sol_nm_couple_free(ws->couple);
     free(ws->screen);
+    free(ws->floor);
     free(ws->win);
 }
 

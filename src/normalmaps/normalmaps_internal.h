@@ -183,6 +183,14 @@ int sol_nm_couple_descent(sol_nm_couple *cs, const double n[16][3], int use_max,
  * is then at least best), 0 if it lets the candidate through, -1 if out of memory. */
 int sol_nm_screen_rules_out(const double n[16][3], int use_max, double best, sol_bc4_precision precision, int pair_x,
                             int pair_y);
+/* The exact search's pixel floor (bc5.c, max metric) on one candidate's values, for the tests: per
+ * pixel p (0..15) of unit normals n, out[p] = 1 if every decode (a, b) of x pair pair_x's values a and
+ * y pair pair_y's values b gives pixel p a squared angle >= best[p], computed as the objective
+ * computes a pixel's term (so the test is exact to the last bit); 0 if one decode is below best[p], or
+ * if the pixel's ball at best[p] constrains nothing (a budget near (pi / 2)^2 or above, or
+ * n = (0, 0, -1)). Returns 0, or -1 if out of memory (out untouched). */
+int sol_nm_floor_rules_out(const double n[16][3], const double best[16], sol_bc4_precision precision, int pair_x,
+                           int pair_y, int out[16]);
 /* The adaptive encoder's threshold level of an objective err (sum of dN^2, or max dN^2 when
  * use_max): the RMS angle sqrt(err / 16) (or the max angle sqrt(err)) in degrees. The block is
  * searched when it exceeds options.threshold_deg. Monotone in err. */
