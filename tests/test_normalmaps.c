@@ -2443,8 +2443,9 @@ static void gap_block(int kind, double n[16][3])
     }
 }
 
-/* The bound of a block (sol_nm_gap_bound from the common encoder's sums), internal units. */
-static double gap_bound_of(const double in[16][3], sol_bc4_precision prec, int use_max)
+/* The bound of a block (sol_nm_gap_bound from the common encoder's sums, with the cap `cap`),
+ * internal units. */
+static double gap_bound_capped(const double in[16][3], sol_bc4_precision prec, int use_max, double cap)
 {
     double n[16][3], t[3][16], sx, sy;
     cr_assert_eq(sol_nm_unit_normals(in, n), SOL_OK);
@@ -2453,7 +2454,36 @@ static double gap_bound_of(const double in[16][3], sol_bc4_precision prec, int u
             t[c][p] = n[p][c];
     sol_nm_bc4_common(t[0], prec, &sx);
     sol_nm_bc4_common(t[1], prec, &sy);
-    return sol_nm_gap_bound(sx, sy, (const double(*)[16])t, use_max);
+    return sol_nm_gap_bound(sx, sy, (const double(*)[16])t, use_max, cap);
+}
+
+/* The separable bound alone (cap 0: no tilt bound). */
+static double gap_bound_of(const double in[16][3], sol_bc4_precision prec, int use_max)
+{
+    return gap_bound_capped(in, prec, use_max, 0.0);
+}
+
+/* The common encoder's block of `in` and its upper chord bound (the cap the encoder passes). */
+static double common_upper(const double in[16][3], sol_bc4_precision prec, int use_max)
+{
+    double n[16][3], t[3][16], lo, hi;
+    cr_assert_eq(sol_nm_unit_normals(in, n), SOL_OK);
+    for (int p = 0; p < 16; ++p)
+        for (int c = 0; c < 3; ++c)
+            t[c][p] = n[p][c];
+    sol_bc5_options o = {.encoder = SOL_BC5_COMMON, .precision = prec};
+    sol_bc5_block b;
+    cr_assert_eq(sol_bc5_encode_block(in, &o, &b, NULL), SOL_OK);
+    const double(*pal)[8] = sol_nm_palettes(prec);
+    sol_nm_chord_bounds(pal[b.x.e0 << 8 | b.x.e1], pal[b.y.e0 << 8 | b.y.e1], &b, (const double(*)[16])t, use_max, &lo,
+                        &hi);
+    return hi;
+}
+
+/* The encoder's gap bound: the tilt bound capped at the common block's upper chord bound. */
+static double gap_bound_full(const double in[16][3], sol_bc4_precision prec, int use_max)
+{
+    return gap_bound_capped(in, prec, use_max, common_upper(in, prec, use_max));
 }
 
 /* An info's error in internal units (sum of dN^2, or max dN^2). */
@@ -2486,15 +2516,65 @@ Test(normalmaps, gap_bound_is_below_every_block_and_tight_T13)
         ++checked;
         if (metric == SOL_BC5_SUM_SQUARED && ew < 1.02 * lb)
             ++tight;
-        if (trial % 4 == 0 || kind == 0) { /* the optimal encoder on a share of them */
+        /* the tilt bound with any cap: the encoder's (the common block's upper chord bound), none,
+         * the window's optimum and a few times it, a tenth of it, a denormal, zero, negative, NaN */
+        const double caps[] = {common_upper(n, prec, metric == SOL_BC5_MAX), INFINITY, ew, 4.0 * ew, 0.1 * ew,
+                               4.9e-324, 0.0, -1.0, NAN};
+        double lbs[sizeof caps / sizeof caps[0]];
+        for (size_t c = 0; c < sizeof caps / sizeof caps[0]; ++c) {
+            lbs[c] = gap_bound_capped(n, prec, metric == SOL_BC5_MAX, caps[c]);
+            cr_assert(lbs[c] >= lb && lbs[c] <= ew, "trial %d kind %d cap %d: bound %.17g, window's optimum %.17g",
+                      trial, kind, (int)c, lbs[c], ew);
+        }
+        if (trial % 4 == 0 || kind == 0 || kind == 1 || kind == 10) { /* the optimal encoder on a share of them */
             o.encoder = SOL_BC5_OPTIMAL;
             cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &opt), SOL_OK);
-            cr_assert(lb <= internal_error(&opt, metric), "trial %d kind %d: bound %.17g above the optimum %.17g",
-                      trial, kind, lb, internal_error(&opt, metric));
+            double eo = internal_error(&opt, metric);
+            cr_assert(lb <= eo, "trial %d kind %d: bound %.17g above the optimum %.17g", trial, kind, lb, eo);
+            for (size_t c = 0; c < sizeof caps / sizeof caps[0]; ++c)
+                cr_assert(lbs[c] <= eo, "trial %d kind %d cap %d: bound %.17g above the optimum %.17g", trial, kind,
+                          (int)c, lbs[c], eo);
         }
     }
     cr_assert_eq(checked, 6 * GAP_KINDS);
     cr_assert(tight >= 3, "only %d blocks within 2%% of the bound", tight);
+}
+
+/* Tilted blocks (smooth, all normals equal, from 8-bit sources, rough): the tilt bound (capped at the
+ * common block's upper chord bound, as the encoder does) is below the optimal encoder's error and the
+ * window's optimum on every block, both metrics, every precision; and it is tight where the separable
+ * bound is not: on several blocks the optimum is within 2% of the tilt bound while above the
+ * separable bound by more than 2%, so raising the tilt bound by 2% breaks the first check. */
+Test(normalmaps, gap_tilt_bound_is_below_every_block_and_tight_T13)
+{
+    int tight = 0, above = 0;
+    for (int trial = 0; trial < 80; ++trial) {
+        double n[16][3];
+        switch (trial % 5) {
+        case 0: random_block(n, 1.2, 0.02); break;
+        case 1: case 4: random_block(n, 1.0, 0.0); break;
+        case 2: flat8_block(n, 0.02); break;
+        default: random_block(n, 1.3, 0.4); break;
+        }
+        sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        sol_bc5_metric metric = trial / 40 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED;
+        int use_max = metric == SOL_BC5_MAX;
+        double sep = gap_bound_of(n, prec, use_max), tilt = gap_bound_full(n, prec, use_max);
+        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .precision = prec, .metric = metric};
+        sol_bc5_block b;
+        sol_bc5_info opt, win;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &opt), SOL_OK);
+        o.encoder = SOL_BC5_ADAPTIVE;
+        o.gap = -1.0;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &win), SOL_OK);
+        double eo = internal_error(&opt, metric), ew = internal_error(&win, metric);
+        cr_assert(tilt >= sep && tilt <= eo && eo <= ew, "trial %d: separable %.17g tilt %.17g optimum %.17g", trial,
+                  sep, tilt, eo);
+        above += tilt > 1.02 * sep;
+        tight += eo < 1.02 * tilt && eo > 1.02 * sep;
+    }
+    cr_assert(above >= 10, "the tilt bound above the separable one by 2%% on only %d blocks", above);
+    cr_assert(tight >= 5, "the optimum within 2%% of the tilt bound (and not of the separable one) on only %d", tight);
 }
 
 /* A block the gap test skips has error <= (1 + gap) times the window's optimum (and the optimal
@@ -2538,6 +2618,79 @@ Test(normalmaps, gap_keeps_every_block_within_its_factor_T13)
         }
     }
     cr_assert(skipped > 10 && searched > 10, "skipped %d searched %d", skipped, searched);
+}
+
+/* The skips the tilt bound adds (blocks the separable bound would search): every skipped block's error
+ * is within (1 + gap) of the optimal encoder's, at the default gap and at 0.05, both metrics, every
+ * precision, on tilted blocks; such skips occur; and the image path gives the blocks and statistics
+ * of the block path for 1 and 2 threads. */
+Test(normalmaps, gap_tilt_skips_only_blocks_within_the_factor_T13)
+{
+    enum { NB = 32 };
+    static const double gaps[] = {0.0, 0.05};
+    double blk[NB][16][3];
+    sol_image img = {0};
+    cr_assert_eq(sol_image_alloc(&img, 4 * NB, 4, 3), SOL_OK);
+    for (int b = 0; b < NB; ++b) {
+        switch (b % 3) {
+        case 0: random_block(blk[b], 1.2, 0.02); break;
+        case 1: random_block(blk[b], 1.0, 0.0); break;
+        default: flat8_block(blk[b], 0.02); break;
+        }
+        for (int p = 0; p < 16; ++p) { /* the float pixels, the image's and the block path's */
+            float *v = sol_image_pixel(&img, 4 * b + (p & 3), p >> 2);
+            for (int c = 0; c < 3; ++c) {
+                v[c] = (float)blk[b][p][c];
+                blk[b][p][c] = v[c];
+            }
+        }
+    }
+    int tilt_skips = 0;
+    for (int cfg = 0; cfg < 6; ++cfg) {
+        sol_bc4_precision prec = (sol_bc4_precision)(cfg % 3);
+        sol_bc5_metric metric = cfg / 3 ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED;
+        int use_max = metric == SOL_BC5_MAX;
+        double eo[NB];
+        for (int b = 0; b < NB; ++b) {
+            sol_bc5_options oo = {.encoder = SOL_BC5_OPTIMAL, .precision = prec, .metric = metric};
+            sol_bc5_block blkout;
+            sol_bc5_info io;
+            cr_assert_eq(sol_bc5_encode_block(blk[b], &oo, &blkout, &io), SOL_OK);
+            eo[b] = internal_error(&io, metric);
+        }
+        for (size_t g = 0; g < sizeof gaps / sizeof gaps[0]; ++g) {
+            sol_bc5_options oa = {.encoder = SOL_BC5_ADAPTIVE, .precision = prec, .metric = metric, .gap = gaps[g]};
+            double gap = gaps[g] == 0.0 ? SOL_BC5_DEFAULT_GAP : gaps[g];
+            uint8_t want[16 * NB], got[2][16 * NB];
+            uint64_t searched = 0;
+            for (int b = 0; b < NB; ++b) {
+                sol_bc5_block out;
+                sol_bc5_info info;
+                cr_assert_eq(sol_bc5_encode_block(blk[b], &oa, &out, &info), SOL_OK);
+                cr_assert_eq(sol_bc4_pack(&out.x, want + 16 * b), SOL_OK);
+                cr_assert_eq(sol_bc4_pack(&out.y, want + 16 * b + 8), SOL_OK);
+                searched += (uint64_t)info.searched;
+                double e = internal_error(&info, metric);
+                if (info.searched)
+                    continue;
+                cr_assert(e <= (1.0 + gap) * eo[b], "cfg %d gap %g block %d: %.17g vs optimum %.17g", cfg, gap, b, e,
+                          eo[b]);
+                tilt_skips += e > (1.0 + gap) * gap_bound_of(blk[b], prec, use_max);
+            }
+            sol_bc5_image_stats st[2];
+            int threads = omp_get_max_threads();
+            for (int th = 0; th < 2; ++th) {
+                omp_set_num_threads(th + 1);
+                cr_assert_eq(sol_bc5_encode_image(&img, &oa, got[th], &st[th]), SOL_OK);
+            }
+            omp_set_num_threads(threads);
+            cr_assert(memcmp(got[0], want, sizeof want) == 0 && memcmp(got[1], want, sizeof want) == 0, "cfg %d", cfg);
+            cr_assert(memcmp(&st[0], &st[1], sizeof st[0]) == 0);
+            cr_assert_eq(st[0].searched_blocks, searched, "cfg %d gap %g", cfg, gap);
+        }
+    }
+    cr_assert(tilt_skips >= 20, "only %d blocks skipped by the tilt bound alone", tilt_skips);
+    sol_image_free(&img);
 }
 
 /* The documented option: 0 = SOL_BC5_DEFAULT_GAP (10% in RMS angle at most), negative = no gap test
@@ -2599,7 +2752,8 @@ Test(normalmaps, gap_option_is_as_documented_T13)
         /* block 1's ratio of its base error to its bound: the gap exactly at it, and one ulp either side */
         sol_bc5_info ib;
         cr_assert_eq(sol_bc5_encode_block(blk[1], &oc, &b0, &ib), SOL_OK);
-        double ratio = internal_error(&ib, metric) / gap_bound_of(blk[1], oc.precision, metric == SOL_BC5_MAX) - 1.0;
+        double ratio = internal_error(&ib, metric) / gap_bound_full(blk[1], oc.precision, metric == SOL_BC5_MAX) - 1.0;
+        cr_assert(ratio > 0.0, "cfg %d: block 1 within its bound", cfg);
         const double gl[] = {ratio, nextafter(ratio, 0.0), nextafter(ratio, 1e9), 0.0, 0.05};
         for (size_t g = 0; g < sizeof gl / sizeof gl[0]; ++g) {
             sol_bc5_options oa = oc;

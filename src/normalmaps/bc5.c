@@ -4217,30 +4217,37 @@ static void encode_unit(const double n[16][3], const double t[3][16], const sol_
     }
     const double gap = o->gap == 0.0 ? SOL_BC5_DEFAULT_GAP : o->gap; /* <= 0: no gap test, exact window */
     sol_bc5_block base;
-    double limit = -INFINITY; /* the gap test's (1 + gap) LB; -INFINITY: no gap test */
+    double sx = 0.0, sy = 0.0;
+    int gap_test = 0; /* the skip test (common base only) */
     if (o->encoder == SOL_BC5_FAST || (o->encoder == SOL_BC5_ADAPTIVE && o->base == SOL_BC5_BASE_FAST)) {
         sol_nm_bc4_fast(t[0], &base.x);
         sol_nm_bc4_fast(t[1], &base.y);
     } else {
-        double sx, sy;
         encode_common(t[0], t[1], o->precision, &base, &sx, &sy);
-        if (o->encoder == SOL_BC5_ADAPTIVE && gap > 0.0) /* the skip test (common base only) */
-            limit = (1.0 + gap) * sol_nm_gap_bound(sx, sy, t, use_max);
+        gap_test = o->encoder == SOL_BC5_ADAPTIVE && gap > 0.0;
     }
     double err = NAN;
     int search = 0;
     if (o->encoder == SOL_BC5_ADAPTIVE) {
         /* adaptive: RMS (or max) angle in degrees against the threshold (T13), and the objective
-         * against the gap's limit (options.gap): searched only if both ask for it */
-        if (!want_error) {
-            const double(*pal)[8] = sol_nm_palettes(o->precision);
-            double lo, hi;
-            sol_nm_chord_bounds(pal[base.x.e0 << 8 | base.x.e1], pal[base.y.e0 << 8 | base.y.e1], &base, t, use_max,
-                                &lo, &hi);
-            int by_level = sol_nm_threshold_decide(lo, hi, use_max, o->threshold_deg);
-            int by_gap = sol_nm_gap_test(lo, hi, limit);
-            search = by_level == 0 || by_gap == 0 ? 0 : by_level == 1 && by_gap == 1 ? 1 : -1;
+         * against the gap's limit (options.gap): searched only if both ask for it. Both are decided
+         * from the chord bounds lo <= err <= hi where they can be, else from the exact err; the
+         * limit, (1 + gap) times the bound of every block's objective with the cap hi, is the same
+         * whether or not the caller wants the error, so is the decision. */
+        const double(*pal)[8] = sol_nm_palettes(o->precision);
+        double lo, hi, limit = -INFINITY; /* -INFINITY: no gap test */
+        sol_nm_chord_bounds(pal[base.x.e0 << 8 | base.x.e1], pal[base.y.e0 << 8 | base.y.e1], &base, t, use_max, &lo,
+                            &hi);
+        int by_level = sol_nm_threshold_decide(lo, hi, use_max, o->threshold_deg);
+        if (gap_test && by_level != 0) { /* (a block the level keeps is kept whatever the limit) */
+            /* the separable bound first (cap 0: no tilt bound): where hi is within it, the full
+             * bound (at least as large) skips the block too, with either err */
+            limit = (1.0 + gap) * sol_nm_gap_bound(sx, sy, t, use_max, 0.0);
+            if (!(hi <= limit))
+                limit = (1.0 + gap) * sol_nm_gap_bound(sx, sy, t, use_max, hi);
         }
+        int by_gap = sol_nm_gap_test(lo, hi, limit);
+        search = by_level == 0 || by_gap == 0 ? 0 : by_level == 1 && by_gap == 1 ? 1 : -1;
         if (want_error || search < 0) {
             err = own_index_objective(&base, n, o->precision, use_max);
             search = !(sol_nm_threshold_level(err, use_max) <= o->threshold_deg) && !(err <= limit);

@@ -186,20 +186,75 @@ int sol_nm_threshold_test(const double palx[8], const double paly[8], const sol_
 }
 
 /* ---- the gap test: a lower bound of every block's objective ----
- * (the proof is at sol_bc5_options.gap in sol_normalmaps.h.) The rounding: Sx and Sy are the computed
- * least sums, at most the computed sum of the exact minimiser, i.e. within 20 ulps relative above
- * the exact minimum or below it (REL). The computed angle of any decode is within 1e-14 rad of the
- * true angle (above), so its square is within 2 pi 1e-14 + 1e-28 of the true square; the unit
+ * (the proofs are at sol_bc5_options.gap in sol_normalmaps.h: the separable bound min(Sx + Sy, min_p
+ * nz_p^2) and the tilt bound min((1 + alpha) Sa + (1 - beta) Sb, T).) The rounding: Sx and Sy are the
+ * computed least sums, at most the computed sum of the exact minimiser, i.e. within 20 ulps relative
+ * above the exact minimum or below it (REL). The computed angle of any decode is within 1e-14 rad of
+ * the true angle (above), so its square is within 2 pi 1e-14 + 1e-28 of the true square; the unit
  * normals are unit within 2e-16, which moves the chord's xy part and |nz| by at most 3e-16, the
  * squares by 1e-15: each pixel's computed term is >= its true bound less 1e-13, far inside TAU. So
  * every computed objective (sum, or max, of the computed squared angles, rounded by 20 ulps at most)
- * is >= max(0, LB - 16 TAU) (1 - REL) (max metric: one TAU). */
-double sol_nm_gap_bound(double sx, double sy, const double t[3][16], int use_max)
+ * is >= max(0, LB - 16 TAU) (1 - REL) (max metric: one TAU).
+ * The tilt bound's own rounding: the cap's radius r is sqrt(T) raised by a relative 1e-9 and then by
+ * 1e-12, which covers the computed unit normals' distance to the true ones (3e-16 per component) and
+ * the rounding of 2 |n| -+ r and 2 nz +- r (half an ulp of values <= 4, 5e-16): the computed
+ * numerators and denominators of sqrt(K) and sqrt(C) lie on the safe side of the true ones; the
+ * quotients and squares round by 3 ulps, K and C by 4e-16 relative at most, alpha = K beta / (beta +
+ * C) by 1e-15, and alpha is lowered by a relative 1e-12 (ALPHA_LOWER), below every pixel's true limit.
+ * T = min(cap, nz_p^2) may exceed the true nz_p^2 by 1e-15 (a pixel whose decode is clamped then has
+ * chord^2 >= T - 1e-15), inside TAU; the final sums round by a few ulps, inside REL. */
+#define ALPHA_LOWER (1.0 - 1e-12)
+
+/* The gain of one side (channel a gains, channel b loses): (1 + alpha) sa + (1 - beta) sb at the beta
+ * in (0, 1] that maximises it for alpha(beta) = k beta / (beta + c) (k = K of channel a, c = C of
+ * channel b): f(beta) = k beta / (beta + c) sa - beta sb is concave, f'(beta) = 0 at
+ * beta = sqrt(k c sa / sb) - c (1 when sb = 0: f increases). 0 (no gain) when the side has none. */
+static double tilt_side(double k, double c, double sa, double sb)
 {
-    double lb = use_max ? (sx + sy) / 16.0 : sx + sy;
+    if (!(k > 0.0) || !(c > 0.0) || !(sa > 0.0))
+        return 0.0;
+    double beta = sb > 0.0 ? sqrt(k * c * sa / sb) - c : 1.0;
+    beta = beta < 1.0 ? beta : 1.0;
+    if (!(beta > 0.0))
+        return 0.0;
+    double alpha = k * beta / (beta + c) * ALPHA_LOWER;
+    return (1.0 + alpha) * sa + (1.0 - beta) * sb;
+}
+
+double sol_nm_gap_bound(double sx, double sy, const double t[3][16], int use_max, double cap)
+{
+    double s = sx + sy, z2 = INFINITY, nzmin = INFINITY;
     for (int p = 0; p < 16; ++p) {
-        double z2 = t[2][p] * t[2][p];
-        lb = z2 < lb ? z2 : lb;
+        double z = t[2][p];
+        z2 = z * z < z2 ? z * z : z2;
+        nzmin = z < nzmin ? z : nzmin;
+    }
+    double lb = use_max ? s / 16.0 : s;
+    lb = z2 < lb ? z2 : lb;
+    /* the tilt bound: every pixel above the equator, a cap T = min(cap, min_p nz_p^2) > 0 */
+    double T = cap < z2 ? cap : z2;
+    if (nzmin > 0.0 && T > 0.0 && T < INFINITY) {
+        double ax_lo = INFINITY, ay_lo = INFINITY, ax_hi = 0.0, ay_hi = 0.0, nzmax = 0.0;
+        for (int p = 0; p < 16; ++p) {
+            double ax = fabs(t[0][p]), ay = fabs(t[1][p]), z = t[2][p];
+            ax_lo = ax < ax_lo ? ax : ax_lo;
+            ay_lo = ay < ay_lo ? ay : ay_lo;
+            ax_hi = ax > ax_hi ? ax : ax_hi;
+            ay_hi = ay > ay_hi ? ay : ay_hi;
+            nzmax = z > nzmax ? z : nzmax;
+        }
+        double r = sqrt(T) * (1.0 + 1e-9) + 1e-12, lo = 2.0 * nzmin - r, hi = 2.0 * nzmax + r;
+        if (lo > 0.0) {
+            double gx = 2.0 * ax_lo - r > 0.0 ? (2.0 * ax_lo - r) / hi : 0.0;
+            double gy = 2.0 * ay_lo - r > 0.0 ? (2.0 * ay_lo - r) / hi : 0.0;
+            double hx = (2.0 * ax_hi + r) / lo, hy = (2.0 * ay_hi + r) / lo;
+            double b = s, bx = tilt_side(gx * gx, hy * hy, sx, sy), by = tilt_side(gy * gy, hx * hx, sy, sx);
+            b = bx > b ? bx : b;
+            b = by > b ? by : b;
+            b = use_max ? b / 16.0 : b;
+            b = b < T ? b : T;
+            lb = b > lb ? b : lb;
+        }
     }
     double slack = use_max ? TAU : 16.0 * TAU;
     return lb - slack > 0.0 ? (lb - slack) * (1.0 - REL) : 0.0;

@@ -213,11 +213,14 @@ void sol_nm_chord_bounds(const double palx[8], const double paly[8], const sol_b
  * level(err) <= threshold_deg (keep the base), 1 if above (search), -1 if the bounds cannot tell. */
 int sol_nm_threshold_decide(double lower, double upper, int use_max, double threshold_deg);
 /* The adaptive encoder's gap bound (bc5_adaptive.c; proof at sol_bc5_options.gap): from the two
- * channels' least-squares sums sx, sy (sol_nm_bc4_common) and the unit normals t (t[2][p] = nz_p), a
- * value at most the computed objective (internal units: sum, or max when use_max, of dN^2) of EVERY
- * block with any anchors and indices: min(sx + sy, min_p nz_p^2) ((sx + sy) / 16 for the max),
- * lowered for rounding. */
-double sol_nm_gap_bound(double sx, double sy, const double t[3][16], int use_max);
+ * channels' least-squares sums sx, sy (sol_nm_bc4_common), the unit normals t (t[2][p] = nz_p) and a
+ * cap (any value; the encoder passes the base block's upper chord bound), a value at most the
+ * computed objective (internal units: sum, or max when use_max, of dN^2) of EVERY block with any
+ * anchors and indices: the larger of min(sx + sy, min_p nz_p^2) ((sx + sy) / 16 for the max) and,
+ * when every nz_p > 0, the tilt bound min(B, T) (B / 16 for the max), T = min(cap, min_p nz_p^2),
+ * B = the largest of sx + sy, (1 + alpha) sx + (1 - beta) sy and the same with x and y swapped
+ * (alpha, beta from the pixels' least and largest |nx|, |ny| and nz); lowered for rounding. */
+double sol_nm_gap_bound(double sx, double sy, const double t[3][16], int use_max, double cap);
 /* The gap test from bounds lower <= err <= upper of a block's objective: 0 if err <= limit (skip),
  * 1 if err > limit (search), -1 if the bounds cannot tell. */
 int sol_nm_gap_test(double lower, double upper, double limit);

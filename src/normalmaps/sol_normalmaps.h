@@ -147,24 +147,50 @@ typedef struct sol_bc5_options {
      * E_base > (1 + gap) LB. Units: the objective the metric minimises, in rad^2 (sum of dN^2, or the
      * max of dN^2), so a skipped block's RMS angle (or max angle) is within sqrt(1 + gap) of the
      * optimum's: gap 0.21 = 10%.
-     * The bound, free from the common encoder (each channel's exact least-squares sum Sx, Sy over all
-     * 65536 anchor pairs, component units 2 v - 1, which sol_bc4_encode_block minimises):
-     *   LB = min(Sx + Sy, min_p nz_p^2)          (SOL_BC5_SUM_SQUARED)
-     *   LB = min((Sx + Sy) / 16, min_p nz_p^2)   (SOL_BC5_MAX: the max is at least the mean)
-     * Proof: take any anchors and indices. If every pixel decodes inside the unit disk (a^2 + b^2 <= 1,
-     * z rebuilt), dN_p >= chord_p = |u_p - n_p| >= sqrt((a_p - nx_p)^2 + (b_p - ny_p)^2) (the chord of
-     * unit vectors is at most the angle; dropping the z difference), so the sum of dN_p^2 is at least
-     * sum_p min_i (x_i - nx_p)^2 + min_j (y_j - ny_p)^2 >= Sx + Sy (the common anchors minimise each
-     * channel's sum over all pairs). If some pixel p decodes with z clamped to 0, its direction lies
-     * on the equator and dN_p >= asin |nz_p| >= |nz_p|, so the objective is at least nz_p^2. Hence
-     * every block, the optimum's included, has objective >= LB. Rounding: LB is lowered to
-     * max(0, LB - 16 TAU) (1 - REL) (TAU = 1e-10 per pixel, REL = 1e-9; max metric: one TAU), which
-     * covers the rounding of the computed angles (within 1e-14 rad of the true ones), of the unit
-     * normals (within 1e-16 of unit length) and of the sums (20 ulps relative) a thousand times over:
-     * the computed objective of every block is >= the lowered LB (bc5_adaptive.c). So a skipped
-     * block's computed objective is <= (1 + gap) times the computed objective of every other block.
+     * The bound LB, free from the common encoder (each channel's exact least-squares sum Sx, Sy over
+     * all 65536 anchor pairs, component units 2 v - 1, which sol_bc4_encode_block minimises), is the
+     * larger of the separable bound and the tilt bound:
+     *   separable: min(Sx + Sy, min_p nz_p^2)        ((Sx + Sy) / 16 for SOL_BC5_MAX: max >= mean)
+     *   tilt:      min(B, T)                         (B / 16 for SOL_BC5_MAX), when every nz_p > 0,
+     * with T = min(U, min_p nz_p^2), U the base block's upper chord bound (>= its objective, see
+     * threshold_deg), B the largest of Sx + Sy, (1 + alpha) Sx + (1 - beta) Sy and the same with x and
+     * y swapped, where for r = sqrt(T), K = (max(0, 2 min_p |nx_p| - r) / (2 max_p nz_p + r))^2,
+     * C = ((2 max_p |ny_p| + r) / (2 min_p nz_p - r))^2: beta in (0, 1] and alpha = K beta / (beta + C)
+     * (beta = sqrt(K C Sx / Sy) - C clamped to 1, the best; 1 when Sy = 0).
+     * Proof (separable): take any anchors and indices. If every pixel decodes inside the unit disk
+     * (a^2 + b^2 <= 1, z rebuilt), dN_p >= chord_p = |u_p - n_p| >= sqrt((a_p - nx_p)^2 + (b_p -
+     * ny_p)^2) (the chord of unit vectors is at most the angle; dropping the z difference), so the sum
+     * of dN_p^2 is at least sum_p min_i (x_i - nx_p)^2 + min_j (y_j - ny_p)^2 >= Sx + Sy (the common
+     * anchors minimise each channel's sum over all pairs). If some pixel p decodes with z clamped to 0,
+     * its direction lies on the equator and dN_p >= asin |nz_p| >= |nz_p|, so the objective is at
+     * least nz_p^2. Hence every block, the optimum's included, has objective >= LB.
+     * Proof (tilt: the chord's z part, which the separable bound drops, is what tilted normals add,
+     * and where one channel's error dominates it is not cancelled by the other's). Write dx = a - nx, dy = b - ny, dz = z - nz for a pixel decoding inside the disk.
+     * Both vectors are unit, so dx (a + nx) + dy (b + ny) + dz (z + nz) = 0, and with z + nz > 0,
+     * dz = -(G dx + H dy), G = (a + nx) / (z + nz), H = (b + ny) / (z + nz): chord^2 = dx^2 + dy^2 +
+     * (G dx + H dy)^2. For alpha >= 0, beta > 0 with G^2 >= alpha (1 + H^2 / beta), the form
+     * (G dx + H dy)^2 - alpha dx^2 + beta dy^2 is positive semidefinite (its determinant is beta G^2 -
+     * alpha (H^2 + beta) >= 0, its dy^2 coefficient H^2 + beta > 0), so chord^2 >= (1 + alpha) dx^2
+     * + (1 - beta) dy^2 =: q. Where chord^2 < T, |dx|, |dy|, |dz| < r, so G^2 >= K and H^2 <= C
+     * (|a + nx| >= 2 |nx| - r, |b + ny| <= 2 |ny| + r, z + nz in (2 nz - r, 2 nz + r), 2 nz - r >=
+     * nz > 0 as T <= nz^2), and alpha = K beta / (beta + C) <= G^2 beta / (beta + H^2) meets the
+     * condition: chord^2 >= q. Where chord^2 >= T, and for decodes with z
+     * clamped (chord^2 >= nz_p^2 >= T), chord^2 >= min(q, T). So every pixel has dN_p^2 >= min(q_p,
+     * T), and (all q_p >= 0 as beta <= 1) the sum is >= min(sum_p q_p, T) >= min((1 + alpha) Sx +
+     * (1 - beta) Sy, T): if some q_p >= T that term alone is T, else the sum is sum_p q_p, and
+     * sum_p dx_p^2 >= Sx, sum_p dy_p^2 >= Sy with non-negative weights (the max metric: max_p min(q_p,
+     * T) >= min(sum_p q_p / 16, T)). The cap U only chooses T (any T in (0, min nz^2] gives a valid
+     * bound; U keeps r small, about the pixels' error, and the bound itself at most U).
+     * Rounding: LB is lowered to max(0, LB - 16 TAU) (1 - REL) (TAU = 1e-10 per pixel, REL = 1e-9;
+     * max metric: one TAU), which covers the rounding of the computed angles (within 1e-14 rad of the
+     * true ones), of the unit normals (within 1e-16 of unit length) and of the sums (20 ulps relative)
+     * a thousand times over; r is raised by a relative 1e-9 and by 1e-12 and alpha lowered by a
+     * relative 1e-12, which cover the rounding of K, C and alpha (bc5_adaptive.c): the computed
+     * objective of every block is >= the lowered LB. So a skipped block's computed objective is <=
+     * (1 + gap) times the computed objective of every other block.
      * The base objective is decided from chord bounds of the angles where the caller asks for no error
-     * (the same decision as the exact angles, see threshold_deg). The fast base has no skip test (its
+     * (the same decision as the exact angles, see threshold_deg; U is computed on every path, so the
+     * limit (1 + gap) LB, and the decision, do not depend on whether the caller asks for the error). The fast base has no skip test (its
      * step 1 computes no least-squares sums: bounding the optimum would cost the common encoder).
      * The same gap is the window search's relative tolerance, with either base: a candidate is dropped
      * once its lower bound reaches the incumbent's objective / (1 + gap), so a searched block ends
