@@ -101,6 +101,18 @@ static void cleanup(void)
     (void)!system(cmd);
 }
 
+/* Loads quad.gltf, puts a camera looking at the quad head on (from z = -3) and builds its plan. */
+static void load_quad_head_on(sol_scene *s, sol_scene_plan *p)
+{
+    sol_scene_error e;
+    cr_assert_eq(sol_scene_load(in_dir("quad.gltf"), s, &e), SOL_OK, "%s", e.message);
+    const double pos[3] = {0, 0, -3}, at[3] = {0, 0, 0};
+    memcpy(s->camera.position, pos, sizeof pos);
+    memcpy(s->camera.look_at, at, sizeof at);
+    s->camera.fov_deg = 40;
+    cr_assert_eq(sol_scene_plan_build(s, p), SOL_OK);
+}
+
 /* The quad's normal texture is sampled in its tangent frame: the reference path's normal at the
  * centre is 0.36 T + 0.48 B + 0.8 N with T = +x (along +u), B = +y (the texture's up), N = -z;
  * the plan names the glTF material's normalTexture (normal-map-bc5) and its baseColorTexture
@@ -112,15 +124,8 @@ Test(scene_gltf, normal_and_base_colour_textures_are_sampled_and_planned)
     write_quad_gltf("quad.gltf", "{\"name\":\"tiles\",\"normalTexture\":{\"index\":0},"
                                  "\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":1},\"roughnessFactor\":0.5}}");
     sol_scene s;
-    sol_scene_error e;
-    cr_assert_eq(sol_scene_load(in_dir("quad.gltf"), &s, &e), SOL_OK, "%s", e.message);
-    /* a camera looking at the quad head on */
-    double pos[3] = {0, 0, -3}, at[3] = {0, 0, 0};
-    memcpy(s.camera.position, pos, sizeof pos);
-    memcpy(s.camera.look_at, at, sizeof at);
-    s.camera.fov_deg = 40;
     sol_scene_plan p;
-    cr_assert_eq(sol_scene_plan_build(&s, &p), SOL_OK);
+    load_quad_head_on(&s, &p);
     cr_expect_eq(p.run[SOL_FX_NORMAL_MAP_BC5], 1);
     cr_expect_str_eq(p.element[SOL_FX_NORMAL_MAP_BC5], "/materials/0/normalTexture");
     cr_expect(strstr(p.reason[SOL_FX_NORMAL_MAP_BC5], "normal.png") && strstr(p.reason[SOL_FX_NORMAL_MAP_BC5], "tiles"),
@@ -170,14 +175,8 @@ Test(scene_gltf, normal_texture_scale_scales_xy_before_renormalising)
         snprintf(mat, sizeof mat, "{\"name\":\"tiles\",\"normalTexture\":{\"index\":0,\"scale\":%s}}", cases[k].scale);
         write_quad_gltf("quad.gltf", mat);
         sol_scene s;
-        sol_scene_error e;
-        cr_assert_eq(sol_scene_load(in_dir("quad.gltf"), &s, &e), SOL_OK, "%s", e.message);
-        double pos[3] = {0, 0, -3}, at[3] = {0, 0, 0};
-        memcpy(s.camera.position, pos, sizeof pos);
-        memcpy(s.camera.look_at, at, sizeof at);
-        s.camera.fov_deg = 40;
         sol_scene_plan p;
-        cr_assert_eq(sol_scene_plan_build(&s, &p), SOL_OK);
+        load_quad_head_on(&s, &p);
         sol_render_options o = {32, 18, 1, 0};
         sol_render_result ref;
         cr_assert_eq(sol_scene_render(&s, &p, &o, &ref, NULL), SOL_OK);

@@ -1461,6 +1461,27 @@ static inline int screen_levels(const pair_screen *sc, const uint16_t code[8], c
 #endif
 }
 
+/* The value codes (code k is the value k / half_q - 1) of an interval [lo, hi] of values, widened by
+ * one code each side so that rounding cannot drop a value at its ends, clipped to [0, top]; the
+ * range is empty when k0 > k1. Shared by the pair screen and the pixel floor. */
+static inline void interval_codes(double lo, double hi, double half_q, long top, long *k0, long *k1)
+{
+    long a = (long)floor((lo + 1.0) * half_q) - 1, b = (long)ceil((hi + 1.0) * half_q) + 1;
+    *k0 = a < 0 ? 0 : a;
+    *k1 = b > top ? top : b;
+}
+
+/* Word w of a code bitset with only the codes [k0, k1] kept (w between k0 / 64 and k1 / 64). */
+static inline uint64_t bits_in_range(const uint64_t *bits, long w, long k0, long k1)
+{
+    uint64_t b = bits[w];
+    if (w == k0 >> 6)
+        b &= ~UINT64_C(0) << (k0 & 63);
+    if (w == k1 >> 6 && (k1 & 63) != 63)
+        b &= (UINT64_C(1) << ((k1 & 63) + 1)) - 1;
+    return b;
+}
+
 /* Builds the screen of rows x[0 .. nx) against y[0 .. ny) (y sides ys, pixels in `order`) at incumbent
  * best: 1 if built, 0 if not (a value code with more than two doubles, more passes than the screen
  * holds, or the work limit reached; then the caller enumerates without it). */
@@ -1593,16 +1614,10 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                     break;
                 }
                 for (int u = 0; u < cnt; ++u) {
-                    long k0 = (long)floor((ilo[u] + 1.0) * half_q) - 1, k1 = (long)ceil((ihi[u] + 1.0) * half_q) + 1;
-                    k0 = k0 < 0 ? 0 : k0;
-                    k1 = k1 > top ? top : k1;
+                    long k0, k1;
+                    interval_codes(ilo[u], ihi[u], half_q, top, &k0, &k1);
                     for (long w = k0 >> 6; w <= k1 >> 6 && k0 <= k1; ++w) {
-                        uint64_t bits = sc->bits[w];
-                        if (w == k0 >> 6)
-                            bits &= ~UINT64_C(0) << (k0 & 63);
-                        if (w == k1 >> 6 && (k1 & 63) != 63)
-                            bits &= (UINT64_C(1) << ((k1 & 63) + 1)) - 1;
-                        for (; bits; bits &= bits - 1) {
+                        for (uint64_t bits = bits_in_range(sc->bits, w, k0, k1); bits; bits &= bits - 1) {
                             long code = 64 * w + __builtin_ctzll(bits);
                             if (sc->stamp[code] != sc->gen) {
                                 sc->stamp[code] = sc->gen;
@@ -1818,17 +1833,11 @@ static int floor_scan(pixel_floor *pf, const double n[16][3], const away_info *a
                 if (cnt < 0)
                     return -1; /* the ball constrains nothing */
                 for (int u = 0; u < cnt; ++u) {
-                    long k0 = (long)floor((lo[u] + 1.0) * half_q) - 1, k1 = (long)ceil((hi[u] + 1.0) * half_q) + 1;
-                    k0 = k0 < 0 ? 0 : k0;
-                    k1 = k1 > top ? top : k1;
+                    long k0, k1;
+                    interval_codes(lo[u], hi[u], half_q, top, &k0, &k1);
                     for (long v = k0 >> 6; v <= k1 >> 6 && k0 <= k1; ++v) {
-                        uint64_t bits = vy->bits[v];
-                        if (v == k0 >> 6)
-                            bits &= ~UINT64_C(0) << (k0 & 63);
-                        if (v == k1 >> 6 && (k1 & 63) != 63)
-                            bits &= (UINT64_C(1) << ((k1 & 63) + 1)) - 1;
                         ++*work;
-                        for (; bits; bits &= bits - 1) {
+                        for (uint64_t bits = bits_in_range(vy->bits, v, k0, k1); bits; bits &= bits - 1) {
                             const long k = 64 * v + __builtin_ctzll(bits);
                             for (int f = 0; f < vy->nval[k]; ++f) {
                                 const double b = vy->val[k][f];
