@@ -1461,6 +1461,27 @@ static inline int screen_levels(const pair_screen *sc, const uint16_t code[8], c
 #endif
 }
 
+/* Records value v under its code k in a code set (bits, and per code up to two distinct doubles
+ * nval / val: palette values that round to one code can differ in their last bits): 1 if the code was
+ * new, 0 if it was there (v added as its second double if new), -1 if the code would need a third
+ * double (callers then give up their screen). Shared by the pair screen and the pixel floor. */
+static inline int value_code_add(uint64_t *bits, uint8_t *nval, double (*val)[2], long k, double v)
+{
+    if (!((bits[k >> 6] >> (k & 63)) & 1)) {
+        bits[k >> 6] |= UINT64_C(1) << (k & 63);
+        nval[k] = 1;
+        val[k][0] = v;
+        return 1;
+    }
+    if (v != val[k][0] && (nval[k] == 1 || v != val[k][1])) {
+        if (nval[k] == 2)
+            return -1;
+        val[k][1] = v;
+        nval[k] = 2;
+    }
+    return 0;
+}
+
 /* The value codes (code k is the value k / half_q - 1) of an interval [lo, hi] of values, widened by
  * one code each side so that rounding cannot drop a value at its ends, clipped to [0, top]; the
  * range is empty when k0 > k1. Shared by the pair screen and the pixel floor. */
@@ -1511,19 +1532,14 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
         for (int e = 0; e < 8; ++e) {
             double v = pal[xl[i].pair][e];
             long k = lround((v + 1.0) * half_q);
-            if (!((sc->bits[k >> 6] >> (k & 63)) & 1)) {
-                sc->bits[k >> 6] |= UINT64_C(1) << (k & 63);
-                sc->nval[k] = 1;
-                sc->val[k][0] = v;
+            const int added = value_code_add(sc->bits, sc->nval, sc->val, k, v);
+            if (added < 0)
+                return 0;
+            if (added == 1) { /* a new code: its per-code state starts clear */
                 sc->stamp[k] = 0;
                 sc->done[k] = sc->marked[k] = 0;
                 memset(sc->jm[k], 0, 16);
                 memset(sc->lv[k], 255, 16);
-            } else if (v != sc->val[k][0] && (sc->nval[k] == 1 || v != sc->val[k][1])) {
-                if (sc->nval[k] == 2)
-                    return 0;
-                sc->val[k][1] = v;
-                sc->nval[k] = 2;
             }
             sc->xcode[i][e] = (uint16_t)k;
         }
@@ -1780,16 +1796,8 @@ static int value_codes_init(value_codes *vc, const sol_nm_pair *list, size_t n, 
         for (int e = 0; e < 8; ++e) {
             double v = pal[list[i].pair][e];
             long k = lround((v + 1.0) * half_q);
-            if (!((vc->bits[k >> 6] >> (k & 63)) & 1)) {
-                vc->bits[k >> 6] |= UINT64_C(1) << (k & 63);
-                vc->nval[k] = 1;
-                vc->val[k][0] = v;
-            } else if (v != vc->val[k][0] && (vc->nval[k] == 1 || v != vc->val[k][1])) {
-                if (vc->nval[k] == 2)
-                    return 0;
-                vc->val[k][1] = v;
-                vc->nval[k] = 2;
-            }
+            if (value_code_add(vc->bits, vc->nval, vc->val, k, v) < 0)
+                return 0;
         }
     }
     return 1;
