@@ -2274,6 +2274,23 @@ Test(normalmaps, couple_reduce_keeps_every_candidate_below_the_margin)
     cr_assert(dropped > 0);
 }
 
+/* A sum-metric survey block's reference result (expect_survey_case: error, anchors, proven, brute
+ * force in a +-2 window). */
+typedef struct sum_survey_ref {
+    int family;
+    double spread;
+    sol_bc4_precision precision;
+    double error;
+    int anchors[4];
+} sum_survey_ref;
+
+static void expect_sum_survey_refs(const sum_survey_ref *cases, size_t count)
+{
+    for (size_t c = 0; c < count; ++c)
+        expect_survey_case(cases[c].family, cases[c].spread, SOL_BC5_SUM_SQUARED, cases[c].precision, cases[c].error,
+                           cases[c].anchors, c);
+}
+
 /* Survey blocks (generator above) that the search left bounded at the default work limit (0.3-0.5 s,
  * its best found 1-50% above the optimum on some: half-away-arc 1 rad 2.2143 instead of 1.4551) and
  * that the coupled row bounds of bc5_couple.c now prove: an arc on the rim (2 rad), an arc with every
@@ -2282,23 +2299,14 @@ Test(normalmaps, couple_reduce_keeps_every_candidate_below_the_margin)
  * brute force in a +-2 window around the result. */
 Test(normalmaps, coupled_survey_blocks_are_proven_exactly)
 {
-    static const struct {
-        int family;
-        double spread;
-        sol_bc4_precision precision;
-        double error;
-        int anchors[4];
-    } cases[] = {
+    static const sum_survey_ref cases[] = {
         {1, 2.0, SOL_BC4_INTERP_16BIT, 0.028094823736270348, {11, 46, 41, 214}},
         {2, 1.0, SOL_BC4_INTERP_8BIT, 1.4551028824300727, {6, 29, 189, 65}},
         {6, 0.3, SOL_BC4_INTERP_FLOAT, 3.7449236588967998, {2, 25, 209, 152}},
         {6, 1.0, SOL_BC4_INTERP_8BIT, 3.8859124743180575, {1, 79, 62, 196}},
         {2, 2.0, SOL_BC4_INTERP_8BIT, 4.441466024346842, {10, 74, 72, 201}},
     };
-    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
-        expect_survey_case(cases[c].family, cases[c].spread, SOL_BC5_SUM_SQUARED, cases[c].precision, cases[c].error,
-                           cases[c].anchors, c);
-    }
+    expect_sum_survey_refs(cases, sizeof cases / sizeof cases[0]);
 }
 
 /* issue 13 (this session's survey speed-ups: the coupled reduction once, after the descent; the lists
@@ -2308,23 +2316,14 @@ Test(normalmaps, coupled_survey_blocks_are_proven_exactly)
  * survey run), proven (not bounded) and equal to brute force in a +-2 window. */
 Test(normalmaps, reordered_reductions_keep_the_survey_results)
 {
-    static const struct {
-        int family;
-        double spread;
-        sol_bc4_precision precision;
-        double error;
-        int anchors[4];
-    } cases[] = {
+    static const sum_survey_ref cases[] = {
         {2, 0.3, SOL_BC4_INTERP_16BIT, 0.41730338653635829, {3, 5, 150, 115}},
         {2, 0.03, SOL_BC4_INTERP_FLOAT, 0.32195341132580479, {2, 3, 135, 131}},
         {5, 0.1, SOL_BC4_INTERP_16BIT, 4.3651361994334064, {6, 3, 172, 167}},
         {0, 0.03, SOL_BC4_INTERP_FLOAT, 0.17520762654563746, {1, 2, 150, 146}},
         {7, 0.1, SOL_BC4_INTERP_16BIT, 0.0029670501826751334, {2, 3, 163, 150}},
     };
-    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
-        expect_survey_case(cases[c].family, cases[c].spread, SOL_BC5_SUM_SQUARED, cases[c].precision, cases[c].error,
-                           cases[c].anchors, c);
-    }
+    expect_sum_survey_refs(cases, sizeof cases / sizeof cases[0]);
 }
 
 static int pair_order(const void *a, const void *b)
