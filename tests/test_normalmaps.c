@@ -2831,6 +2831,8 @@ Test(normalmaps, pair_screen_bound_holds_and_is_close, .timeout = 120)
         {7, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, {16, 80, 246, 35}, 0},
         {6, SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, {0, 42, 0, 4}, 0},
     };
+    sol_nm_screen *sc = sol_nm_screen_new(); /* one screen for every candidate (~13 MB) */
+    cr_assert(sc);
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
         double n[16][3];
         survey_block(cases[c].family, 2.0, n);
@@ -2849,16 +2851,17 @@ Test(normalmaps, pair_screen_bound_holds_and_is_close, .timeout = 120)
                         const double obj = cases[c].metric == SOL_BC5_MAX ? e * e : e;
                         const int use_max = cases[c].metric == SOL_BC5_MAX;
                         const int px = a0 << 8 | a1, py = b0 << 8 | b1;
-                        cr_assert_eq(sol_nm_screen_rules_out(n, use_max, obj * (1.0 + 1e-9), cases[c].precision, px, py), 0,
+                        cr_assert_eq(sol_nm_screen_rules_out(sc, n, use_max, obj * (1.0 + 1e-9), cases[c].precision, px, py), 0,
                                      "case %zu: %d,%d,%d,%d ruled out at its own objective", c, a0, a1, b0, b1);
                         ++tried;
                         if (cases[c].tight)
-                            close += sol_nm_screen_rules_out(n, use_max, obj * 0.99, cases[c].precision, px, py) == 1;
+                            close += sol_nm_screen_rules_out(sc, n, use_max, obj * 0.99, cases[c].precision, px, py) == 1;
                     }
         cr_assert(tried >= 225, "case %zu: %d candidates", c, tried); /* 625 less those clamped at code 0 */
         if (cases[c].tight)
             cr_assert_eq(close, tried, "case %zu: %d of %d ruled out at 0.99 E", c, close, tried);
     }
+    sol_nm_screen_free(sc);
 }
 
 /* The survey block the search still left bounded at the default work limit (0.7 s, 0.57 million

@@ -1199,10 +1199,55 @@ static int cone_line(double a, double dx, double dy, double c, double s, double 
     return 1;
 }
 
+/* The b of the unclamped decodes (a, b, z), z = sqrt(1 - a^2 - b^2), with |u - q|^2 <= R2 for unit q,
+ * exactly (z kept, not dropped as in pixel_y_intervals): a q0 + b q1 + z q2 >= 1 - R2 / 2, and with
+ * (b, z) = L (cos phi, sin phi), L = sqrt(1 - a^2), phi in [0, pi], that is
+ * L r cos(phi - psi) >= C' (r, psi: (q1, q2) in polar form, C' = 1 - R2 / 2 - a q0), an arc of phi
+ * around psi of half-width acos(C' / (L r)), intersected with [0, pi] (b = L cos phi decreasing).
+ * The half-width is widened by 1e-6 and the ends by 1e-9 against rounding (acos is steep near +-1).
+ * Appends up to two intervals at lo[k], hi[k]; returns the new k. */
+static int sphere_line(double a, const double q[3], double R2, double lo[16], double hi[16], int k)
+{
+    const double L2 = (1.0 - a) * (1.0 + a);
+    if (!(L2 >= 0.0))
+        return k;
+    const double L = sqrt(L2), r = hypot(q[1], q[2]), C = 1.0 - 0.5 * R2 - a * q[0] - 1e-12;
+    double alpha;
+    if (L * r == 0.0 || C / (L * r) <= -1.0) {
+        if (!(L * r == 0.0) || 0.0 >= C - 1e-12) {
+            lo[k] = -L - 1e-9;
+            hi[k++] = L + 1e-9;
+        }
+        return k;
+    }
+    const double kappa = C / (L * r);
+    if (kappa > 1.0)
+        return k;
+    alpha = acos(kappa < 1.0 ? kappa : 1.0) + 1e-6;
+    if (alpha >= M_PI) {
+        lo[k] = -L - 1e-9;
+        hi[k++] = L + 1e-9;
+        return k;
+    }
+    const double psi = atan2(q[2], q[1]);
+    for (int s = -1; s <= 1; ++s) {
+        const double c = psi + 2.0 * M_PI * s, p0 = c - alpha > 0.0 ? c - alpha : 0.0,
+                     p1 = c + alpha < M_PI ? c + alpha : M_PI;
+        if (p0 <= p1) {
+            lo[k] = L * cos(p1) - 1e-9;
+            hi[k++] = L * cos(p0) + 1e-9;
+        }
+    }
+    return k;
+}
+
 /* The y intervals for one pixel (target q, squared radius R2) and x palette a: returns their
- * count (up to 16), or -1 if the pixel constrains nothing. */
-static int pixel_y_intervals(const double a[8], const double q[3], double R2, double cone_slack, double lo[16],
-                             double hi[16])
+ * count (up to 16), or -1 if the pixel constrains nothing. exact (unit q only): the unclamped
+ * decodes' intervals from sphere_line instead of the projection that drops z, and the clamped ones'
+ * (the cone) only off the unit disc, where decodes are clamped; for palettes of one or two distinct
+ * values (more: -1 once the 16 places could overflow). */
+static int pixel_intervals(const double a[8], const double q[3], double R2, double cone_slack, int exact,
+                           double lo[16], double hi[16])
 {
     if (!(R2 < 4.0))
         return -1;
@@ -1232,8 +1277,12 @@ static int pixel_y_intervals(const double a[8], const double q[3], double R2, do
             dup = a[f] == a[e];
         if (dup)
             continue;
+        if (exact && k > 16 - 5)
+            return -1; /* no room for this entry's five intervals: constrain nothing (valid) */
         double da = a[e] - q[0], rem = R2 - da * da;
-        if (rem >= 0.0) { /* unclamped */
+        if (exact) {
+            k = sphere_line(a[e], q, R2, lo, hi, k);
+        } else if (rem >= 0.0) { /* unclamped */
             double w = sqrt(rem), lim = sqrt(fmax(0.0, (1.0 - a[e]) * (1.0 + a[e])));
             double l = fmax(q[1] - w, -lim) - 1e-9, h = fmin(q[1] + w, lim) + 1e-9;
             if (l <= h) {
@@ -1243,19 +1292,42 @@ static int pixel_y_intervals(const double a[8], const double q[3], double R2, do
         }
         double l, h;
         if (clamped == 2) {
-            lo[k] = -1.0;
-            hi[k++] = 1.0;
+            l = -1.0;
+            h = 1.0;
         } else if (clamped == 1 && cone_line(a[e], dx, dy, c, sn, &l, &h) && l <= 1.0 + 1e-9 && h >= -1.0 - 1e-9) {
-            lo[k] = fmax(l, -1.0) - 1e-9;
-            hi[k++] = fmin(h, 1.0) + 1e-9;
+            l = fmax(l, -1.0) - 1e-9;
+            h = fmin(h, 1.0) + 1e-9;
+        } else {
+            continue;
+        }
+        if (!exact) {
+            lo[k] = l;
+            hi[k++] = h;
+            continue;
+        }
+        /* a decode is clamped only off the unit disc: |b| >= L = sqrt(1 - a^2) (widened) */
+        const double L = sqrt(fmax(0.0, (1.0 - a[e]) * (1.0 + a[e]))) - 1e-9;
+        if (l <= -L) {
+            lo[k] = l;
+            hi[k++] = h < -L ? h : -L;
+        }
+        if (h >= L) {
+            lo[k] = l > L ? l : L;
+            hi[k++] = h;
         }
     }
     return k;
 }
 
-/* The coupling filter for one x palette. */
+static int pixel_y_intervals(const double a[8], const double q[3], double R2, double cone_slack, double lo[16],
+                             double hi[16])
+{
+    return pixel_intervals(a, q, R2, cone_slack, 0, lo, hi);
+}
+
+/* The coupling filter for one x palette: np constrained pixels, rank[0] the most selective. */
 typedef struct y_filter {
-    int np, pix[16], cnt[16];
+    int np, pix[16], cnt[16], rank[16];
     double lo[16][16], hi[16][16];
     uint32_t items[16]; /* entries of the y list in the pixel's buckets */
 } y_filter;
@@ -1337,24 +1409,15 @@ static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs,
     }
     if (f->np == 0)
         return 0;
-    /* most selective first (insertion sort by items) */
+    /* most selective first: rank, by a stable insertion sort on items (the pixels' intervals stay in
+     * place; moving them was a fifth of the cones' search time, issue 13's profile) */
+    for (int i = 0; i < f->np; ++i)
+        f->rank[i] = i;
     for (int i = 1; i < f->np; ++i)
-        for (int j = i; j > 0 && f->items[j] < f->items[j - 1]; --j) {
-            int tp = f->pix[j], tc = f->cnt[j];
-            uint32_t ti = f->items[j];
-            double tl[16], th[16];
-            memcpy(tl, f->lo[j], sizeof tl);
-            memcpy(th, f->hi[j], sizeof th);
-            f->pix[j] = f->pix[j - 1];
-            f->cnt[j] = f->cnt[j - 1];
-            f->items[j] = f->items[j - 1];
-            memcpy(f->lo[j], f->lo[j - 1], sizeof tl);
-            memcpy(f->hi[j], f->hi[j - 1], sizeof th);
-            f->pix[j - 1] = tp;
-            f->cnt[j - 1] = tc;
-            f->items[j - 1] = ti;
-            memcpy(f->lo[j - 1], tl, sizeof tl);
-            memcpy(f->hi[j - 1], th, sizeof th);
+        for (int j = i; j > 0 && f->items[f->rank[j]] < f->items[f->rank[j - 1]]; --j) {
+            int t = f->rank[j];
+            f->rank[j] = f->rank[j - 1];
+            f->rank[j - 1] = t;
         }
     return 1;
 }
@@ -1362,7 +1425,8 @@ static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs,
 /* Whether palette b has an entry in the intervals of the filter's pixels 1 .. 4 (pixel 0 chose it). */
 static int y_filter_pass(const y_filter *f, const double b[8])
 {
-    for (int i = 1; i < f->np && i < 5; ++i) {
+    for (int r = 1; r < f->np && r < 5; ++r) {
+        const int i = f->rank[r];
         int hit = 0;
         for (int e = 0; e < 8 && !hit; ++e)
             for (int k = 0; k < f->cnt[i] && !hit; ++k)
@@ -1371,6 +1435,76 @@ static int y_filter_pass(const y_filter *f, const double b[8])
             return 0;
     }
     return 1;
+}
+
+/* ---- the pixels pointing away's two tighter balls (issue 13: the screen's and filters' intervals) ----
+ *
+ * pixel_ball's ball for a pixel pointing away comes from the tangent dN^2 >= theta0^2 + k c^2 of the
+ * convex H(c^2)^2 (see "pixels pointing away"), loose far from the rim target: with the sum metric's
+ * per-pixel budgets (the incumbent less the other pixels' floors) it admits values whose decodes are
+ * far off, and most of the screen's levels came out at their cap (arcs and cones pointing away:
+ * 80-90%). Two exact balls do better, both for decodes u with z >= 0 and a budget dN^2 < T, T < pi^2:
+ *  - the rim ball itself: dN >= H(c^2) = acos(rho (1 - c^2 / 2)) with c = |u - m|, so
+ *    c^2 < 2 (1 - cos(sqrt T) / rho) (rho > 0); no u at all if that is negative;
+ *  - the chord to n: dN = 2 asin(|u - n| / 2), so |u - n|^2 < 4 sin^2(sqrt T / 2), and
+ *    |u - n|^2 >= |u_xy - n_xy|^2 + nz^2 (an unclamped decode: (z - nz)^2 >= nz^2 as z >= 0 > nz; a
+ *    clamped one: z = 0), a ball around (nx, ny, 0) of squared radius 4 sin^2(sqrt T / 2) - nz^2.
+ * A decode must lie in both (and in pixel_ball's: the first contains it, so it is kept only as the
+ * smaller radius). Radii are widened by 1e-9 relative and 1e-12 absolute (1e-12 / rho for the rim
+ * ball's division), sqrt T by 1e-12 relative, against rounding of the angle and of cos / sin. */
+static int away_balls(const away_info *aw, const double n[16][3], int p, double t, double *R2, double qb[3],
+                      double *R2b)
+{
+    if (!((aw->mask >> p) & 1) || !(aw->w[p] > 0.0))
+        return 0;
+    const double r = sqrt(t) * (1.0 + 1e-12);
+    if (!(r < M_PI))
+        return 0;
+    const double rho = hypot(n[p][0], n[p][1]), nz = n[p][2];
+    if (!(rho > 0.0))
+        return 0;
+    double ra = 2.0 * (1.0 - cos(r) / rho);
+    ra = ra * (1.0 + 1e-9) + 1e-12 / rho;
+    if (ra < *R2)
+        *R2 = ra; /* pixel_ball's tangent ball, around the same rim target: the smaller radius */
+    const double s = 2.0 * sin(0.5 * r);
+    qb[0] = n[p][0];
+    qb[1] = n[p][1];
+    qb[2] = nz;
+    *R2b = s * s * (1.0 + 1e-9) + 1e-12;
+    return 1;
+}
+
+/* The intervals of a pixel pointing away for the entry held eight times in one[]: the cnt intervals
+ * [lo, hi] of its rim ball (pixel_y_intervals; -1: it constrains nothing) intersected with those of
+ * its chord ball qb, R2b (away_balls; the screen passes both centres with x and y swapped). Returns
+ * the new count (up to 4; -1 if neither constrains). */
+static int away_intervals(const double one[8], const double qb[3], double R2b, int cnt, double lo[16], double hi[16])
+{
+    if (R2b < 0.0)
+        return 0; /* no decode within the chord ball */
+    double blo[16], bhi[16];
+    const int cb = pixel_intervals(one, qb, R2b, 1e-9, 1, blo, bhi);
+    if (cb < 0)
+        return cnt;
+    if (cnt < 0) {
+        memcpy(lo, blo, (size_t)cb * sizeof *lo);
+        memcpy(hi, bhi, (size_t)cb * sizeof *hi);
+        return cb;
+    }
+    double olo[16], ohi[16];
+    int k = 0;
+    for (int u = 0; u < cnt; ++u)
+        for (int v = 0; v < cb; ++v) {
+            const double l = lo[u] > blo[v] ? lo[u] : blo[v], h = hi[u] < bhi[v] ? hi[u] : bhi[v];
+            if (l <= h) {
+                olo[k] = l;
+                ohi[k++] = h;
+            }
+        }
+    memcpy(lo, olo, (size_t)k * sizeof *lo);
+    memcpy(hi, ohi, (size_t)k * sizeof *hi);
+    return k;
 }
 
 /* ---- the pair screen (issue 13: the arcs and cones pointing away, the jittered rims) ----
@@ -1415,21 +1549,42 @@ static int y_filter_pass(const y_filter *f, const double b[8])
 #define SCREEN_TESTS_MAX (1u << 23)
 
 typedef struct pair_screen {
-    uint8_t lv[SCREEN_CODES][16];  /* per x value code, per pixel (visiting order): the level */
-    double val[SCREEN_CODES][2];   /* the distinct doubles of each code */
+    /* per x value code k its slot cid[k] (the x list's distinct codes numbered in order of first
+     * appearance, so that the per-value state below fills a few pages instead of 65536 codes' worth:
+     * on fresh memory each page is a fault, ~30 ms a screen on the survey's blocks) */
+    uint16_t cid[SCREEN_CODES];
+    uint64_t bits[SCREEN_CODES / 64]; /* the codes present */
+    /* per slot: */
+    uint8_t lv[SCREEN_CODES][16];  /* per pixel (visiting order): the level */
+    double val[SCREEN_CODES][2];   /* the distinct doubles of the code */
     uint8_t nval[SCREEN_CODES];
     uint32_t stamp[SCREEN_CODES];  /* marked in the current y pair (then reset) */
-    uint16_t done[SCREEN_CODES];   /* bit k: lv[code][k] computed in the current y pair */
-    uint16_t marked[SCREEN_CODES]; /* bit k: jm[code][k] != 0 */
-    uint8_t jm[SCREEN_CODES][16];  /* bit e: the code lies in y entry e's intervals of pixel k */
-    uint32_t touched[SCREEN_CODES];
-    uint64_t bits[SCREEN_CODES / 64];
-    uint16_t xcode[65536][8];      /* the x list's value codes */
+    uint16_t done[SCREEN_CODES];   /* bit k: lv[slot][k] computed in the current y pair */
+    uint16_t marked[SCREEN_CODES]; /* bit k: jm[slot][k] != 0 */
+    uint8_t jm[SCREEN_CODES][16];  /* bit e: the value lies in y entry e's intervals of pixel k */
+    uint32_t touched[SCREEN_CODES]; /* the slots marked in the current y pair */
+    /* the rows holding each slot's value: crow[cstart[s] .. cstart[s] + cnum[s]), ascending, each row
+     * once; rstamp: rows met in the current y pair (generation rgen) */
+    uint32_t cstart[SCREEN_CODES], cnum[SCREEN_CODES];
+    uint16_t xcode[65536][8];      /* the x list's values' slots */
     uint32_t start[65537];         /* row r's passing y positions: col[start[r] .. start[r + 1]) */
     uint32_t jstart[65537];        /* y pair j's passing rows: row[jstart[j] .. jstart[j + 1]) */
     uint32_t row[SCREEN_PASS_MAX], col[SCREEN_PASS_MAX];
     uint32_t gen;
+    uint32_t crow[8 * 65536];
+    uint32_t rstamp[65536];
+    uint32_t rgen;
 } pair_screen;
+
+/* A pair screen's tables, uninitialised but for the generations (pair_screen_build initialises what
+ * it reads: calloc would clear, and so fault in, all of its ~13 MB), or NULL. */
+static pair_screen *pair_screen_new(void)
+{
+    pair_screen *sc = malloc(sizeof *sc);
+    if (sc)
+        sc->gen = sc->rgen = 0;
+    return sc;
+}
 
 /* The levels of 8 values of one x pair, least per pixel (columns masked by keep), then either 1
  * (some pixel at 255: ruled out) or 0 with *sum the sum of the levels. */
@@ -1462,22 +1617,23 @@ static inline int screen_levels(const pair_screen *sc, const uint16_t code[8], c
 }
 
 /* Records value v under its code k in a code set (bits, and per code up to two distinct doubles
- * nval / val: palette values that round to one code can differ in their last bits): 1 if the code was
- * new, 0 if it was there (v added as its second double if new), -1 if the code would need a third
- * double (callers then give up their screen). Shared by the pair screen and the pixel floor. */
-static inline int value_code_add(uint64_t *bits, uint8_t *nval, double (*val)[2], long k, double v)
+ * nval / val at index `slot`: palette values that round to one code can differ in their last bits):
+ * 1 if the code was new, 0 if it was there (v added as its second double if new), -1 if the code
+ * would need a third double (callers then give up their screen). slot: k itself (the pixel floor), or
+ * the code's slot, the next free one for a new code (the pair screen). Shared by both. */
+static inline int value_code_add(uint64_t *bits, uint8_t *nval, double (*val)[2], long k, long slot, double v)
 {
     if (!((bits[k >> 6] >> (k & 63)) & 1)) {
         bits[k >> 6] |= UINT64_C(1) << (k & 63);
-        nval[k] = 1;
-        val[k][0] = v;
+        nval[slot] = 1;
+        val[slot][0] = v;
         return 1;
     }
-    if (v != val[k][0] && (nval[k] == 1 || v != val[k][1])) {
-        if (nval[k] == 2)
+    if (v != val[slot][0] && (nval[slot] == 1 || v != val[slot][1])) {
+        if (nval[slot] == 2)
             return -1;
-        val[k][1] = v;
-        nval[k] = 2;
+        val[slot][1] = v;
+        nval[slot] = 2;
     }
     return 0;
 }
@@ -1501,6 +1657,97 @@ static inline uint64_t bits_in_range(const uint64_t *bits, long w, long k0, long
     if (w == k1 >> 6 && (k1 & 63) != 63)
         b &= (UINT64_C(1) << ((k1 & 63) + 1)) - 1;
     return b;
+}
+
+/* What one row test of pair_screen_build reads. */
+typedef struct screen_row_ctx {
+    pair_screen *sc;
+    const double *b;
+    const double (*n)[3];
+    const int *order;
+    const double *away_off, *base;
+    double delta, best;
+    const uint8_t *keep;
+    unsigned lmin;
+    int use_max;
+} screen_row_ctx;
+
+/* The level of value code c at pixel k (visiting position) with the current y pair: the least
+ * squared chord over the decodes with the entries whose intervals hold the value, as a bound of the
+ * squared angle, at least the pixel's theta0^2, then 255 / 0 against the incumbent (max metric) or
+ * the steps of delta above base (sum). */
+static unsigned screen_level(const screen_row_ctx *x, long c, int k, uint64_t *work)
+{
+    const pair_screen *sc = x->sc;
+    const int p = x->order[k];
+    double c2 = INFINITY;
+    for (int d = 0; d < sc->nval[c]; ++d)
+        for (unsigned f = sc->jm[c][k]; f; f &= f - 1) {
+            double t = decode_chord2(sc->val[c][d], x->b[__builtin_ctz(f)], x->n[p]);
+            c2 = t < c2 ? t : c2;
+            ++*work;
+        }
+    double g = chord2_angle2_lower(c2);
+    *work += 2;
+    g = g > x->away_off[k] ? g : x->away_off[k];
+    unsigned lvl;
+    if (x->use_max)
+        lvl = g >= x->best ? 255 : 0;
+    else {
+    double r = x->delta > 0.0 ? (g - x->base[k]) / x->delta * (1.0 - 1e-9) : 0.0;
+    lvl = r <= 0.0 ? 0 : (r >= 254.0 ? 254 : (unsigned)r);
+    }
+    return lvl;
+}
+
+/* Whether row i can still beat the incumbent with the current y pair (pair_screen_build's phase 2):
+ * screen_levels with the levels computed so far (a level not computed yet counts 0: base_p alone, a
+ * valid bound); unless that rules the row out, its values' missing levels (each computed once per y
+ * pair) one pixel at a time in visiting order, the row's least level at that pixel and its level sum
+ * updated after each: the levels only rise, so the row is ruled out exactly when the test with every
+ * level computed would rule it out, usually after a pixel or two (issue 13: computing every missing
+ * level of the row at once was most of the screen's time on the arcs and cones pointing away). */
+static int screen_row(const screen_row_ctx *x, size_t i, uint64_t *work)
+{
+    pair_screen *sc = x->sc;
+    const uint16_t *code = sc->xcode[i];
+    const int use_max = x->use_max;
+    unsigned sum;
+    ++*work;
+    if (screen_levels(sc, code, x->keep, &sum) || (!use_max && sum >= x->lmin))
+        return 0;
+    unsigned todo = 0;
+    for (int e = 0; e < 8; ++e)
+        todo |= (unsigned)(sc->marked[code[e]] & ~sc->done[code[e]]);
+    for (; todo; todo &= todo - 1) {
+        const int k = __builtin_ctz(todo);
+        unsigned before = 255, after = 255;
+        for (int e = 0; e < 8; ++e) {
+            const long c = code[e];
+            before = sc->lv[c][k] < before ? sc->lv[c][k] : before;
+            if ((sc->marked[c] >> k) & 1 && !((sc->done[c] >> k) & 1)) {
+                sc->lv[c][k] = (uint8_t)screen_level(x, c, k, work);
+                sc->done[c] |= (uint16_t)(1u << k);
+            }
+            after = sc->lv[c][k] < after ? sc->lv[c][k] : after;
+        }
+        ++*work;
+        if (after == 255)
+            return 0;
+        sum += after - before;
+        if (!use_max && sum >= x->lmin)
+            return 0;
+    }
+    return 1;
+}
+
+/* Whether code[e] repeats one of code[0 .. e). */
+static inline int screen_repeat(const uint16_t code[8], int e)
+{
+    for (int f = 0; f < e; ++f)
+        if (code[f] == code[e])
+            return 1;
+    return 0;
 }
 
 /* Builds the screen of rows x[0 .. nx) against y[0 .. ny) (y sides ys, pixels in `order`) at incumbent
@@ -1528,21 +1775,47 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
     if (tests > SCREEN_TESTS_MAX)
         return 0;
     memset(sc->bits, 0, sizeof sc->bits);
+    memset(sc->rstamp, 0, nx * sizeof *sc->rstamp);
+    sc->rgen = 0;
+    long nid = 0; /* slots in use */
     for (size_t i = 0; i < nx; ++i)
         for (int e = 0; e < 8; ++e) {
             double v = pal[xl[i].pair][e];
             long k = lround((v + 1.0) * half_q);
-            const int added = value_code_add(sc->bits, sc->nval, sc->val, k, v);
+            const long id = (sc->bits[k >> 6] >> (k & 63)) & 1 ? sc->cid[k] : nid;
+            const int added = value_code_add(sc->bits, sc->nval, sc->val, k, id, v);
             if (added < 0)
                 return 0;
-            if (added == 1) { /* a new code: its per-code state starts clear */
-                sc->stamp[k] = 0;
-                sc->done[k] = sc->marked[k] = 0;
-                memset(sc->jm[k], 0, 16);
-                memset(sc->lv[k], 255, 16);
+            if (added == 1) { /* a new code: its slot's state starts clear */
+                sc->cid[k] = (uint16_t)id;
+                ++nid;
+                sc->stamp[id] = 0;
+                sc->done[id] = sc->marked[id] = 0;
+                memset(sc->jm[id], 0, 16);
+                memset(sc->lv[id], 255, 16);
             }
-            sc->xcode[i][e] = (uint16_t)k;
+            sc->xcode[i][e] = (uint16_t)id;
         }
+    *work += 8 * nx;
+    /* the rows of each code (a counting sort; a row's repeated code counted once) */
+    for (size_t i = 0; i < nx; ++i)
+        for (int e = 0; e < 8; ++e)
+            sc->cnum[sc->xcode[i][e]] = 0;
+    for (size_t i = 0; i < nx; ++i)
+        for (int e = 0; e < 8; ++e)
+            sc->cnum[sc->xcode[i][e]] += !screen_repeat(sc->xcode[i], e);
+    uint32_t acc = 0;
+    for (long id = 0; id < nid; ++id) {
+        sc->cstart[id] = acc;
+        acc += sc->cnum[id];
+        sc->cnum[id] = 0;
+    }
+    for (size_t i = 0; i < nx; ++i)
+        for (int e = 0; e < 8; ++e)
+            if (!screen_repeat(sc->xcode[i], e)) {
+                const uint16_t k = sc->xcode[i][e];
+                sc->crow[sc->cstart[k] + sc->cnum[k]++] = (uint32_t)i;
+            }
     *work += 8 * nx;
     size_t passes = 0;
     for (size_t j = 0; j < ny; ++j) {
@@ -1601,6 +1874,7 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
         }
         uint32_t ntouched = 0;
         int npx = 0, pk[16]; /* the constrained pixels (visiting positions), in visiting order */
+        size_t inc[16] = {0}; /* per pixel: the rows holding its marked codes, with repeats */
         /* phase 1: per constrained pixel and y entry b_e, mark the x value codes inside the entry's
          * intervals (bit e of jm[code][k]) */
         for (int k = 0; k < 16 && !dead; ++k) {
@@ -1615,6 +1889,9 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                 break;
             }
             const double qs[3] = {q[1], q[0], q[2]}; /* x and y swapped: intervals of x values */
+            double qb[3] = {0.0, 0.0, 0.0}, R2b = 0.0;
+            const int tight = away_balls(aw, n, p, T, &R2, qb, &R2b);
+            const double qbs[3] = {qb[1], qb[0], qb[2]};
             int any = 0, unconstrained = 0;
             for (int e = 0; e < 8 && !unconstrained; ++e) {
                 int dup = 0;
@@ -1624,7 +1901,9 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                     continue;
                 const double one[8] = {b[e], b[e], b[e], b[e], b[e], b[e], b[e], b[e]};
                 double ilo[16], ihi[16];
-                int cnt = pixel_y_intervals(one, qs, R2, 1e-9, ilo, ihi);
+                int cnt = pixel_intervals(one, qs, R2, 1e-9, 1, ilo, ihi);
+                if (tight)
+                    cnt = away_intervals(one, qbs, R2b, cnt, ilo, ihi);
                 if (cnt < 0) {
                     unconstrained = 1; /* the pixel constrains nothing */
                     break;
@@ -1634,12 +1913,14 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                     interval_codes(ilo[u], ihi[u], half_q, top, &k0, &k1);
                     for (long w = k0 >> 6; w <= k1 >> 6 && k0 <= k1; ++w) {
                         for (uint64_t bits = bits_in_range(sc->bits, w, k0, k1); bits; bits &= bits - 1) {
-                            long code = 64 * w + __builtin_ctzll(bits);
+                            const long code = sc->cid[64 * w + __builtin_ctzll(bits)]; /* its slot */
                             if (sc->stamp[code] != sc->gen) {
                                 sc->stamp[code] = sc->gen;
                                 sc->touched[ntouched++] = (uint32_t)code;
                             }
                             sc->jm[code][k] |= (uint8_t)(1u << e);
+                            if (!((sc->marked[code] >> k) & 1))
+                                inc[k] += sc->cnum[code];
                             sc->marked[code] |= (uint16_t)(1u << k);
                             sc->lv[code][k] = 0;
                             any = 1;
@@ -1649,6 +1930,7 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                 }
             }
             if (unconstrained) { /* undo its marks: it counts base only */
+                inc[k] = 0;
                 for (uint32_t t = 0; t < ntouched; ++t) {
                     sc->jm[sc->touched[t]][k] = 0;
                     sc->marked[sc->touched[t]] &= (uint16_t)~(1u << k);
@@ -1671,46 +1953,42 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
             keep[k] = 0;
         for (int h = 0; h < npx; ++h)
             keep[pk[h]] = 255;
-        for (size_t i = 0; i < m && !dead; ++i) {
-            const uint16_t *code = sc->xcode[i];
-            unsigned sum;
-            ++*work;
-            if (screen_levels(sc, code, keep, &sum) || (!use_max && sum >= lmin))
+        /* a row can pass only if it holds a code marked for every constrained pixel (an unmarked code
+         * keeps level 255 there): with a selective pixel, only the rows of its marked codes are tested
+         * (each once, in any order: the rows' passing y positions are gathered per row below) */
+        int sel = -1;
+        for (int h = 0; h < npx; ++h)
+            if (sel < 0 || inc[pk[h]] < inc[sel])
+                sel = pk[h];
+        const int indexed = sel >= 0 && inc[sel] < m;
+        if (indexed && ++sc->rgen == 0) {
+            memset(sc->rstamp, 0, sizeof sc->rstamp);
+            sc->rgen = 1;
+        }
+        const screen_row_ctx rc = {sc, b, n, order, away_off, base, delta, best, keep, lmin, use_max};
+        for (uint32_t t = 0; indexed && t < ntouched && passes != SIZE_MAX && !dead; ++t) {
+            const uint32_t c = sc->touched[t];
+            if (!((sc->marked[c] >> sel) & 1))
                 continue;
-            int fresh = 0;
-            for (int e = 0; e < 8; ++e) {
-                const long c = code[e];
-                if (sc->done[c] == sc->marked[c])
+            const uint32_t *rows = sc->crow + sc->cstart[c];
+            ++*work;
+            for (uint32_t u = 0; u < sc->cnum[c] && rows[u] < m; ++u) {
+                const uint32_t i = rows[u];
+                if (sc->rstamp[i] == sc->rgen)
                     continue;
-                fresh = 1;
-                for (unsigned todo = sc->marked[c] & ~sc->done[c]; todo; todo &= todo - 1) {
-                    const int k = __builtin_ctz(todo), p = order[k];
-                    double c2 = INFINITY;
-                    for (int d = 0; d < sc->nval[c]; ++d)
-                        for (unsigned f = sc->jm[c][k]; f; f &= f - 1) {
-                            double t = decode_chord2(sc->val[c][d], b[__builtin_ctz(f)], n[p]);
-                            c2 = t < c2 ? t : c2;
-                            ++*work;
-                        }
-                    double g = chord2_angle2_lower(c2);
-                    *work += 2;
-                    g = g > away_off[k] ? g : away_off[k];
-                    unsigned lvl;
-                    if (use_max) {
-                        lvl = g >= best ? 255 : 0;
-                    } else {
-                        double r = delta > 0.0 ? (g - base[k]) / delta * (1.0 - 1e-9) : 0.0;
-                        lvl = r <= 0.0 ? 0 : (r >= 254.0 ? 254 : (unsigned)r);
-                    }
-                    sc->lv[c][k] = (uint8_t)lvl;
+                sc->rstamp[i] = sc->rgen;
+                if (!screen_row(&rc, i, work))
+                    continue;
+                if (passes == SCREEN_PASS_MAX) {
+                    passes = SIZE_MAX;
+                    break;
                 }
-                sc->done[c] = sc->marked[c];
+                sc->row[passes++] = (uint32_t)i;
             }
-            if (fresh) {
-                ++*work;
-                if (screen_levels(sc, code, keep, &sum) || (!use_max && sum >= lmin))
-                    continue;
-            }
+        }
+        for (size_t i = 0; !indexed && i < m && !dead; ++i) {
+            if (!screen_row(&rc, i, work))
+                continue;
             if (passes == SCREEN_PASS_MAX) {
                 passes = SIZE_MAX;
                 break;
@@ -1796,7 +2074,7 @@ static int value_codes_init(value_codes *vc, const sol_nm_pair *list, size_t n, 
         for (int e = 0; e < 8; ++e) {
             double v = pal[list[i].pair][e];
             long k = lround((v + 1.0) * half_q);
-            if (value_code_add(vc->bits, vc->nval, vc->val, k, v) < 0)
+            if (value_code_add(vc->bits, vc->nval, vc->val, k, k, v) < 0)
                 return 0;
         }
     }
@@ -2983,11 +3261,28 @@ static void order_worst_first(const double err[16], int order[16])
 /* The pair screen on one candidate, for the tests (normalmaps_internal.h): search_unit's set-up of
  * the loose pixels and pixels pointing away at incumbent best (pixels in their own order), then
  * pair_screen_build on one-pair lists whose scores leave room. */
-int sol_nm_screen_rules_out(const double n[16][3], int use_max, double best, sol_bc4_precision precision, int pair_x,
-                            int pair_y)
+struct sol_nm_screen {
+    pair_screen sc;
+};
+
+sol_nm_screen *sol_nm_screen_new(void)
+{
+    sol_nm_screen *s = malloc(sizeof *s);
+    if (s)
+        s->sc.gen = s->sc.rgen = 0;
+    return s;
+}
+
+void sol_nm_screen_free(sol_nm_screen *screen)
+{
+    free(screen);
+}
+
+int sol_nm_screen_rules_out(sol_nm_screen *screen, const double n[16][3], int use_max, double best,
+                            sol_bc4_precision precision, int pair_x, int pair_y)
 {
     const double(*pal)[8] = sol_nm_palettes(precision);
-    pair_screen *sc = calloc(1, sizeof *sc);
+    pair_screen *sc = screen ? &screen->sc : pair_screen_new();
     if (!sc)
         return -1;
     unsigned loose = 0;
@@ -3009,7 +3304,8 @@ int sol_nm_screen_rules_out(const double n[16][3], int use_max, double best, sol
     int built = pair_screen_build(sc, n, order, loose, &aw, away_off, use_max, best, pal, precision, &xl, 1, &yl, 1,
                                   &ys, &work, UINT64_MAX);
     int out = built ? sc->start[1] == 0 : -1;
-    free(sc);
+    if (!screen)
+        free(sc);
     return out;
 }
 
@@ -3278,6 +3574,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             }
         }
         if (filter && (loose & 1)) {
+
             int equal = 1;
             for (int p = 1; p < 16; ++p)
                 equal &= group[p] == 0;
@@ -3302,7 +3599,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
         /* the pair screen (see there): every candidate that can still beat the incumbent, per row */
         int screened = 0;
         size_t screen_base = 0; /* the screen's row 0 is x list position screen_base */
-        if (filter && !solved && (ws->screen || (ws->screen = calloc(1, sizeof *ws->screen))))
+        if (filter && !solved && (ws->screen || (ws->screen = pair_screen_new())))
             screened = pair_screen_build(ws->screen, n, order, loose, &aw, away_off, use_max, best, pal, precision,
                                          ws->x, nx, ws->y, ny, ws->yside, &work, rq->work_limit);
         channel_side xside;
@@ -3370,12 +3667,13 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 work += 64;
                 if (filtered < 0)
                     continue;
-                if (filtered && yf.items[0] < ny) { /* selective enough to pay */
+                const int r0 = filtered > 0 ? yf.rank[0] : 0;
+                if (filtered && yf.items[r0] < ny) { /* selective enough to pay */
                     lo_word = (ny + 63) / 64;
-                    for (int k = 0; k < yf.cnt[0]; ++k) {
-                        uint32_t s0 = yix.start[y_bucket(yf.lo[0][k])], s1 = yix.start[y_bucket(yf.hi[0][k]) + 1];
+                    for (int k = 0; k < yf.cnt[r0]; ++k) {
+                        uint32_t s0 = yix.start[y_bucket(yf.lo[r0][k])], s1 = yix.start[y_bucket(yf.hi[r0][k]) + 1];
                         for (uint32_t t = s0; t < s1; ++t) {
-                            if (yix.items[t].v < yf.lo[0][k] || yix.items[t].v > yf.hi[0][k])
+                            if (yix.items[t].v < yf.lo[r0][k] || yix.items[t].v > yf.hi[r0][k])
                                 continue;
                             uint32_t j = yix.items[t].j;
                             ws->ymark[j >> 6] |= UINT64_C(1) << (j & 63);

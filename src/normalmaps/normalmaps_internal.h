@@ -180,9 +180,14 @@ int sol_nm_couple_descent(sol_nm_couple *cs, const double n[16][3], int use_max,
                           size_t ny, int start_x, int out[][2], uint64_t *work);
 /* The exact search's pair screen (bc5.c) on one candidate, for the tests: 1 if it rules out the x pair
  * pair_x with the y pair pair_y (e0 << 8 | e1) at incumbent best (their objective, sum or max of dN^2,
- * is then at least best), 0 if it lets the candidate through, -1 if out of memory. */
-int sol_nm_screen_rules_out(const double n[16][3], int use_max, double best, sol_bc4_precision precision, int pair_x,
-                            int pair_y);
+ * is then at least best), 0 if it lets the candidate through, -1 if out of memory. screen: the
+ * screen's tables (~13 MB) from sol_nm_screen_new, reused across calls (freed by sol_nm_screen_free),
+ * or NULL: allocated and freed inside the call. */
+typedef struct sol_nm_screen sol_nm_screen;
+sol_nm_screen *sol_nm_screen_new(void);
+void sol_nm_screen_free(sol_nm_screen *screen);
+int sol_nm_screen_rules_out(sol_nm_screen *screen, const double n[16][3], int use_max, double best,
+                            sol_bc4_precision precision, int pair_x, int pair_y);
 /* The exact search's pixel floor (bc5.c, max metric) on one candidate's values, for the tests: per
  * pixel p (0..15) of unit normals n, out[p] = 1 if every decode (a, b) of x pair pair_x's values a and
  * y pair pair_y's values b gives pixel p a squared angle >= best[p], computed as the objective
