@@ -2811,6 +2811,32 @@ Test(normalmaps, screened_survey_blocks_are_proven_exactly, .timeout = 120)
                            cases[c].anchors, c);
 }
 
+/* The exact balls of bc5.c (pixel_chord_ball with pixel_intervals' exact mode: decodes within the
+ * angle budget itself, z kept, clamped decodes only off the unit disc) in the pair screen, the coupling
+ * filter and the pixel floor: the survey blocks whose screen or filter they cut most (cones and arcs
+ * pointing away, sum and max, the cone below the rim) keep the error and anchors of the search before
+ * them (16-bit decoder; reference: main's search at commit 9b184f4, whose screen and filter used the
+ * looser balls), and literal brute force in a +-2 window agrees. */
+Test(normalmaps, exact_ball_survey_blocks_are_proven_exactly)
+{
+    static const struct {
+        int family;
+        double spread;
+        sol_bc5_metric metric;
+        double error;
+        int anchors[4];
+    } cases[] = {
+        {6, 0.03, SOL_BC5_SUM_SQUARED, 3.3450884167092889, {9, 1, 181, 173}},
+        {6, 1.0, SOL_BC5_SUM_SQUARED, 3.8869493502810371, {1, 77, 89, 222}},
+        {0, 1.0, SOL_BC5_MAX, 0.38524241405689008, {1, 17, 208, 88}},
+        {2, 1.0, SOL_BC5_MAX, 0.42458145112785173, {2, 11, 188, 69}},
+        {7, 1.0, SOL_BC5_MAX, 0.046338121035338922, {0, 24, 216, 96}},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c)
+        expect_survey_case(cases[c].family, cases[c].spread, cases[c].metric, SOL_BC4_INTERP_16BIT, cases[c].error,
+                           cases[c].anchors, c);
+}
+
 /* The pair screen's bound (bc5.c), candidate by candidate: it never rules out a candidate whose
  * objective E is below the incumbent (incumbent E (1 + 1e-9)), on blocks pointing away, at the rim and
  * below it, sum and max metric; and it is close: on the arc pointing away it rules out every candidate
@@ -2830,6 +2856,8 @@ Test(normalmaps, pair_screen_bound_holds_and_is_close, .timeout = 120)
         {3, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_16BIT, {59, 0, 51, 204}, 0},
         {7, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, {16, 80, 246, 35}, 0},
         {6, SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, {0, 42, 0, 4}, 0},
+        {4, SOL_BC5_MAX, SOL_BC4_INTERP_16BIT, {99, 33, 215, 76}, 0},
+        {2, SOL_BC5_MAX, SOL_BC4_INTERP_16BIT, {47, 0, 246, 2}, 0},
     };
     sol_nm_screen *sc = sol_nm_screen_new(); /* one screen for every candidate (~13 MB) */
     cr_assert(sc);

@@ -1206,7 +1206,7 @@ static int cone_line(double a, double dx, double dy, double c, double s, double 
  * around psi of half-width acos(C' / (L r)), intersected with [0, pi] (b = L cos phi decreasing).
  * The half-width is widened by 1e-6 and the ends by 1e-9 against rounding (acos is steep near +-1).
  * Appends up to two intervals at lo[k], hi[k]; returns the new k. */
-static int sphere_line(double a, const double q[3], double R2, double lo[16], double hi[16], int k)
+static int sphere_line(double a, const double q[3], double R2, double *lo, double *hi, int k)
 {
     const double L2 = (1.0 - a) * (1.0 + a);
     if (!(L2 >= 0.0))
@@ -1242,12 +1242,13 @@ static int sphere_line(double a, const double q[3], double R2, double lo[16], do
 }
 
 /* The y intervals for one pixel (target q, squared radius R2) and x palette a: returns their
- * count (up to 16), or -1 if the pixel constrains nothing. exact (unit q only): the unclamped
- * decodes' intervals from sphere_line instead of the projection that drops z, and the clamped ones'
- * (the cone) only off the unit disc, where decodes are clamped; for palettes of one or two distinct
- * values (more: -1 once the 16 places could overflow). */
+ * count (up to cap, at least 16), or -1 if the pixel constrains nothing. exact (unit q only): the
+ * unclamped decodes' intervals from sphere_line instead of the projection that drops z, and the
+ * clamped ones' (the cone) only off the unit disc, where decodes are clamped: up to five intervals per
+ * distinct entry (-1 once cap could overflow; callers pass one value eight times, cap 16, or a
+ * palette with cap Y_FILTER_CAP). Not exact: at most two per entry (cap 16 always suffices). */
 static int pixel_intervals(const double a[8], const double q[3], double R2, double cone_slack, int exact,
-                           double lo[16], double hi[16])
+                           int cap, double *lo, double *hi)
 {
     if (!(R2 < 4.0))
         return -1;
@@ -1277,7 +1278,7 @@ static int pixel_intervals(const double a[8], const double q[3], double R2, doub
             dup = a[f] == a[e];
         if (dup)
             continue;
-        if (exact && k > 16 - 5)
+        if (exact && k > cap - 5)
             return -1; /* no room for this entry's five intervals: constrain nothing (valid) */
         double da = a[e] - q[0], rem = R2 - da * da;
         if (exact) {
@@ -1322,15 +1323,41 @@ static int pixel_intervals(const double a[8], const double q[3], double R2, doub
 static int pixel_y_intervals(const double a[8], const double q[3], double R2, double cone_slack, double lo[16],
                              double hi[16])
 {
-    return pixel_intervals(a, q, R2, cone_slack, 0, lo, hi);
+    return pixel_intervals(a, q, R2, cone_slack, 0, 16, lo, hi);
 }
 
-/* The coupling filter for one x palette: np constrained pixels, rank[0] the most selective. */
+/* The coupling filter for one x palette: np constrained pixels, rank[0] the most selective; per pixel
+ * up to Y_FILTER_CAP intervals (pixel_intervals' exact mode: up to five per distinct entry). */
+#define Y_FILTER_CAP 40
 typedef struct y_filter {
     int np, pix[16], cnt[16], rank[16];
-    double lo[16][16], hi[16][16];
+    double lo[16][Y_FILTER_CAP], hi[16][Y_FILTER_CAP];
     uint32_t items[16]; /* entries of the y list in the pixel's buckets */
 } y_filter;
+
+/* Sorts cnt intervals [lo, hi] by their low end and merges those that overlap; returns the new count. */
+static int intervals_merge(double *lo, double *hi, int cnt)
+{
+    for (int i = 1; i < cnt; ++i)
+        for (int j = i; j > 0 && lo[j] < lo[j - 1]; --j) {
+            double t = lo[j];
+            lo[j] = lo[j - 1];
+            lo[j - 1] = t;
+            t = hi[j];
+            hi[j] = hi[j - 1];
+            hi[j - 1] = t;
+        }
+    int k = 0;
+    for (int i = 0; i < cnt; ++i) {
+        if (k > 0 && lo[i] <= hi[k - 1]) {
+            hi[k - 1] = hi[i] > hi[k - 1] ? hi[i] : hi[k - 1];
+        } else {
+            lo[k] = lo[i];
+            hi[k++] = hi[i];
+        }
+    }
+    return k;
+}
 
 static uint32_t interval_items(const y_index *ix, const double *lo, const double *hi, int cnt)
 {
@@ -1365,6 +1392,29 @@ static int pixel_ball(const away_info *aw, const double n[16][3], int p, double 
     return 1;
 }
 
+/* The exact ball of a loose pixel p (a rim pixel, or one pointing away) for the angle budget t (the
+ * metric's units): every decode u whose computed term dN^2 is below t lies within the chord
+ * 2 sin(sqrt t / 2) of n_p (dN = 2 asin(|u - n| / 2)), so q = n_p and *R2 that chord squared, widened
+ * by 1e-9 relative and 1e-12 absolute (sqrt t by 1e-12 relative) against the rounding of the angle and
+ * of sin; 4 (no constraint) when sqrt t reaches pi. With pixel_intervals' exact mode it is the set of
+ * decodes within the budget itself: pixel_ball's balls (the budget as a squared chord; for a pixel
+ * pointing away the rim bound's tangent around its rim target, loose away from it) hold it, and held
+ * most of the arcs and cones pointing away's values that the screen then had to rule out one by one
+ * (80-90% of the levels it computed came out at their cap; issue 13). */
+static void pixel_chord_ball(const double n[16][3], int p, double t, double q[3], double *R2)
+{
+    q[0] = n[p][0];
+    q[1] = n[p][1];
+    q[2] = n[p][2];
+    const double r = sqrt(t) * (1.0 + 1e-12);
+    if (!(r < M_PI)) {
+        *R2 = 4.0;
+        return;
+    }
+    const double c = 2.0 * sin(0.5 * r);
+    *R2 = c * c * (1.0 + 1e-9) + 1e-12;
+}
+
 /* Builds the filter for x palette a (its channel side xs, pixels in `order`): 1 if it filters, 0 if
  * no pixel constrains y, -1 if no y pair can beat the budget with a. */
 static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs, const double n[16][3],
@@ -1396,12 +1446,14 @@ static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs,
             continue;
         if (ball < 0)
             return -1;
+        pixel_chord_ball(n, p, t, q3, &R2); /* the exact ball (pixel_ball: only whether p takes part) */
         int i = f->np;
-        int cnt = pixel_y_intervals(a, q3, R2, 1e-9, f->lo[i], f->hi[i]);
+        int cnt = pixel_intervals(a, q3, R2, 1e-9, 1, Y_FILTER_CAP, f->lo[i], f->hi[i]);
         if (cnt < 0)
             continue;
         if (cnt == 0)
             return -1;
+        cnt = intervals_merge(f->lo[i], f->hi[i], cnt);
         f->pix[i] = p;
         f->cnt[i] = cnt;
         f->items[i] = interval_items(ix, f->lo[i], f->hi[i], cnt);
@@ -1435,76 +1487,6 @@ static int y_filter_pass(const y_filter *f, const double b[8])
             return 0;
     }
     return 1;
-}
-
-/* ---- the pixels pointing away's two tighter balls (issue 13: the screen's and filters' intervals) ----
- *
- * pixel_ball's ball for a pixel pointing away comes from the tangent dN^2 >= theta0^2 + k c^2 of the
- * convex H(c^2)^2 (see "pixels pointing away"), loose far from the rim target: with the sum metric's
- * per-pixel budgets (the incumbent less the other pixels' floors) it admits values whose decodes are
- * far off, and most of the screen's levels came out at their cap (arcs and cones pointing away:
- * 80-90%). Two exact balls do better, both for decodes u with z >= 0 and a budget dN^2 < T, T < pi^2:
- *  - the rim ball itself: dN >= H(c^2) = acos(rho (1 - c^2 / 2)) with c = |u - m|, so
- *    c^2 < 2 (1 - cos(sqrt T) / rho) (rho > 0); no u at all if that is negative;
- *  - the chord to n: dN = 2 asin(|u - n| / 2), so |u - n|^2 < 4 sin^2(sqrt T / 2), and
- *    |u - n|^2 >= |u_xy - n_xy|^2 + nz^2 (an unclamped decode: (z - nz)^2 >= nz^2 as z >= 0 > nz; a
- *    clamped one: z = 0), a ball around (nx, ny, 0) of squared radius 4 sin^2(sqrt T / 2) - nz^2.
- * A decode must lie in both (and in pixel_ball's: the first contains it, so it is kept only as the
- * smaller radius). Radii are widened by 1e-9 relative and 1e-12 absolute (1e-12 / rho for the rim
- * ball's division), sqrt T by 1e-12 relative, against rounding of the angle and of cos / sin. */
-static int away_balls(const away_info *aw, const double n[16][3], int p, double t, double *R2, double qb[3],
-                      double *R2b)
-{
-    if (!((aw->mask >> p) & 1) || !(aw->w[p] > 0.0))
-        return 0;
-    const double r = sqrt(t) * (1.0 + 1e-12);
-    if (!(r < M_PI))
-        return 0;
-    const double rho = hypot(n[p][0], n[p][1]), nz = n[p][2];
-    if (!(rho > 0.0))
-        return 0;
-    double ra = 2.0 * (1.0 - cos(r) / rho);
-    ra = ra * (1.0 + 1e-9) + 1e-12 / rho;
-    if (ra < *R2)
-        *R2 = ra; /* pixel_ball's tangent ball, around the same rim target: the smaller radius */
-    const double s = 2.0 * sin(0.5 * r);
-    qb[0] = n[p][0];
-    qb[1] = n[p][1];
-    qb[2] = nz;
-    *R2b = s * s * (1.0 + 1e-9) + 1e-12;
-    return 1;
-}
-
-/* The intervals of a pixel pointing away for the entry held eight times in one[]: the cnt intervals
- * [lo, hi] of its rim ball (pixel_y_intervals; -1: it constrains nothing) intersected with those of
- * its chord ball qb, R2b (away_balls; the screen passes both centres with x and y swapped). Returns
- * the new count (up to 4; -1 if neither constrains). */
-static int away_intervals(const double one[8], const double qb[3], double R2b, int cnt, double lo[16], double hi[16])
-{
-    if (R2b < 0.0)
-        return 0; /* no decode within the chord ball */
-    double blo[16], bhi[16];
-    const int cb = pixel_intervals(one, qb, R2b, 1e-9, 1, blo, bhi);
-    if (cb < 0)
-        return cnt;
-    if (cnt < 0) {
-        memcpy(lo, blo, (size_t)cb * sizeof *lo);
-        memcpy(hi, bhi, (size_t)cb * sizeof *hi);
-        return cb;
-    }
-    double olo[16], ohi[16];
-    int k = 0;
-    for (int u = 0; u < cnt; ++u)
-        for (int v = 0; v < cb; ++v) {
-            const double l = lo[u] > blo[v] ? lo[u] : blo[v], h = hi[u] < bhi[v] ? hi[u] : bhi[v];
-            if (l <= h) {
-                olo[k] = l;
-                ohi[k++] = h;
-            }
-        }
-    memcpy(lo, olo, (size_t)k * sizeof *lo);
-    memcpy(hi, ohi, (size_t)k * sizeof *hi);
-    return k;
 }
 
 /* ---- the pair screen (issue 13: the arcs and cones pointing away, the jittered rims) ----
@@ -1888,10 +1870,8 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                 dead = 1;
                 break;
             }
+            pixel_chord_ball(n, p, T, q, &R2); /* pixel_ball decided only whether the pixel takes part */
             const double qs[3] = {q[1], q[0], q[2]}; /* x and y swapped: intervals of x values */
-            double qb[3] = {0.0, 0.0, 0.0}, R2b = 0.0;
-            const int tight = away_balls(aw, n, p, T, &R2, qb, &R2b);
-            const double qbs[3] = {qb[1], qb[0], qb[2]};
             int any = 0, unconstrained = 0;
             for (int e = 0; e < 8 && !unconstrained; ++e) {
                 int dup = 0;
@@ -1901,9 +1881,7 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                     continue;
                 const double one[8] = {b[e], b[e], b[e], b[e], b[e], b[e], b[e], b[e]};
                 double ilo[16], ihi[16];
-                int cnt = pixel_intervals(one, qs, R2, 1e-9, 1, ilo, ihi);
-                if (tight)
-                    cnt = away_intervals(one, qbs, R2b, cnt, ilo, ihi);
+                int cnt = pixel_intervals(one, qs, R2, 1e-9, 1, 16, ilo, ihi);
                 if (cnt < 0) {
                     unconstrained = 1; /* the pixel constrains nothing */
                     break;
@@ -2105,6 +2083,7 @@ static int floor_scan(pixel_floor *pf, const double n[16][3], const away_info *a
         return 1; /* the pixel's floor theta0^2 is above the budget: no decode reaches it */
     if (ball == 0)
         return -1;
+    pixel_chord_ball(n, p, best * (1.0 + 1e-9), q, &R2); /* the exact ball (pixel_ball: whether p takes part) */
     const double half_q = pf->half_q;
     const long top = lround(2.0 * half_q);
     const value_codes *vx = &pf->v[0], *vy = &pf->v[1];
@@ -2114,7 +2093,7 @@ static int floor_scan(pixel_floor *pf, const double n[16][3], const away_info *a
             for (int d = 0; d < vx->nval[c]; ++d) {
                 const double a = vx->val[c][d], one[8] = {a, a, a, a, a, a, a, a};
                 double lo[16], hi[16];
-                int cnt = pixel_y_intervals(one, q, R2, 1e-9, lo, hi);
+                int cnt = pixel_intervals(one, q, R2, 1e-9, 1, 16, lo, hi);
                 ++*work;
                 if (cnt < 0)
                     return -1; /* the ball constrains nothing */
