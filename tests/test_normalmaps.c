@@ -863,6 +863,80 @@ Test(normalmaps, search_simd_forms_equal_the_scalar_forms)
     }
 }
 
+/* The window search's one-pass channel side (bc5_window.c: sol_nm_window_side_scalar and its AVX2
+ * form) against the two-pass definition (bc5.c channel_side_nearest: the first nearest entry's value,
+ * its squared distance, the least squared distance of an entry of another value), bit for bit: every
+ * mode of palette (8 and 6 values, e0 == e1 where every entry is equal so m2 is INFINITY, entries
+ * repeated), targets on entries, halfway between two (equal distances), outside [-1, 1], +-0; every
+ * precision; strided output. Then the adaptive encoder with a small work bound (the window's
+ * whole-chunk skip is gated on the bound): the AVX2 and scalar forms give the same blocks, candidate
+ * counts and bounded flags. */
+static void side_two_pass(const double pal[8], double t, double out[3])
+{
+    double d[8];
+    int i0 = 0;
+    for (int i = 0; i < 8; ++i) {
+        d[i] = (pal[i] - t) * (pal[i] - t);
+        i0 = d[i] < d[i0] ? i : i0;
+    }
+    double m2 = INFINITY;
+    for (int i = 0; i < 8; ++i)
+        if (pal[i] != pal[i0] && d[i] < m2)
+            m2 = d[i];
+    out[0] = pal[i0];
+    out[1] = d[i0];
+    out[2] = m2;
+}
+
+Test(normalmaps, window_side_one_pass_equals_two_pass)
+{
+    for (int trial = 0; trial < 3000; ++trial) {
+        const sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        int e0 = (int)(256 * uniform()) & 255, e1 = (int)(256 * uniform()) & 255;
+        if (trial % 7 == 0)
+            e1 = e0; /* every entry equal */
+        else if (trial % 7 == 1)
+            e1 = e0 + 1 > 255 ? 254 : e0 + 1; /* 6-value mode, close anchors: repeated interpolants */
+        const double *a = pal[e0 << 8 | e1];
+        double t[16];
+        for (int k = 0; k < 16; ++k) {
+            int i = (int)(8 * uniform()) & 7, j = (int)(8 * uniform()) & 7;
+            switch ((trial + k) % 6) {
+            case 0: t[k] = a[i]; break;                           /* on an entry */
+            case 1: t[k] = 0.5 * (a[i] + a[j]); break;            /* halfway: equal distances */
+            case 2: t[k] = 2.4 * uniform() - 1.2; break;          /* anywhere, outside [-1, 1] too */
+            case 3: t[k] = k % 2 ? 0.0 : -0.0; break;             /* +-0 */
+            default: t[k] = a[i] + 1e-6 * (uniform() - 0.5); break; /* next to an entry */
+            }
+        }
+        double ref[16][3], out[2][3][16 * 3];
+        for (int k = 0; k < 16; ++k)
+            side_two_pass(a, t[k], ref[k]);
+        const size_t stride = 1 + (size_t)(trial % 3); /* 1, 2, 3: strided columns */
+        sol_nm_window_side_scalar(a, t, out[0][0], out[0][1], out[0][2], stride);
+        if (__builtin_cpu_supports("avx2"))
+            sol_nm_window_side_avx2(a, t, out[1][0], out[1][1], out[1][2], stride);
+        else
+            memcpy(out[1], out[0], sizeof out[1]);
+        for (int f = 0; f < 2; ++f)
+            for (int k = 0; k < 16; ++k)
+                for (int c = 0; c < 3; ++c)
+                    cr_assert(memcmp(&out[f][c][k * stride], &ref[k][c], sizeof(double)) == 0,
+                              "trial %d form %d pixel %d field %d: %.17g vs %.17g", trial, f, k, c,
+                              out[f][c][k * stride], ref[k][c]);
+    }
+    for (int trial = 0; trial < 24; ++trial) {
+        double n[16][3];
+        random_block(n, 0.9, trial % 2 ? 0.35 : 0.05);
+        sol_bc5_options o = {.encoder = SOL_BC5_ADAPTIVE,
+                             .precision = (sol_bc4_precision)(trial % 3),
+                             .gap = trial % 3 == 0 ? 0.0 : -1.0,
+                             .work_limit = (uint64_t)1 << (6 + trial % 8)}; /* 64 .. 8192 */
+        encode_both_forms(n, &o, NULL, 300 + trial);
+    }
+}
+
 /* The degenerate families of issue 13 (normals pointing away, z = 0 rims, blocks with both), with
  * random parameters: pixels pointing away take the rim-direction bound (bc5.c), rims the loose one. */
 static void degenerate_block(int family, double n[16][3])

@@ -3926,20 +3926,21 @@ static inline AVX2_FN __attribute__((always_inline)) int window_channel_avx2_bod
             extreme_distances_avx2(a, tv[0], tv[1], &dlo, &dhi);
             if (combine(dlo, dhi, use_max) > budget)
                 continue;
-            __m256d acc = _mm256_setzero_pd();
-            int k = 0;
-            for (; k < 16; k += 4) {
-                __m256d mk = nearest4_avx2(a, tv + k);
-                _mm256_storeu_pd(m + k, mk);
-                acc = use_max ? _mm256_max_pd(mk, acc) : _mm256_add_pd(acc, mk);
-                __m128d h = use_max ? _mm_max_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1))
-                                    : _mm_add_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1));
-                h = use_max ? _mm_max_sd(h, _mm_unpackhi_pd(h, h)) : _mm_add_sd(h, _mm_unpackhi_pd(h, h));
-                double part = _mm_cvtsd_f64(h);
-                if (use_max ? part > budget : part * (1.0 - 1e-12) > budget)
-                    break;
-            }
-            if (k < 16)
+            /* the 16 terms at once (independent groups, no exit between them: on rough blocks most
+             * pairs reach the last group anyway), then the lanes' sum or max against budget */
+            __m256d m0 = nearest4_avx2(a, tv), m1 = nearest4_avx2(a, tv + 4), m2 = nearest4_avx2(a, tv + 8),
+                    m3 = nearest4_avx2(a, tv + 12);
+            _mm256_storeu_pd(m, m0);
+            _mm256_storeu_pd(m + 4, m1);
+            _mm256_storeu_pd(m + 8, m2);
+            _mm256_storeu_pd(m + 12, m3);
+            __m256d acc = use_max ? _mm256_max_pd(_mm256_max_pd(m0, m1), _mm256_max_pd(m2, m3))
+                                  : _mm256_add_pd(_mm256_add_pd(m0, m1), _mm256_add_pd(m2, m3));
+            __m128d h = use_max ? _mm_max_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1))
+                                : _mm_add_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1));
+            h = use_max ? _mm_max_sd(h, _mm_unpackhi_pd(h, h)) : _mm_add_sd(h, _mm_unpackhi_pd(h, h));
+            double part = _mm_cvtsd_f64(h);
+            if (use_max ? part > budget : part * (1.0 - 1e-12) > budget)
                 continue;
             double score = 0.0;
             for (int p = 0; p < 16; ++p)
@@ -4360,7 +4361,10 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                     prepared = 1;
                 }
                 if (!x_ready) {
-                    window_side_init(a, tord[0], &xside);
+                    if (chunked) /* only v, m1, m2 are read (window_chunk_quick) */
+                        sol_nm_window_side_avx2(a, tord[0], xside.v, xside.m1, xside.m2, 1);
+                    else
+                        window_side_init(a, tord[0], &xside);
                     for (int k = 0; k < 16; ++k)
                         xa2[k] = 1.0 - xside.v[k] * xside.v[k];
                     x_ready = 1;
@@ -4375,18 +4379,36 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                                combine(ex->score, w->list[1][j + lanes].score, use_max) * (1.0 - BOUND_SLACK) < cut)
                             ++lanes;
                         for (int q = j; q < j + lanes; ++q)
-                            if (!w->ready[q]) {
-                                window_side_init(pal[w->list[1][q].pair], tord[1], &w->yside[q]);
-                                for (int k = 0; k < 16; ++k) {
-                                    w->yt[0][k][q] = w->yside[q].v[k];
-                                    w->yt[1][k][q] = w->yside[q].m1[k];
-                                    w->yt[2][k][q] = w->yside[q].m2[k];
-                                }
+                            if (!w->ready[q]) { /* straight into the columns window_chunk_quick reads */
+                                sol_nm_window_side_avx2(pal[w->list[1][q].pair], tord[1], &w->yt[0][0][q],
+                                                        &w->yt[1][0][q], &w->yt[2][0][q], WINDOW_PAIRS + 4);
                                 w->ready[q] = 1;
                             }
                         window_chunk_quick(&xside, xa2, w, j, lanes, nz, use_max, margin, &chunk);
                         chunk_start = j;
                         chunk_end = j + lanes;
+                        /* the whole chunk at once where the quick bound rejects every candidate of it
+                         * (the usual case) and no work check within it can stop the search: the same
+                         * candidates counted and the same work added as one by one below (the
+                         * incumbent, if among them, neither counted nor given work), nothing else
+                         * changes (no candidate reaches the exact evaluation) */
+                        if (work + 16 * (uint64_t)lanes < rq->work_limit) {
+                            uint64_t add = 0;
+                            int counted = 0, all = 1;
+                            for (int q = 0; q < lanes && all; ++q) {
+                                if (q > 0 && ex->pair == base_x && w->list[1][j + q].pair == base_y)
+                                    continue;
+                                all = chunk.below[q] < 16;
+                                add += (uint64_t)chunk.below[q] + 1;
+                                counted += q > 0;
+                            }
+                            if (all) {
+                                candidates += (uint64_t)counted;
+                                work += add;
+                                j = chunk_end - 1;
+                                continue;
+                            }
+                        }
                     }
 #endif
                     int below = window_chunk_below(&chunk, j - chunk_start, margin);

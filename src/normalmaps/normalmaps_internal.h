@@ -152,6 +152,16 @@ void sol_nm_bc4_fast_anchors(const double t[16], int *lo, int *hi, int *lo6, int
  * results are bit-identical either way, the tests compare them). Zero (the default) otherwise. */
 extern int sol_nm_simd_disable;
 
+/* The adaptive window search's channel side of palette pal against targets t (bc5_window.c): for pixel
+ * k, v[k stride] the first nearest entry's value, m1[k stride] its squared distance, m2[k stride] the
+ * least squared distance of an entry of another value (INFINITY if none) - the values of bc5.c's
+ * channel_side_nearest, bit for bit, in one pass over the entries (proof in bc5_window.c). The AVX2
+ * form needs a CPU with AVX2 (the caller checks); the scalar form is its reference. */
+void sol_nm_window_side_scalar(const double pal[8], const double t[16], double *v, double *m1, double *m2,
+                               size_t stride);
+void sol_nm_window_side_avx2(const double pal[8], const double t[16], double *v, double *m1, double *m2,
+                             size_t stride);
+
 /* At least the largest cosine between unit n (nz < 0: a pixel pointing away) and the 64 decodes
  * (a_i, b_j, z rebuilt or clamped) of x palette a and y palette b, less than 1e-15 above it
  * (bc5_away.c): the coupled bound of pixels pointing away. Bit-identical in its scalar and AVX2
