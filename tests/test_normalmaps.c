@@ -3090,3 +3090,60 @@ Test(normalmaps, mean_bound_is_attained_on_flat_channels)
         }
     free(got);
 }
+
+/* The enumeration's high-anchor masks (sol_nm_reachable_mask): the scalar and AVX2 forms bit for bit
+ * (random, huge, tiny, zero, infinite and NaN radii and targets), and against the definition: every
+ * high anchor with a lattice entry (or, in 6-value mode, -1 or +1) within r of t is in the mask, and
+ * none with every entry farther than 1.02 r + 1e-7 (the 1e-6 code widening moves an entry by less
+ * than 1e-8). The trials must meet anchors whose nearest entry lies in (0.98 r, r], so a bound
+ * tightened by 2% fails here. */
+Test(normalmaps, reachable_masks_match_their_definition_in_both_forms)
+{
+    rng_state = 0x5eed0f3a5c0ffee1ull;
+    long near_edge = 0;
+    const double specials[] = {0.0, 1e-300, 4.9e-324, 1e-9, 1e300, INFINITY, NAN};
+    for (int trial = 0; trial < 6000; ++trial) {
+        int six = trial & 1, divisions = six ? 5 : 7, low = (int)(256 * uniform());
+        double t = 2.4 * uniform() - 1.2, r = 0.3 * uniform() * uniform();
+        if (trial % 50 == 7)
+            r = specials[(trial / 50) % 7];
+        if (trial % 97 == 3)
+            t = specials[(trial / 97) % 7] * (trial & 2 ? -1.0 : 1.0);
+        if (trial % 13 == 5)
+            t = 2.0 * (int)(256 * uniform()) / 255.0 - 1.0; /* on an anchor */
+        int hmin = (int)(256 * uniform() * uniform()), hmax = 255 - (int)(256 * uniform() * uniform());
+        if (trial % 5 == 0) {
+            hmin = 0;
+            hmax = 255;
+        }
+        uint64_t scalar[4], simd[4];
+        sol_nm_reachable_mask(0, t, low, divisions, six, r, hmin, hmax, scalar);
+        sol_nm_reachable_mask(1, t, low, divisions, six, r, hmin, hmax, simd);
+        cr_assert(memcmp(scalar, simd, sizeof scalar) == 0, "trial %d: scalar and AVX2 masks differ", trial);
+        for (int h = 0; h < 256; ++h) {
+            int bit = (int)((scalar[h >> 6] >> (h & 63)) & 1);
+            if (h < hmin || h > hmax) {
+                cr_assert_eq(bit, 0, "trial %d: bit %d outside [%d, %d]", trial, h, hmin, hmax);
+                continue;
+            }
+            if (isnan(t) || isnan(r) || isinf(t))
+                continue;
+            double al = 2.0 * low / 255.0 - 1.0, ah = 2.0 * h / 255.0 - 1.0, d = fabs(al - t);
+            for (int k = 1; k <= divisions; ++k) {
+                double e = fabs(al + (double)k / divisions * (ah - al) - t);
+                d = e < d ? e : d;
+            }
+            if (six) {
+                d = fabs(t + 1.0) < d ? fabs(t + 1.0) : d;
+                d = fabs(t - 1.0) < d ? fabs(t - 1.0) : d;
+            }
+            if (d <= r)
+                cr_assert_eq(bit, 1, "trial %d: H %d has an entry %.17g within r %.17g but is not in the mask", trial, h,
+                             d, r);
+            if (d > 1.02 * r + 1e-7)
+                cr_assert_eq(bit, 0, "trial %d: H %d is %.17g from t, beyond r %.17g, yet in the mask", trial, h, d, r);
+            near_edge += d <= r && d > 0.98 * r;
+        }
+    }
+    cr_assert_gt(near_edge, 100, "only %ld anchors near the edge of the radius", near_edge);
+}

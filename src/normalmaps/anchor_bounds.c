@@ -340,15 +340,24 @@ typedef struct anchor_mask {
     uint64_t w[4];
 } anchor_mask;
 
-static void mask_set_range(anchor_mask *m, int lo, int hi)
+/* below[n]: the 256-bit mask of the codes < n, n = 0..256 (a range [lo, hi] is below[hi + 1] minus
+ * below[lo]: two loads a word instead of a loop over the words with shifts). */
+#define BELOW_W(n, w) ((n) >= 64 * (w) + 64 ? ~UINT64_C(0) : (n) <= 64 * (w) ? UINT64_C(0) : (UINT64_C(1) << (((n) - 64 * (w)) & 63)) - 1)
+#define BELOW_1(n) {{BELOW_W(n, 0), BELOW_W(n, 1), BELOW_W(n, 2), BELOW_W(n, 3)}}
+#define BELOW_4(n) BELOW_1(n), BELOW_1(n + 1), BELOW_1(n + 2), BELOW_1(n + 3)
+#define BELOW_16(n) BELOW_4(n), BELOW_4(n + 4), BELOW_4(n + 8), BELOW_4(n + 12)
+#define BELOW_64(n) BELOW_16(n), BELOW_16(n + 16), BELOW_16(n + 32), BELOW_16(n + 48)
+static const anchor_mask below[257] = {BELOW_64(0), BELOW_64(64), BELOW_64(128), BELOW_64(192), BELOW_1(256)};
+
+/* m |= the codes lo..hi (clamped to 0..255; nothing if lo > hi after clamping). */
+static inline void mask_set_range(anchor_mask *m, int lo, int hi)
 {
     lo = lo < 0 ? 0 : lo;
     hi = hi > 255 ? 255 : hi;
-    for (int w = lo >> 6; w <= hi >> 6 && lo <= hi; ++w) {
-        int a = w * 64 > lo ? 0 : lo - w * 64, b = w * 64 + 63 < hi ? 63 : hi - w * 64;
-        uint64_t upper = b == 63 ? ~UINT64_C(0) : (UINT64_C(1) << (b + 1)) - 1;
-        m->w[w] |= upper & ~((UINT64_C(1) << a) - 1);
-    }
+    if (lo > hi)
+        return;
+    for (int w = 0; w < 4; ++w)
+        m->w[w] |= below[hi + 1].w[w] & ~below[lo].w[w];
 }
 
 static double anchor_value(int code)
@@ -356,30 +365,100 @@ static double anchor_value(int code)
     return 2.0 * code / 255.0 - 1.0;
 }
 
-/* divisions / k for the 8-value mode (the same correctly rounded quotients, folded at compile time). */
-static const double scale7[8] = {0.0, 7.0 / 1, 7.0 / 2, 7.0 / 3, 7.0 / 4, 7.0 / 5, 7.0 / 6, 7.0 / 7};
+/* divisions / k, k = 1..8, for the 8-value mode (7 / k) and the 6-value mode (5 / k; the k above
+ * divisions pad the vector form's lanes and are never used): the correctly rounded quotients,
+ * folded at compile time. */
+static const double scale7[8] = {7.0 / 1, 7.0 / 2, 7.0 / 3, 7.0 / 4, 7.0 / 5, 7.0 / 6, 7.0 / 7, 7.0 / 8};
+static const double scale5[8] = {5.0 / 1, 5.0 / 2, 5.0 / 3, 5.0 / 4, 5.0 / 5, 5.0 / 6, 5.0 / 7, 5.0 / 8};
 
-/* High anchors H in [hmin, hmax] whose palette (low anchor L, D intervals) has an entry within r of t. */
-static anchor_mask reachable(double t, int low, int divisions, int six_value, double r, int hmin, int hmax)
+/* The high anchors H in [hmin, hmax] whose palette (low anchor L, D = divisions intervals) has an
+ * entry within r of t: every H if the low anchor (entry 0) or, in 6-value mode, -1 or +1 is within r;
+ * else for each k = 1..D, entry k = A(L) + (k / D) (A(H) - A(L)) lies in [t - r, t + r] iff
+ *     A(H) in [A(L) + (D / k) (t - r - A(L)), A(L) + (D / k) (t + r - A(L))]
+ * (k / D > 0), and A(H) = 2 H / 255 - 1, so H in [ceil((lo + 1) 127.5), floor((hi + 1) 127.5)],
+ * each end widened by 1e-6 code (far above the rounding of these few operations: the mask is a
+ * superset, the caller scores what passes). The ends are clamped in doubles before conversion
+ * (x > y ? x : y, which keeps y for a NaN x: a NaN end gives the whole range, a superset); the lower
+ * end at most 256 and the upper at least -1, so an empty interval gives below[hi + 1] minus
+ * below[lo] = nothing. reachable_scalar and reachable_avx2 (the D intervals in two vectors of 4, the
+ * same operations per lane, no FMA) give the same mask, bit for bit (tested). */
+static inline int reach_all(double t, double al, int six_value, double r)
+{
+    return fabs(al - t) <= r || (six_value && (fabs(t + 1.0) <= r || fabs(t - 1.0) <= r));
+}
+
+static anchor_mask reachable_scalar(double t, int low, int divisions, int six_value, double r, int hmin, int hmax)
 {
     anchor_mask m = {{0, 0, 0, 0}};
-    double al = anchor_value(low);
-    if (fabs(al - t) <= r || (six_value && (fabs(t + 1.0) <= r || fabs(t - 1.0) <= r))) {
+    const double al = anchor_value(low);
+    if (reach_all(t, al, six_value, r)) {
         mask_set_range(&m, hmin, hmax);
         return m;
     }
+    const double *scale = divisions == 7 ? scale7 : scale5, lo_t = t - r - al, hi_t = t + r - al;
     for (int k = 1; k <= divisions; ++k) {
-        double scale = divisions == 7 ? scale7[k] : (double)divisions / k;
-        double ah_lo = al + scale * (t - r - al), ah_hi = al + scale * (t + r - al);
-        int h_lo = (int)ceil((ah_lo + 1.0) * 127.5 - 1e-6), h_hi = (int)floor((ah_hi + 1.0) * 127.5 + 1e-6);
-        if (h_lo < hmin)
-            h_lo = hmin;
-        if (h_hi > hmax)
-            h_hi = hmax;
-        if (h_lo <= h_hi)
-            mask_set_range(&m, h_lo, h_hi);
+        double h_lo = ceil((al + scale[k - 1] * lo_t + 1.0) * 127.5 - 1e-6);
+        double h_hi = floor((al + scale[k - 1] * hi_t + 1.0) * 127.5 + 1e-6);
+        h_lo = h_lo > hmin ? h_lo : hmin;
+        h_lo = h_lo < 256.0 ? h_lo : 256.0;
+        h_hi = h_hi < hmax ? h_hi : hmax;
+        h_hi = h_hi > -1.0 ? h_hi : -1.0;
+        int lo = (int)h_lo, hi = (int)h_hi;
+        for (int w = 0; w < 4; ++w)
+            m.w[w] |= below[hi + 1].w[w] & ~below[lo].w[w];
     }
     return m;
+}
+
+#if LOOSE_AVX2
+static __attribute__((target("avx2"))) anchor_mask reachable_avx2(double t, int low, int divisions, int six_value,
+                                                                  double r, int hmin, int hmax)
+{
+    anchor_mask m = {{0, 0, 0, 0}};
+    const double al = anchor_value(low);
+    if (reach_all(t, al, six_value, r)) {
+        mask_set_range(&m, hmin, hmax);
+        return m;
+    }
+    const double *scale = divisions == 7 ? scale7 : scale5;
+    const __m256d val = _mm256_set1_pd(al), lo_t = _mm256_set1_pd(t - r - al), hi_t = _mm256_set1_pd(t + r - al);
+    const __m256d one = _mm256_set1_pd(1.0), half_codes = _mm256_set1_pd(127.5), eps = _mm256_set1_pd(1e-6);
+    const __m256d vmin = _mm256_set1_pd((double)hmin), vmax = _mm256_set1_pd((double)hmax);
+    const __m256d top = _mm256_set1_pd(256.0), bottom = _mm256_set1_pd(-1.0);
+    int lo[8], hi[8];
+    for (int h = 0; h < 2; ++h) {
+        __m256d s = _mm256_loadu_pd(scale + 4 * h);
+        __m256d a = _mm256_add_pd(_mm256_add_pd(val, _mm256_mul_pd(s, lo_t)), one);
+        __m256d b = _mm256_add_pd(_mm256_add_pd(val, _mm256_mul_pd(s, hi_t)), one);
+        __m256d h_lo = _mm256_ceil_pd(_mm256_sub_pd(_mm256_mul_pd(a, half_codes), eps));
+        __m256d h_hi = _mm256_floor_pd(_mm256_add_pd(_mm256_mul_pd(b, half_codes), eps));
+        h_lo = _mm256_min_pd(_mm256_max_pd(h_lo, vmin), top);
+        h_hi = _mm256_max_pd(_mm256_min_pd(h_hi, vmax), bottom);
+        _mm_storeu_si128((__m128i *)(lo + 4 * h), _mm256_cvttpd_epi32(h_lo));
+        _mm_storeu_si128((__m128i *)(hi + 4 * h), _mm256_cvttpd_epi32(h_hi));
+    }
+    __m256i acc = _mm256_setzero_si256();
+    for (int k = 0; k < divisions; ++k) {
+        __m256i up = _mm256_loadu_si256((const __m256i *)below[hi[k] + 1].w);
+        __m256i down = _mm256_loadu_si256((const __m256i *)below[lo[k]].w);
+        acc = _mm256_or_si256(acc, _mm256_andnot_si256(down, up));
+    }
+    _mm256_storeu_si256((__m256i *)m.w, acc);
+    return m;
+}
+#endif
+
+/* reachable_avx2 where avx2 is set (the caller checked the processor), else reachable_scalar. */
+static inline anchor_mask reachable(int avx2, double t, int low, int divisions, int six_value, double r, int hmin,
+                                    int hmax)
+{
+#if LOOSE_AVX2
+    if (avx2)
+        return reachable_avx2(t, low, divisions, six_value, r, hmin, hmax);
+#else
+    (void)avx2;
+#endif
+    return reachable_scalar(t, low, divisions, six_value, r, hmin, hmax);
 }
 
 static double rounding_delta(sol_bc4_precision precision)
@@ -390,6 +469,16 @@ static double rounding_delta(sol_bc4_precision precision)
     if (precision == SOL_BC4_INTERP_16BIT)
         return 1.0 / 65535.0;
     return 0.0;
+}
+
+void sol_nm_reachable_mask(int simd, double t, int low, int divisions, int six_value, double r, int hmin, int hmax,
+                           uint64_t out[4])
+{
+#if LOOSE_AVX2
+    simd = simd && __builtin_cpu_supports("avx2");
+#endif
+    anchor_mask m = reachable(simd, t, low, divisions, six_value, r, hmin, hmax);
+    memcpy(out, m.w, sizeof m.w);
 }
 
 /* The mean bound of the sum metric (every pixel tight). For any point c, the distance to the set S of
@@ -550,7 +639,7 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
                  * (6-value: unless -1 or +1 is within reach, which reachable() then lets through) */
                 if (!six && anchor_value(low) > mb.c + reach)
                     continue;
-                anchor_mask b = reachable(mb.c, low, divisions, six, reach, hmin, high_hi);
+                anchor_mask b = reachable(lat, mb.c, low, divisions, six, reach, hmin, high_hi);
                 for (int w = 0; w < 4; ++w)
                     m.w[w] &= b.w[w];
             }
@@ -559,7 +648,7 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
             for (int k = 0; k < 3 && (m.w[0] | m.w[1] | m.w[2] | m.w[3]); ++k) {
                 if ((ch->loose >> ch->order[k]) & 1)
                     continue;
-                anchor_mask b = reachable(ch->t[ch->order[k]], low, divisions, six, r, hmin, high_hi);
+                anchor_mask b = reachable(lat, ch->t[ch->order[k]], low, divisions, six, r, hmin, high_hi);
                 for (int w = 0; w < 4; ++w)
                     m.w[w] &= b.w[w];
             }
