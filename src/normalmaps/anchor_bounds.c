@@ -544,6 +544,61 @@ static double mean_bound_reach(mean_bound *mb, double tb)
     return mb->reach;
 }
 
+/* The span bound's masks (sum metric, every pixel tight). Every pair of span d = H - L, whatever L,
+ * has its lattice entries A(L) + j s, s = 2 d / (255 D), within delta of the infinite lattice
+ * A(L) + s Z, so it scores at least sol_nm_span_bounds's bound for the step s (bc4_span_bound.c: the
+ * targets' least circular sum of squares modulo s over every phase, less the rounding allowance; the
+ * ends of the palette ignored, which only lowers it). In 6-value mode the fixed entries -1 and +1 are
+ * off the lattice: the bound holds for a pair scoring <= T only if no target lies within sqrt(T) of
+ * either (then no pixel whose term is <= T can use them), so that mode gets every span otherwise.
+ * alive->w: bit d set unless span d's bound exceeds tb; the caller shifts it by L (bit L + d = H) into
+ * the low anchor's mask. On wide blocks few spans fit (bc4_span_bound.c: 4-9 of 50-60 against the
+ * optimum), and the per-low masks of the mean and the extreme pixels, blind to the phase all
+ * entries share, keep many high anchors that the lattice bound then rejects one by one (issue 13:
+ * that walk was ~60% of the optimal encoder's time on terrain and ridges). The bound is the one the
+ * common search prunes with, so the mask only drops pairs that cannot score <= tb. */
+static void span_alive(const double sorted[16], int six, double delta, double tb, anchor_mask *alive)
+{
+    const double r = sqrt(tb) * (1.0 + 1e-9) + 1e-12;
+    if (six && (sorted[0] - r <= -1.0 || sorted[15] + r >= 1.0)) {
+        mask_set_range(alive, 0, 255);
+        return;
+    }
+    double step[256], lb[256];
+    for (int d = 0; d < 256; ++d)
+        step[d] = (anchor_value(d) + 1.0) / (six ? 5 : 7);
+    sol_nm_span_bounds_all(sorted, step, 256, delta, tb, lb);
+    for (int w = 0; w < 4; ++w) {
+        uint64_t bits = 0;
+        for (int b = 0; b < 64; ++b)
+            bits |= (uint64_t)(lb[64 * w + b] <= tb) << b;
+        alive->w[w] = bits;
+    }
+}
+
+/* The mask a with bit d moved to bit d + s (0 <= s <= 255; bits past 255 drop out). */
+static inline anchor_mask mask_shift_up(const anchor_mask *a, int s)
+{
+    anchor_mask m = {{0, 0, 0, 0}};
+    const int q = s >> 6, b = s & 63;
+    for (int w = q; w < 4; ++w)
+        m.w[w] = (a->w[w - q] << b) | (b && w > q ? a->w[w - q - 1] >> (64 - b) : 0);
+    return m;
+}
+
+void sol_nm_span_mask(const double t[16], int six_value, sol_bc4_precision precision, double tb, uint64_t out[4])
+{
+    double sorted[16];
+    anchor_mask alive = {{0, 0, 0, 0}};
+    sol_nm_sort16(t, sorted);
+    span_alive(sorted, six_value, rounding_delta(precision) + 1e-12, tb, &alive);
+    memcpy(out, alive.w, sizeof alive.w);
+}
+
+/* Blocks at least this many codes wide (largest - smallest target) use span_alive: on narrower ones
+ * every step fits at some phase and its 32 bound evaluations per mode would be wasted. */
+#define SPAN_MASK_CODES 3.0
+
 /* Visits candidate pairs: argmin (budget shrinks to the best score; *best_pair updated with the
  * least (score, pair)) or collect (fixed budget, survivors appended to out). Returns the count. */
 static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *best_pair, sol_nm_pair *out)
@@ -608,11 +663,19 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
     mean_bound mb = {0.0, {0.0}, -1.0, INFINITY};
     if (meanb)
         mean_bound_init(&mb, ch->t);
+    /* the span bound's masks (see span_alive): the sum metric, every pixel tight, wide blocks */
+    double sorted[16];
+    anchor_mask alive = {{0, 0, 0, 0}};
+    const int spanb = meanb && (ch->t[ch->order[1]] - ch->t[ch->order[0]]) * 127.5 >= SPAN_MASK_CODES;
+    if (spanb)
+        sol_nm_sort16(ch->t, sorted);
     for (int six = 0; six < 2; ++six) {
         /* 8-value: e0 > e1, low anchor e1; 6-value: e0 <= e1, low anchor e0 */
         int low_lo = six ? ch->e0_lo : ch->e1_lo, low_hi = six ? ch->e0_hi : ch->e1_hi;
         int high_lo = six ? ch->e1_lo : ch->e0_lo, high_hi = six ? ch->e1_hi : ch->e0_hi;
         /* lows visited outward from the smallest target's code: good pairs early, budget shrinks */
+        if (spanb) /* at the budget now: it only shrinks (argmin), so the mask stays a superset */
+            span_alive(sorted, six, delta, *budget, &alive);
         int centre = (int)lround((ch->t[ch->order[0]] + 1.0) * 127.5);
         centre = centre < low_lo ? low_lo : (centre > low_hi ? low_hi : centre);
         for (int step = 0; step <= 2 * (low_hi - low_lo); ++step) {
@@ -633,6 +696,13 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
                 continue;
             const int divisions = six ? 5 : 7;
             mask_set_range(&m, hmin, high_hi);
+            if (spanb) {
+                anchor_mask a = mask_shift_up(&alive, low);
+                for (int w = 0; w < 4; ++w)
+                    m.w[w] &= a.w[w];
+                if (!(m.w[0] | m.w[1] | m.w[2] | m.w[3]))
+                    continue;
+            }
             if (meanb) { /* the mean bound's mask first: the most selective on narrow blocks */
                 double reach = mean_bound_reach(&mb, tb) + delta;
                 /* 8-value entries are >= A(low) - delta: none within reach of c if A(low) is above c + reach

@@ -56,6 +56,11 @@ size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pa
  * A(low) + (k / divisions) (A(H) - A(low)), k = 0..divisions, within r of t (a superset: the interval
  * ends are widened by 1e-6 code; NaN ends give the whole range). simd = 0: the scalar form, 1: the
  * AVX2 form where the processor has it (bit-identical). */
+/* The enumeration's span mask (anchor_bounds.c, for the tests): bit d of out set unless every pair
+ * of span d = H - L in the mode (six_value: 6-value, e0 <= e1; else 8-value) scores above tb against
+ * the targets t (sum metric, every pixel tight) by the span bound of sol_nm_span_bounds; every bit
+ * in 6-value mode when a target lies within sqrt(tb) of -1 or +1. */
+void sol_nm_span_mask(const double t[16], int six_value, sol_bc4_precision precision, double tb, uint64_t out[4]);
 void sol_nm_reachable_mask(int simd, double t, int low, int divisions, int six_value, double r, int hmin, int hmax,
                            uint64_t out[4]);
 
