@@ -134,10 +134,15 @@ double sol_nm_loose_term(const double pal[8], double t)
     return term_loose(pal, t, loose_reach(t));
 }
 
-/* Score with early exit: returns a value > budget as soon as the partial score exceeds it. */
+/* Score with early exit: returns a value > budget as soon as the partial score exceeds it. The
+ * palette comes from the common search's small tables (sol_nm_small_palette: the palette table's
+ * row, bit for bit, from 26 KB of anchors and interpolants that stay in the caches): the
+ * enumeration scores pairs 256 rows apart in the 4 MB table, and the load of each row missed the
+ * caches (perf, issue 13: ~40% of score_pair's time on the 8-bit hood map, whose lists are long). */
 static inline double score_pair(const sol_nm_channel *ch, int pair, double budget)
 {
-    const double *pal = ch->palettes[pair];
+    double pal[8];
+    sol_nm_small_palette(ch->precision, pair, pal);
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
         double t = ch->t[ch->order[k]];
@@ -212,6 +217,38 @@ static __attribute__((target("avx2"))) double score_loose_avx2(const sol_nm_chan
         _mm256_storeu_pd(tl, term);
         for (int j = 0; j < 4; ++j) {
             s = ch->use_max ? (tl[j] > s ? tl[j] : s) : s + tl[j];
+            if (s > budget)
+                return s;
+        }
+    }
+    return s;
+}
+#endif
+
+#if LOOSE_AVX2
+/* score_pair for channels whose pixels are all tight, 4 visiting positions at a time: term_tight's
+ * operations per lane ((e - t)^2, then d < m ? d : m, which is what vminpd(d, m) computes, entries
+ * in the same order, no FMA), folded one pixel at a time in the visiting order with score_pair's
+ * early exit (the terms past the exit are computed and dropped): the same double, bit for bit.
+ * tv: the targets in visiting order (lattice_lanes.t). */
+static __attribute__((target("avx2"))) double score_tight_avx2(const double tv[16], const double pal[8], int use_max,
+                                                               double budget)
+{
+    __m256d e[8];
+    for (int i = 0; i < 8; ++i)
+        e[i] = _mm256_set1_pd(pal[i]);
+    double s = 0.0;
+    for (int k = 0; k < 16; k += 4) {
+        const __m256d t = _mm256_loadu_pd(tv + k);
+        __m256d d = _mm256_sub_pd(e[0], t), m = _mm256_mul_pd(d, d);
+        for (int i = 1; i < 8; ++i) {
+            d = _mm256_sub_pd(e[i], t);
+            m = _mm256_min_pd(_mm256_mul_pd(d, d), m);
+        }
+        double tl[4];
+        _mm256_storeu_pd(tl, m);
+        for (int j = 0; j < 4; ++j) {
+            s = use_max ? (tl[j] > s ? tl[j] : s) : s + tl[j];
             if (s > budget)
                 return s;
         }
@@ -658,6 +695,7 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
 #endif
     if (lat)
         lattice_lanes_init(ch, &lat_ll);
+    const int tight_lanes = lat && ch->loose == 0; /* score_tight_avx2 scores the pairs */
     /* the mean bound (see mean_bound): sum metric, every pixel tight */
     const int meanb = !ch->use_max && ch->loose == 0;
     mean_bound mb = {0.0, {0.0}, -1.0, INFINITY};
@@ -758,7 +796,14 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
                         continue;
                     }
 #if LOOSE_AVX2
-                    double v = lanes ? score_loose_avx2(ch, &ll, ch->palettes[pair], *budget) : score_pair(ch, pair, *budget);
+                    double v;
+                    if (tight_lanes) {
+                        double pal[8];
+                        sol_nm_small_palette(ch->precision, pair, pal);
+                        v = score_tight_avx2(lat_ll.t, pal, ch->use_max, *budget);
+                    } else {
+                        v = lanes ? score_loose_avx2(ch, &ll, ch->palettes[pair], *budget) : score_pair(ch, pair, *budget);
+                    }
 #else
                     double v = score_pair(ch, pair, *budget);
 #endif
