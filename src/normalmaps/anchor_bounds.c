@@ -397,9 +397,25 @@ static inline void mask_set_range(anchor_mask *m, int lo, int hi)
         m->w[w] |= below[hi + 1].w[w] & ~below[lo].w[w];
 }
 
-static double anchor_value(int code)
+/* A(c) = 2 c / 255 - 1 and the lattice steps (A(d) + 1) / 7 and / 5 of span d, tabulated: the same
+ * expressions folded at compile time (correctly rounded as at run time), so the same doubles without
+ * the divisions (the enumeration's per-low loop and span_alive took one or two per code). */
+#define ANCHOR_OF(c) (2.0 * (c) / 255.0 - 1.0)
+#define ANCHOR_1(c) ANCHOR_OF(c)
+#define ANCHOR_4(c) ANCHOR_1(c), ANCHOR_1(c + 1), ANCHOR_1(c + 2), ANCHOR_1(c + 3)
+#define ANCHOR_16(c) ANCHOR_4(c), ANCHOR_4(c + 4), ANCHOR_4(c + 8), ANCHOR_4(c + 12)
+#define ANCHOR_64(c) ANCHOR_16(c), ANCHOR_16(c + 16), ANCHOR_16(c + 32), ANCHOR_16(c + 48)
+static const double anchor_table[256] = {ANCHOR_64(0), ANCHOR_64(64), ANCHOR_64(128), ANCHOR_64(192)};
+#undef ANCHOR_1
+#define ANCHOR_1(c) ((ANCHOR_OF(c) + 1.0) / 7)
+static const double step7_table[256] = {ANCHOR_64(0), ANCHOR_64(64), ANCHOR_64(128), ANCHOR_64(192)};
+#undef ANCHOR_1
+#define ANCHOR_1(c) ((ANCHOR_OF(c) + 1.0) / 5)
+static const double step5_table[256] = {ANCHOR_64(0), ANCHOR_64(64), ANCHOR_64(128), ANCHOR_64(192)};
+
+static inline double anchor_value(int code)
 {
-    return 2.0 * code / 255.0 - 1.0;
+    return anchor_table[code];
 }
 
 /* divisions / k, k = 1..8, for the 8-value mode (7 / k) and the 6-value mode (5 / k; the k above
@@ -601,10 +617,16 @@ static void span_alive(const double sorted[16], int six, double delta, double tb
         mask_set_range(alive, 0, 255);
         return;
     }
-    double step[256], lb[256];
-    for (int d = 0; d < 256; ++d)
-        step[d] = (anchor_value(d) + 1.0) / (six ? 5 : 7);
-    sol_nm_span_bounds_all(sorted, step, 256, delta, tb, lb);
+    /* the ends: a pair scoring <= tb has entries within r + delta of the smallest and the largest
+     * target, and its entries lie in [A(L) - delta, A(H) + delta] (-1 and +1 out of reach in 6-value
+     * mode, see above), so A(H) - A(L) = 2 d / 255 >= tmax - tmin - 2 (r + delta): the spans below
+     * d0 (lowered by 1e-6 code) cannot, and their bounds are not computed (in lanes of 16 from d0) */
+    double d0 = floor(((sorted[15] - sorted[0]) - 2.0 * (r + delta)) * 127.5 - 1e-6);
+    const int first = d0 <= 0.0 ? 0 : (d0 >= 255.0 ? 255 : (int)d0) & ~15;
+    double lb[256];
+    sol_nm_span_bounds_all(sorted, (six ? step5_table : step7_table) + first, 256 - first, delta, tb, lb + first);
+    for (int d = 0; d < first; ++d)
+        lb[d] = INFINITY;
     for (int w = 0; w < 4; ++w) {
         uint64_t bits = 0;
         for (int b = 0; b < 64; ++b)
