@@ -2337,24 +2337,31 @@ static int pair_order(const void *a, const void *b)
  * an AVX2 form of the loose terms: the collected pairs and their scores equal, bit for bit, a literal
  * scoring of every pair of the ranges (sum or max in the channel's visiting order of offset + weight
  * x sol_nm_loose_term), in both forms, at budgets that keep part of the pairs and at one that keeps
- * none; full ranges and boxes, both metrics, every precision. */
+ * none; full ranges and boxes, both metrics, every precision. Trials 12-17 put every target at
+ * |t| >= 1 / sqrt(2) (near the x axis; one at exactly 1 / sqrt(2), one an ulp above and one an ulp
+ * below, where the interval [|t|, reach] starts or stops holding 1), so that the walk's rule "every
+ * 6-value pair scores the same" applies or is refused at its edge: the same literal scoring decides. */
 Test(normalmaps, loose_channels_collect_every_pair_within_the_budget, .timeout = 120)
 {
     sol_nm_pair *got = malloc(65536 * sizeof *got), *want = malloc(65536 * sizeof *want);
     double *all = malloc(65536 * sizeof *all);
     cr_assert(got && want && all);
-    for (int trial = 0; trial < 12; ++trial) {
+    for (int trial = 0; trial < 18; ++trial) {
         sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
-        int use_max = trial % 2;
-        double t[16], w[16], off[16], phi = 2 * M_PI * uniform();
+        int use_max = trial % 2, axis = trial >= 12;
+        double t[16], w[16], off[16], phi = axis ? (trial % 4 < 2 ? 0.0 : M_PI) : 2 * M_PI * uniform();
         for (int p = 0; p < 16; ++p) {
             double f = phi + (trial % 4 == 3 ? 0.0 : 0.3 * (uniform() - 0.5));
             t[p] = p == 5 && trial % 5 == 0 ? 1.0 : (p == 7 && trial % 6 == 0 ? 0.0 : cos(f));
             w[p] = trial % 3 == 0 ? 1.0 : 0.5 + uniform();
             off[p] = trial % 3 == 0 ? 0.0 : 0.1 * uniform();
         }
+        if (axis && trial % 3 != 0) { /* the edge of the rule: 1 / sqrt(2), an ulp above or below */
+            double edge = trial % 3 == 1 ? M_SQRT1_2 : (trial < 15 ? nextafter(M_SQRT1_2, 1.0) : nextafter(M_SQRT1_2, 0.0));
+            t[3] = phi > 1.0 ? -edge : edge;
+        }
         sol_nm_channel ch;
-        int box = trial >= 8;
+        int box = trial >= 8 && trial < 15;
         sol_nm_channel_init(&ch, t, prec, use_max, 0xffffu, box ? 20 : 0, box ? 200 : 255, box ? 10 : 0,
                             box ? 250 : 255);
         for (int p = 0; p < 16; ++p)

@@ -201,17 +201,22 @@ static __attribute__((target("avx2"))) double score_loose_avx2(const sol_nm_chan
             above = _mm256_blendv_pd(above, _mm256_min_pd(a, above), _mm256_andnot_pd(le, ge));
             below = _mm256_blendv_pd(_mm256_max_pd(a, below), below, ge);
         }
-        /* above: above / sqrt(1 + above^2) (1 - 1e-15) - |t|, clamped at 0, squared (none: INFINITY) */
-        __m256d q = _mm256_mul_pd(_mm256_div_pd(above, _mm256_sqrt_pd(_mm256_add_pd(one, _mm256_mul_pd(above, above)))), shrink);
-        __m256d d = _mm256_max_pd(_mm256_sub_pd(q, tt), zero);
-        __m256d m = _mm256_blendv_pd(_mm256_mul_pd(d, d), inf, _mm256_cmp_pd(above, inf, _CMP_EQ_OQ));
-        /* below: |t| - (below >= 0 ? below : its quotient), clamped, squared; the least of both */
-        __m256d qb = _mm256_mul_pd(_mm256_div_pd(below, _mm256_sqrt_pd(_mm256_add_pd(one, _mm256_mul_pd(below, below)))), shrink);
-        __m256d e = _mm256_blendv_pd(qb, below, _mm256_cmp_pd(below, zero, _CMP_GE_OQ));
-        __m256d db = _mm256_max_pd(_mm256_sub_pd(tt, e), zero);
-        __m256d mb = _mm256_min_pd(_mm256_mul_pd(db, db), m);
-        m = _mm256_blendv_pd(mb, m, _mm256_cmp_pd(below, ninf, _CMP_EQ_OQ));
-        m = _mm256_blendv_pd(m, zero, in);
+        __m256d m = zero;
+        if (_mm256_movemask_pd(in) != 0xf) {
+            /* (skipped where every lane has an entry in its interval: the last blend gives 0 in each;
+             * issue 13: most terms of rims and blocks pointing away)
+             * above: above / sqrt(1 + above^2) (1 - 1e-15) - |t|, clamped at 0, squared (none: INFINITY) */
+            __m256d q = _mm256_mul_pd(_mm256_div_pd(above, _mm256_sqrt_pd(_mm256_add_pd(one, _mm256_mul_pd(above, above)))), shrink);
+            __m256d d = _mm256_max_pd(_mm256_sub_pd(q, tt), zero);
+            m = _mm256_blendv_pd(_mm256_mul_pd(d, d), inf, _mm256_cmp_pd(above, inf, _CMP_EQ_OQ));
+            /* below: |t| - (below >= 0 ? below : its quotient), clamped, squared; the least of both */
+            __m256d qb = _mm256_mul_pd(_mm256_div_pd(below, _mm256_sqrt_pd(_mm256_add_pd(one, _mm256_mul_pd(below, below)))), shrink);
+            __m256d e = _mm256_blendv_pd(qb, below, _mm256_cmp_pd(below, zero, _CMP_GE_OQ));
+            __m256d db = _mm256_max_pd(_mm256_sub_pd(tt, e), zero);
+            __m256d mb = _mm256_min_pd(_mm256_mul_pd(db, db), m);
+            m = _mm256_blendv_pd(mb, m, _mm256_cmp_pd(below, ninf, _CMP_EQ_OQ));
+            m = _mm256_blendv_pd(m, zero, in);
+        }
         __m256d term = _mm256_add_pd(_mm256_loadu_pd(ll->off + k), _mm256_mul_pd(_mm256_loadu_pd(ll->w + k), m));
         double tl[4];
         _mm256_storeu_pd(tl, term);
@@ -692,14 +697,34 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
         double tb = ch->use_max ? (floor > *budget ? -1.0 : *budget) : *budget - floor;
         if (tb < 0.0)
             return 0;
+        /* 6-value pairs (e0 <= e1) hold the entries -1 and +1. If for every pixel the entry of t's
+         * sign lies in its loose interval (|t| <= 1 <= reach: |t| >= 1 / sqrt(2), rims and blocks
+         * pointing away near an axis), term_loose is 0 there whatever the other entries (it returns
+         * 0 at that entry; score_loose_avx2's lane is blended to 0), so every 6-value pair scores
+         * the same fold of off + w 0, computed once by the same function on the first of them
+         * (issue 13: half of such a channel's 65536 scorings). */
+        int six_same = 1;
+        for (int p = 0; p < 16; ++p)
+            six_same &= fabs(ch->t[p]) <= 1.0 && ch->loose_reach[p] >= 1.0;
+        double six_score = 0.0;
+        int six_known = 0;
         for (int e0 = ch->e0_lo; e0 <= ch->e0_hi; ++e0)
             for (int e1 = ch->e1_lo; e1 <= ch->e1_hi; ++e1) {
                 int pair = e0 << 8 | e1;
+                double v;
+                if (six_same && e0 <= e1 && six_known) {
+                    v = six_score;
+                } else {
 #if LOOSE_AVX2
-                double v = lanes ? score_loose_avx2(ch, &ll, ch->palettes[pair], *budget) : score_pair(ch, pair, *budget);
+                    v = lanes ? score_loose_avx2(ch, &ll, ch->palettes[pair], *budget) : score_pair(ch, pair, *budget);
 #else
-                double v = score_pair(ch, pair, *budget);
+                    v = score_pair(ch, pair, *budget);
 #endif
+                    if (six_same && e0 <= e1) {
+                        six_score = v;
+                        six_known = 1;
+                    }
+                }
                 if (v <= *budget) {
                     out[n].score = v;
                     out[n].pair = (uint16_t)pair;

@@ -954,9 +954,12 @@ static int mask_sequences_equal(const double pa[8], const uint16_t ma[8], const 
  * (value bits, mask); an entry's mask is that of its value, so that multiset is fixed by the key. */
 static uint64_t masks_hash(const double pal[8], const uint16_t m[8], const uint64_t seed[16], int count)
 {
+    /* the seeds mixed each with its pixel's own constant and summed: independent multiplications
+     * instead of a chain of 16 (issue 13: the chain was ~5% of a block pointing away; merge_classes
+     * keeps the same pairs whatever the hash) */
     uint64_t h = 0, sum = 0;
     for (int p = 0; p < count; ++p)
-        h = mix64(h, seed[p]);
+        h += mix64(UINT64_C(0x2545F4914F6CDD1D) * (uint64_t)(p + 1), seed[p]);
     for (int e = 0; e < 8; ++e)
         if (m[e])
             sum += mix64(value_bits(pal[e]), m[e]);
@@ -2142,17 +2145,53 @@ static inline int slot_usable(value_table *t, value_mask *s, double v, int p)
     return (s->usable & bit) != 0;
 }
 
+/* Asks for the table slots of a palette's 8 values ahead of their use (the table is 512 KB, the
+ * values scattered over it; a hint only). */
+static inline void value_slots_prefetch(const value_table *t, const double pal[8])
+{
+    for (int e = 0; e < 8; ++e)
+        __builtin_prefetch(&t->slot[(long)((pal[e] + 1.0) * t->other->half_q + 0.5)]);
+}
+
+/* The slots of the pair PREFETCH_AHEAD / 2 places down the list (its palette was asked for by
+ * PREFETCH_PAIR before). */
+#define PREFETCH_SLOTS(t, pal, list, i, count)                                                               \
+    do {                                                                                                     \
+        if ((i) + PREFETCH_AHEAD / 2 < (count))                                                              \
+            value_slots_prefetch((t), (pal)[(list)[(i) + PREFETCH_AHEAD / 2].pair]);                          \
+    } while (0)
+
 /* Drops the pairs of which no entry is usable for some constrained pixel; returns the count kept. */
 static size_t usable_filter(sol_nm_pair *list, size_t count, const double (*pal)[8], value_table *t)
 {
     size_t kept = 0;
+    unsigned need = 0; /* the constrained pixels */
+    for (int k = 0; k < t->pr->count; ++k)
+        need |= 1u << t->pr->order[k];
     for (size_t i = 0; i < count; ++i) {
         PREFETCH_PAIR(pal, list, i, count);
+        PREFETCH_SLOTS(t, pal, list, i, count);
         const double *a = pal[list[i].pair];
         value_mask *s[8];
         for (int e = 0; e < 8; ++e)
             s[e] = value_slot(t, a[e]);
         *t->work += 8;
+        /* all 16 pixels at once, where the walk below would test nothing new: per pixel, the first
+         * entry that is not known unusable (open: still undecided); if that one is known usable for
+         * every constrained pixel that has one, the walk's answer is known (it passes iff no pixel
+         * is left without one) and it would make no test, so it is skipped (the same tests, work and
+         * table as the walk: it runs whenever some pixel's first such entry is unknown) */
+        unsigned open = need, unknown = 0;
+        for (int e = 0; e < 8; ++e) {
+            unsigned stop = open & (~(unsigned)s[e]->known | s[e]->usable);
+            unknown |= stop & ~(unsigned)s[e]->known;
+            open &= ~stop;
+        }
+        if (!unknown) {
+            if (!open)
+                list[kept++] = list[i];
+            continue;
+        }
         int ok = 1;
         for (int k = 0; k < t->pr->count && ok; ++k) {
             int p = t->pr->order[k], hit = 0;
@@ -2255,20 +2294,24 @@ static int keys_equal(const double pa[8], const pair_key *ka, const double pb[8]
 
 /* A pair's key for merge_stored: its entries' masks m and per pixel its seed key (count pixels). */
 typedef void (*pair_key_fn)(void *ctx, const double pal[8], uint16_t m[8], uint64_t seed[16]);
+/* Asks for the memory pair_key_fn will read for palette pal (a hint: no result depends on it). */
+typedef void (*pair_ahead_fn)(void *ctx, const double pal[8]);
 
 /* merge_classes's walk (the same slots, hash tags and probing; work, if not NULL, charged 16 per
  * pair) for classes given by keys (key_fn; hash masks_hash, equality keys_equal over count pixels),
  * with each pair's key computed once and the kept pairs' keys stored (ws->kkey; where it cannot grow,
  * a kept pair's key is computed again): the same pairs kept, in the same order, as merge_classes with
  * a hash and an equality computing the keys afresh. */
-static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[8], pair_key_fn key_fn, void *ctx,
-                           int npix, search_workspace *ws, uint64_t *work)
+static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[8], pair_key_fn key_fn,
+                           pair_ahead_fn ahead, void *ctx, int npix, search_workspace *ws, uint64_t *work)
 {
     uint32_t *slots = ws->slots;
     const size_t size = slots_clear(slots, count);
     size_t kept = 0;
     for (size_t i = 0; i < count; ++i) {
         PREFETCH_PAIR(pal, list, i, count);
+        if (i + PREFETCH_AHEAD / 2 < count) /* the tables key_fn reads for a pair further down */
+            ahead(ctx, pal[list[i + PREFETCH_AHEAD / 2].pair]);
         const double *a = pal[list[i].pair];
         pair_key key, other;
         if (work)
@@ -2314,6 +2357,13 @@ static void keyed_key_fn(void *ctx, const double pal[8], uint16_t m[8], uint64_t
     key_masks(ctx, pal, m, seed);
 }
 
+static void keyed_ahead_fn(void *ctx, const double pal[8])
+{
+    const key_table *kt = ctx;
+    for (int e = 0; e < 8; ++e)
+        __builtin_prefetch(&kt->slot[(long)((pal[e] + 1.0) * kt->half_q + 0.5)]);
+}
+
 /* merge_equivalent(list, count, k, pal, ws->slots): the same result (above), through merge_stored;
  * merge_equivalent itself if the table cannot be allocated. */
 static size_t merge_keyed(sol_nm_pair *list, size_t count, const channel_key *k, const double (*pal)[8],
@@ -2326,7 +2376,7 @@ static size_t merge_keyed(sol_nm_pair *list, size_t count, const channel_key *k,
         ws->kgen = 1;
     }
     key_table kt = {k, ws->ktab, ws->kgen, precision == SOL_BC4_INTERP_FLOAT ? 4462.5 : 32767.5};
-    return merge_stored(list, count, pal, keyed_key_fn, &kt, k->count, ws, NULL);
+    return merge_stored(list, count, pal, keyed_key_fn, keyed_ahead_fn, &kt, k->count, ws, NULL);
 }
 
 /* merge_equivalent with the usable entries of the table (targets tc: the channel's components of n):
@@ -2343,11 +2393,16 @@ static void usable_key_fn(void *ctx, const double pal[8], uint16_t m[8], uint64_
     usable_masks(u->t, pal, u->tc, m, seed);
 }
 
+static void usable_ahead_fn(void *ctx, const double pal[8])
+{
+    value_slots_prefetch(((usable_ctx *)ctx)->t, pal);
+}
+
 static size_t merge_usable(sol_nm_pair *list, size_t count, const double (*pal)[8], value_table *t,
                            const double tc[16], search_workspace *ws)
 {
     usable_ctx u = {t, tc};
-    return merge_stored(list, count, pal, usable_key_fn, &u, 16, ws, t->work);
+    return merge_stored(list, count, pal, usable_key_fn, usable_ahead_fn, &u, 16, ws, t->work);
 }
 
 /* The open-addressing set of the distinct entry values of list xl (slot 8 i + e + 1 holds entry e

@@ -81,6 +81,25 @@ static float *entry_row(sol_nm_couple *cs, double v, double half_q, int *stale)
     return cs->e2[k];
 }
 
+/* Prefetches for a walk over list at position i (issue 13: the lists are in score order, so each
+ * pair's palette and its entries' rows are scattered over the 4 MB palette table and the 4 MB row
+ * cache; the walks waited on them): the palette of the pair 16 ahead, and the rows and stamps of
+ * the entries of the pair 8 ahead, whose palette the previous call fetched. No effect on results. */
+static inline void prefetch_rows(const sol_nm_couple *cs, const double (*pal)[8], const sol_nm_pair *list, size_t i,
+                                 size_t count, double half_q)
+{
+    if (i + 16 < count)
+        __builtin_prefetch(pal[list[i + 16].pair]);
+    if (i + 8 < count) {
+        const double *a = pal[list[i + 8].pair];
+        for (int e = 0; e < 8; ++e) {
+            long k = value_code(a[e], half_q);
+            __builtin_prefetch(cs->e2[k]);
+            __builtin_prefetch(&cs->stamp[k]);
+        }
+    }
+}
+
 /* The block objective's fold of 16 per-pixel floors: their sum, or their max for SOL_BC5_MAX. */
 static double fold_row(const float row[16], int use_max)
 {
@@ -161,6 +180,22 @@ static int list_spans(sol_nm_couple *cs, const sol_nm_pair *list, size_t count, 
         }
     }
     return ns;
+}
+
+/* The count of distinct entry values of a list (value codes). */
+static size_t distinct_values(sol_nm_couple *cs, const sol_nm_pair *list, size_t count, const double (*pal)[8],
+                              double half_q)
+{
+    memset(cs->bits, 0, sizeof cs->bits);
+    for (size_t i = 0; i < count; ++i)
+        for (int e = 0; e < 8; ++e) {
+            long k = value_code(pal[list[i].pair][e], half_q);
+            cs->bits[k >> 6] |= UINT64_C(1) << (k & 63);
+        }
+    size_t d = 0;
+    for (int w = 0; w < COUPLE_CODES / 64; ++w)
+        d += (size_t)__builtin_popcountll(cs->bits[w]);
+    return d;
 }
 
 /* The pixels' normals with channel c first: (x, y, z) = (n_c, n_(1-c), nz), and per pixel the
@@ -247,6 +282,7 @@ static size_t row_filter(sol_nm_couple *cs, const couple_pixels *px, int use_max
     next_generation(cs);
     size_t kept = 0;
     for (size_t i = 0; i < count; ++i) {
+        prefetch_rows(cs, pal, list, i, count, half_q);
         const double *a = pal[list[i].pair];
         float row[16];
         for (int e = 0; e < 8; ++e) {
@@ -282,17 +318,30 @@ void sol_nm_couple_reduce(sol_nm_couple *cs, const double n[16][3], int use_max,
                           sol_nm_pair *yl, size_t *ny, uint64_t *work)
 {
     const double half_q = precision == SOL_BC4_INTERP_FLOAT ? 4462.5 : 32767.5;
+    /* per channel: the other list's count and span count at its last pass. The lists only shrink, so
+     * the same count is the same list, the same spans and the same rows: the pass would keep every
+     * pair (they all passed it). It is then skipped and its work charged as it would be: the other
+     * list's spans, 16 ns per distinct value of the list and 16 per pair (issue 13: the round after
+     * one that dropped nothing on one side repeated its passes). */
+    size_t last_other[2] = {SIZE_MAX, SIZE_MAX};
+    int last_ns[2] = {0, 0};
     for (int round = 0; round < 3; ++round) {
         size_t before = *nx + *ny;
         for (int c = 1; c >= 0; --c) {
+            size_t *count = c ? ny : nx, other = c ? *nx : *ny;
+            *work += 8 * other;
+            if (other == last_other[c]) {
+                *work += 16 * (uint64_t)last_ns[c] * distinct_values(cs, c ? yl : xl, *count, pal, half_q) + 16 * *count;
+                continue;
+            }
             double lo[COUPLE_SPANS], hi[COUPLE_SPANS];
-            int ns = list_spans(cs, c ? xl : yl, c ? *nx : *ny, pal, half_q, lo, hi);
-            *work += 8 * (c ? *nx : *ny);
+            int ns = list_spans(cs, c ? xl : yl, other, pal, half_q, lo, hi);
             if (ns == 0) {
                 *nx = *ny = 0;
                 return;
             }
-            size_t *count = c ? ny : nx;
+            last_other[c] = other;
+            last_ns[c] = ns;
             couple_pixels px;
             couple_pixels_init(&px, n, c);
             *count = row_filter(cs, &px, use_max, margin, pal, half_q, c ? yl : xl, *count, lo, hi, ns, work);
@@ -315,6 +364,7 @@ static size_t best_partner(sol_nm_couple *cs, const double n[16][3], int c, int 
     size_t arg = 0;
     double least = INFINITY;
     for (size_t i = 0; i < count; ++i) {
+        prefetch_rows(cs, pal, list, i, count, half_q);
         const double *a = pal[list[i].pair];
         float row[16];
         for (int e = 0; e < 8; ++e) {
@@ -362,9 +412,34 @@ int sol_nm_couple_descent(sol_nm_couple *cs, const double n[16][3], int use_max,
 {
     const double half_q = precision == SOL_BC4_INTERP_FLOAT ? 4462.5 : 32767.5;
     int cnt = 0, x = start_x, y = -1;
+    /* best_partner is a function of the partner pair (the lists are fixed here), so a call repeating
+     * the last one of its channel takes that one's answer and charges its work again (the same work
+     * as calling it: each call starts a new generation, so it meets the same values and pairs). A
+     * descent that settles repeats its last step before it stops (issue 13: a third of its calls). */
+    int memo_partner[2] = {-1, -1}, memo_result[2] = {0, 0};
+    uint64_t memo_work[2] = {0, 0};
     for (int step = 0; step < 4 && nx && ny; ++step) {
-        int yn = yl[best_partner(cs, n, 1, use_max, pal[x], pal, half_q, yl, ny, work)].pair;
-        int xn = xl[best_partner(cs, n, 0, use_max, pal[yn], pal, half_q, xl, nx, work)].pair;
+        int yn, xn;
+        if (memo_partner[1] == x) {
+            yn = memo_result[1];
+            *work += memo_work[1];
+        } else {
+            uint64_t w0 = *work;
+            yn = yl[best_partner(cs, n, 1, use_max, pal[x], pal, half_q, yl, ny, work)].pair;
+            memo_partner[1] = x;
+            memo_result[1] = yn;
+            memo_work[1] = *work - w0;
+        }
+        if (memo_partner[0] == yn) {
+            xn = memo_result[0];
+            *work += memo_work[0];
+        } else {
+            uint64_t w0 = *work;
+            xn = xl[best_partner(cs, n, 0, use_max, pal[yn], pal, half_q, xl, nx, work)].pair;
+            memo_partner[0] = yn;
+            memo_result[0] = xn;
+            memo_work[0] = *work - w0;
+        }
         if (xn == x && yn == y)
             break;
         x = xn;
