@@ -3202,3 +3202,120 @@ Test(normalmaps, mean_bound_is_attained_on_flat_channels)
         }
     free(got);
 }
+
+/* The enumeration's high-anchor masks (sol_nm_reachable_mask): the scalar and AVX2 forms bit for bit
+ * (random, huge, tiny, zero, infinite and NaN radii and targets), and against the definition: every
+ * high anchor with a lattice entry (or, in 6-value mode, -1 or +1) within r of t is in the mask, and
+ * none with every entry farther than 1.02 r + 1e-7 (the 1e-6 code widening moves an entry by less
+ * than 1e-8). The trials must meet anchors whose nearest entry lies in (0.98 r, r], so a bound
+ * tightened by 2% fails here. */
+Test(normalmaps, reachable_masks_match_their_definition_in_both_forms)
+{
+    rng_state = 0x5eed0f3a5c0ffee1ull;
+    long near_edge = 0;
+    const double specials[] = {0.0, 1e-300, 4.9e-324, 1e-9, 1e300, INFINITY, NAN};
+    for (int trial = 0; trial < 6000; ++trial) {
+        int six = trial & 1, divisions = six ? 5 : 7, low = (int)(256 * uniform());
+        double t = 2.4 * uniform() - 1.2, r = 0.3 * uniform() * uniform();
+        if (trial % 50 == 7)
+            r = specials[(trial / 50) % 7];
+        if (trial % 97 == 3)
+            t = specials[(trial / 97) % 7] * (trial & 2 ? -1.0 : 1.0);
+        if (trial % 13 == 5)
+            t = 2.0 * (int)(256 * uniform()) / 255.0 - 1.0; /* on an anchor */
+        int hmin = (int)(256 * uniform() * uniform()), hmax = 255 - (int)(256 * uniform() * uniform());
+        if (trial % 5 == 0) {
+            hmin = 0;
+            hmax = 255;
+        }
+        uint64_t scalar[4], simd[4];
+        sol_nm_reachable_mask(0, t, low, divisions, six, r, hmin, hmax, scalar);
+        sol_nm_reachable_mask(1, t, low, divisions, six, r, hmin, hmax, simd);
+        cr_assert(memcmp(scalar, simd, sizeof scalar) == 0, "trial %d: scalar and AVX2 masks differ", trial);
+        for (int h = 0; h < 256; ++h) {
+            int bit = (int)((scalar[h >> 6] >> (h & 63)) & 1);
+            if (h < hmin || h > hmax) {
+                cr_assert_eq(bit, 0, "trial %d: bit %d outside [%d, %d]", trial, h, hmin, hmax);
+                continue;
+            }
+            if (isnan(t) || isnan(r) || isinf(t))
+                continue;
+            double al = 2.0 * low / 255.0 - 1.0, ah = 2.0 * h / 255.0 - 1.0, d = fabs(al - t);
+            for (int k = 1; k <= divisions; ++k) {
+                double e = fabs(al + (double)k / divisions * (ah - al) - t);
+                d = e < d ? e : d;
+            }
+            if (six) {
+                d = fabs(t + 1.0) < d ? fabs(t + 1.0) : d;
+                d = fabs(t - 1.0) < d ? fabs(t - 1.0) : d;
+            }
+            if (d <= r)
+                cr_assert_eq(bit, 1, "trial %d: H %d has an entry %.17g within r %.17g but is not in the mask", trial, h,
+                             d, r);
+            if (d > 1.02 * r + 1e-7)
+                cr_assert_eq(bit, 0, "trial %d: H %d is %.17g from t, beyond r %.17g, yet in the mask", trial, h, d, r);
+            near_edge += d <= r && d > 0.98 * r;
+        }
+    }
+    cr_assert_gt(near_edge, 100, "only %ld anchors near the edge of the radius", near_edge);
+}
+
+/* The enumeration's span masks (sol_nm_span_mask) against the brute force: on wide blocks of random,
+ * clustered and two-valued targets, in both modes and every precision, the least score of each span
+ * d = H - L over its low anchors (every pair, from the palette table); tb is set to that least score
+ * of one span at a time (the span at the edge), and every span whose least score is <= tb must be in
+ * the mask. The trials must meet edge spans whose bound is within 2% of their least score, so a span
+ * bound raised by 2% drops one of them and fails here. */
+Test(normalmaps, span_masks_keep_every_span_within_the_budget, .timeout = 120)
+{
+    rng_state = 0x0ddba11c0ffee5edull;
+    long tight = 0;
+    for (int trial = 0; trial < 24; ++trial) {
+        const sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        double t[16], lo = -1.0 + 1.2 * uniform(), w = 0.03 + 0.6 * uniform();
+        for (int p = 0; p < 16; ++p) {
+            t[p] = lo + w * uniform();
+            if (trial % 4 == 1) /* clusters */
+                t[p] = lo + w * (p % 3) / 2.0 + 0.002 * uniform();
+            if (trial % 4 == 2) /* two values */
+                t[p] = p & 1 ? lo : lo + w;
+        }
+        for (int six = 0; six < 2; ++six) {
+            double least[256];
+            for (int d = 0; d < 256; ++d)
+                least[d] = INFINITY;
+            for (int l = 0; l < 256; ++l)
+                for (int h = l + !six; h < 256; ++h) {
+                    const double *e = pal[six ? (l << 8 | h) : (h << 8 | l)];
+                    double s = 0.0;
+                    for (int p = 0; p < 16; ++p) {
+                        double m = INFINITY;
+                        for (int i = 0; i < 8; ++i)
+                            m = (e[i] - t[p]) * (e[i] - t[p]) < m ? (e[i] - t[p]) * (e[i] - t[p]) : m;
+                        s += m;
+                    }
+                    least[h - l] = s < least[h - l] ? s : least[h - l];
+                }
+            double sorted[16], steps[256], lb[256];
+            const double delta =
+                (prec == SOL_BC4_INTERP_8BIT ? 1.0 / 255.0 : prec == SOL_BC4_INTERP_16BIT ? 1.0 / 65535.0 : 0.0) + 1e-12;
+            sol_nm_sort16(t, sorted);
+            for (int d = 0; d < 256; ++d)
+                steps[d] = 2.0 * d / 255.0 / (six ? 5 : 7);
+            for (int edge = 1; edge < 256; edge += 17) {
+                const double tb = least[edge];
+                uint64_t m[4];
+                sol_nm_span_mask(t, six, prec, tb, m);
+                for (int d = 0; d < 256; ++d)
+                    if (least[d] <= tb)
+                        cr_assert((m[d >> 6] >> (d & 63)) & 1,
+                                  "trial %d six %d: span %d scores %.17g <= %.17g but is not in the mask", trial, six, d,
+                                  least[d], tb);
+                sol_nm_span_bounds_all(sorted, steps, 256, delta, INFINITY, lb);
+                tight += lb[edge] * 1.02 > tb && lb[edge] <= tb && (m[edge >> 6] >> (edge & 63)) & 1;
+            }
+        }
+    }
+    cr_assert_gt(tight, 10, "only %ld edge spans with a bound within 2%% of their least score", tight);
+}

@@ -134,10 +134,15 @@ double sol_nm_loose_term(const double pal[8], double t)
     return term_loose(pal, t, loose_reach(t));
 }
 
-/* Score with early exit: returns a value > budget as soon as the partial score exceeds it. */
+/* Score with early exit: returns a value > budget as soon as the partial score exceeds it. The
+ * palette comes from the common search's small tables (sol_nm_small_palette: the palette table's
+ * row, bit for bit, from 26 KB of anchors and interpolants that stay in the caches): the
+ * enumeration scores pairs 256 rows apart in the 4 MB table, and the load of each row missed the
+ * caches (perf, issue 13: ~40% of score_pair's time on the 8-bit hood map, whose lists are long). */
 static inline double score_pair(const sol_nm_channel *ch, int pair, double budget)
 {
-    const double *pal = ch->palettes[pair];
+    double pal[8];
+    sol_nm_small_palette(ch->precision, pair, pal);
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
         double t = ch->t[ch->order[k]];
@@ -217,6 +222,38 @@ static __attribute__((target("avx2"))) double score_loose_avx2(const sol_nm_chan
         _mm256_storeu_pd(tl, term);
         for (int j = 0; j < 4; ++j) {
             s = ch->use_max ? (tl[j] > s ? tl[j] : s) : s + tl[j];
+            if (s > budget)
+                return s;
+        }
+    }
+    return s;
+}
+#endif
+
+#if LOOSE_AVX2
+/* score_pair for channels whose pixels are all tight, 4 visiting positions at a time: term_tight's
+ * operations per lane ((e - t)^2, then d < m ? d : m, which is what vminpd(d, m) computes, entries
+ * in the same order, no FMA), folded one pixel at a time in the visiting order with score_pair's
+ * early exit (the terms past the exit are computed and dropped): the same double, bit for bit.
+ * tv: the targets in visiting order (lattice_lanes.t). */
+static __attribute__((target("avx2"))) double score_tight_avx2(const double tv[16], const double pal[8], int use_max,
+                                                               double budget)
+{
+    __m256d e[8];
+    for (int i = 0; i < 8; ++i)
+        e[i] = _mm256_set1_pd(pal[i]);
+    double s = 0.0;
+    for (int k = 0; k < 16; k += 4) {
+        const __m256d t = _mm256_loadu_pd(tv + k);
+        __m256d d = _mm256_sub_pd(e[0], t), m = _mm256_mul_pd(d, d);
+        for (int i = 1; i < 8; ++i) {
+            d = _mm256_sub_pd(e[i], t);
+            m = _mm256_min_pd(_mm256_mul_pd(d, d), m);
+        }
+        double tl[4];
+        _mm256_storeu_pd(tl, m);
+        for (int j = 0; j < 4; ++j) {
+            s = use_max ? (tl[j] > s ? tl[j] : s) : s + tl[j];
             if (s > budget)
                 return s;
         }
@@ -345,46 +382,141 @@ typedef struct anchor_mask {
     uint64_t w[4];
 } anchor_mask;
 
-static void mask_set_range(anchor_mask *m, int lo, int hi)
+/* below[n]: the 256-bit mask of the codes < n, n = 0..256 (a range [lo, hi] is below[hi + 1] minus
+ * below[lo]: two loads a word instead of a loop over the words with shifts). */
+#define BELOW_W(n, w) ((n) >= 64 * (w) + 64 ? ~UINT64_C(0) : (n) <= 64 * (w) ? UINT64_C(0) : (UINT64_C(1) << (((n) - 64 * (w)) & 63)) - 1)
+#define BELOW_1(n) {{BELOW_W(n, 0), BELOW_W(n, 1), BELOW_W(n, 2), BELOW_W(n, 3)}}
+#define BELOW_4(n) BELOW_1(n), BELOW_1(n + 1), BELOW_1(n + 2), BELOW_1(n + 3)
+#define BELOW_16(n) BELOW_4(n), BELOW_4(n + 4), BELOW_4(n + 8), BELOW_4(n + 12)
+#define BELOW_64(n) BELOW_16(n), BELOW_16(n + 16), BELOW_16(n + 32), BELOW_16(n + 48)
+static const anchor_mask below[257] = {BELOW_64(0), BELOW_64(64), BELOW_64(128), BELOW_64(192), BELOW_1(256)};
+
+/* m |= the codes lo..hi (clamped to 0..255; nothing if lo > hi after clamping). */
+static inline void mask_set_range(anchor_mask *m, int lo, int hi)
 {
     lo = lo < 0 ? 0 : lo;
     hi = hi > 255 ? 255 : hi;
-    for (int w = lo >> 6; w <= hi >> 6 && lo <= hi; ++w) {
-        int a = w * 64 > lo ? 0 : lo - w * 64, b = w * 64 + 63 < hi ? 63 : hi - w * 64;
-        uint64_t upper = b == 63 ? ~UINT64_C(0) : (UINT64_C(1) << (b + 1)) - 1;
-        m->w[w] |= upper & ~((UINT64_C(1) << a) - 1);
-    }
+    if (lo > hi)
+        return;
+    for (int w = 0; w < 4; ++w)
+        m->w[w] |= below[hi + 1].w[w] & ~below[lo].w[w];
 }
 
-static double anchor_value(int code)
+/* A(c) = 2 c / 255 - 1 and the lattice steps (A(d) + 1) / 7 and / 5 of span d, tabulated: the same
+ * expressions folded at compile time (correctly rounded as at run time), so the same doubles without
+ * the divisions (the enumeration's per-low loop and span_alive took one or two per code). */
+#define ANCHOR_OF(c) (2.0 * (c) / 255.0 - 1.0)
+#define ANCHOR_1(c) ANCHOR_OF(c)
+#define ANCHOR_4(c) ANCHOR_1(c), ANCHOR_1(c + 1), ANCHOR_1(c + 2), ANCHOR_1(c + 3)
+#define ANCHOR_16(c) ANCHOR_4(c), ANCHOR_4(c + 4), ANCHOR_4(c + 8), ANCHOR_4(c + 12)
+#define ANCHOR_64(c) ANCHOR_16(c), ANCHOR_16(c + 16), ANCHOR_16(c + 32), ANCHOR_16(c + 48)
+static const double anchor_table[256] = {ANCHOR_64(0), ANCHOR_64(64), ANCHOR_64(128), ANCHOR_64(192)};
+#undef ANCHOR_1
+#define ANCHOR_1(c) ((ANCHOR_OF(c) + 1.0) / 7)
+static const double step7_table[256] = {ANCHOR_64(0), ANCHOR_64(64), ANCHOR_64(128), ANCHOR_64(192)};
+#undef ANCHOR_1
+#define ANCHOR_1(c) ((ANCHOR_OF(c) + 1.0) / 5)
+static const double step5_table[256] = {ANCHOR_64(0), ANCHOR_64(64), ANCHOR_64(128), ANCHOR_64(192)};
+
+static inline double anchor_value(int code)
 {
-    return 2.0 * code / 255.0 - 1.0;
+    return anchor_table[code];
 }
 
-/* divisions / k for the 8-value mode (the same correctly rounded quotients, folded at compile time). */
-static const double scale7[8] = {0.0, 7.0 / 1, 7.0 / 2, 7.0 / 3, 7.0 / 4, 7.0 / 5, 7.0 / 6, 7.0 / 7};
+/* divisions / k, k = 1..8, for the 8-value mode (7 / k) and the 6-value mode (5 / k; the k above
+ * divisions pad the vector form's lanes and are never used): the correctly rounded quotients,
+ * folded at compile time. */
+static const double scale7[8] = {7.0 / 1, 7.0 / 2, 7.0 / 3, 7.0 / 4, 7.0 / 5, 7.0 / 6, 7.0 / 7, 7.0 / 8};
+static const double scale5[8] = {5.0 / 1, 5.0 / 2, 5.0 / 3, 5.0 / 4, 5.0 / 5, 5.0 / 6, 5.0 / 7, 5.0 / 8};
 
-/* High anchors H in [hmin, hmax] whose palette (low anchor L, D intervals) has an entry within r of t. */
-static anchor_mask reachable(double t, int low, int divisions, int six_value, double r, int hmin, int hmax)
+/* The high anchors H in [hmin, hmax] whose palette (low anchor L, D = divisions intervals) has an
+ * entry within r of t: every H if the low anchor (entry 0) or, in 6-value mode, -1 or +1 is within r;
+ * else for each k = 1..D, entry k = A(L) + (k / D) (A(H) - A(L)) lies in [t - r, t + r] iff
+ *     A(H) in [A(L) + (D / k) (t - r - A(L)), A(L) + (D / k) (t + r - A(L))]
+ * (k / D > 0), and A(H) = 2 H / 255 - 1, so H in [ceil((lo + 1) 127.5), floor((hi + 1) 127.5)],
+ * each end widened by 1e-6 code (far above the rounding of these few operations: the mask is a
+ * superset, the caller scores what passes). The ends are clamped in doubles before conversion
+ * (x > y ? x : y, which keeps y for a NaN x: a NaN end gives the whole range, a superset); the lower
+ * end at most 256 and the upper at least -1, so an empty interval gives below[hi + 1] minus
+ * below[lo] = nothing. reachable_scalar and reachable_avx2 (the D intervals in two vectors of 4, the
+ * same operations per lane, no FMA) give the same mask, bit for bit (tested). */
+static inline int reach_all(double t, double al, int six_value, double r)
+{
+    return fabs(al - t) <= r || (six_value && (fabs(t + 1.0) <= r || fabs(t - 1.0) <= r));
+}
+
+static anchor_mask reachable_scalar(double t, int low, int divisions, int six_value, double r, int hmin, int hmax)
 {
     anchor_mask m = {{0, 0, 0, 0}};
-    double al = anchor_value(low);
-    if (fabs(al - t) <= r || (six_value && (fabs(t + 1.0) <= r || fabs(t - 1.0) <= r))) {
+    const double al = anchor_value(low);
+    if (reach_all(t, al, six_value, r)) {
         mask_set_range(&m, hmin, hmax);
         return m;
     }
+    const double *scale = divisions == 7 ? scale7 : scale5, lo_t = t - r - al, hi_t = t + r - al;
     for (int k = 1; k <= divisions; ++k) {
-        double scale = divisions == 7 ? scale7[k] : (double)divisions / k;
-        double ah_lo = al + scale * (t - r - al), ah_hi = al + scale * (t + r - al);
-        int h_lo = (int)ceil((ah_lo + 1.0) * 127.5 - 1e-6), h_hi = (int)floor((ah_hi + 1.0) * 127.5 + 1e-6);
-        if (h_lo < hmin)
-            h_lo = hmin;
-        if (h_hi > hmax)
-            h_hi = hmax;
-        if (h_lo <= h_hi)
-            mask_set_range(&m, h_lo, h_hi);
+        double h_lo = ceil((al + scale[k - 1] * lo_t + 1.0) * 127.5 - 1e-6);
+        double h_hi = floor((al + scale[k - 1] * hi_t + 1.0) * 127.5 + 1e-6);
+        h_lo = h_lo > hmin ? h_lo : hmin;
+        h_lo = h_lo < 256.0 ? h_lo : 256.0;
+        h_hi = h_hi < hmax ? h_hi : hmax;
+        h_hi = h_hi > -1.0 ? h_hi : -1.0;
+        int lo = (int)h_lo, hi = (int)h_hi;
+        for (int w = 0; w < 4; ++w)
+            m.w[w] |= below[hi + 1].w[w] & ~below[lo].w[w];
     }
     return m;
+}
+
+#if LOOSE_AVX2
+static __attribute__((target("avx2"))) anchor_mask reachable_avx2(double t, int low, int divisions, int six_value,
+                                                                  double r, int hmin, int hmax)
+{
+    anchor_mask m = {{0, 0, 0, 0}};
+    const double al = anchor_value(low);
+    if (reach_all(t, al, six_value, r)) {
+        mask_set_range(&m, hmin, hmax);
+        return m;
+    }
+    const double *scale = divisions == 7 ? scale7 : scale5;
+    const __m256d val = _mm256_set1_pd(al), lo_t = _mm256_set1_pd(t - r - al), hi_t = _mm256_set1_pd(t + r - al);
+    const __m256d one = _mm256_set1_pd(1.0), half_codes = _mm256_set1_pd(127.5), eps = _mm256_set1_pd(1e-6);
+    const __m256d vmin = _mm256_set1_pd((double)hmin), vmax = _mm256_set1_pd((double)hmax);
+    const __m256d top = _mm256_set1_pd(256.0), bottom = _mm256_set1_pd(-1.0);
+    int lo[8], hi[8];
+    for (int h = 0; h < 2; ++h) {
+        __m256d s = _mm256_loadu_pd(scale + 4 * h);
+        __m256d a = _mm256_add_pd(_mm256_add_pd(val, _mm256_mul_pd(s, lo_t)), one);
+        __m256d b = _mm256_add_pd(_mm256_add_pd(val, _mm256_mul_pd(s, hi_t)), one);
+        __m256d h_lo = _mm256_ceil_pd(_mm256_sub_pd(_mm256_mul_pd(a, half_codes), eps));
+        __m256d h_hi = _mm256_floor_pd(_mm256_add_pd(_mm256_mul_pd(b, half_codes), eps));
+        h_lo = _mm256_min_pd(_mm256_max_pd(h_lo, vmin), top);
+        h_hi = _mm256_max_pd(_mm256_min_pd(h_hi, vmax), bottom);
+        _mm_storeu_si128((__m128i *)(lo + 4 * h), _mm256_cvttpd_epi32(h_lo));
+        _mm_storeu_si128((__m128i *)(hi + 4 * h), _mm256_cvttpd_epi32(h_hi));
+    }
+    __m256i acc = _mm256_setzero_si256();
+    for (int k = 0; k < divisions; ++k) {
+        __m256i up = _mm256_loadu_si256((const __m256i *)below[hi[k] + 1].w);
+        __m256i down = _mm256_loadu_si256((const __m256i *)below[lo[k]].w);
+        acc = _mm256_or_si256(acc, _mm256_andnot_si256(down, up));
+    }
+    _mm256_storeu_si256((__m256i *)m.w, acc);
+    return m;
+}
+#endif
+
+/* reachable_avx2 where avx2 is set (the caller checked the processor), else reachable_scalar. */
+static inline anchor_mask reachable(int avx2, double t, int low, int divisions, int six_value, double r, int hmin,
+                                    int hmax)
+{
+#if LOOSE_AVX2
+    if (avx2)
+        return reachable_avx2(t, low, divisions, six_value, r, hmin, hmax);
+#else
+    (void)avx2;
+#endif
+    return reachable_scalar(t, low, divisions, six_value, r, hmin, hmax);
 }
 
 static double rounding_delta(sol_bc4_precision precision)
@@ -395,6 +527,16 @@ static double rounding_delta(sol_bc4_precision precision)
     if (precision == SOL_BC4_INTERP_16BIT)
         return 1.0 / 65535.0;
     return 0.0;
+}
+
+void sol_nm_reachable_mask(int simd, double t, int low, int divisions, int six_value, double r, int hmin, int hmax,
+                           uint64_t out[4])
+{
+#if LOOSE_AVX2
+    simd = simd && __builtin_cpu_supports("avx2");
+#endif
+    anchor_mask m = reachable(simd, t, low, divisions, six_value, r, hmin, hmax);
+    memcpy(out, m.w, sizeof m.w);
 }
 
 /* The mean bound of the sum metric (every pixel tight). For any point c, the distance to the set S of
@@ -459,6 +601,67 @@ static double mean_bound_reach(mean_bound *mb, double tb)
     mb->reach = hi * (1.0 + 1e-9) + 1e-12;
     return mb->reach;
 }
+
+/* The span bound's masks (sum metric, every pixel tight). Every pair of span d = H - L, whatever L,
+ * has its lattice entries A(L) + j s, s = 2 d / (255 D), within delta of the infinite lattice
+ * A(L) + s Z, so it scores at least sol_nm_span_bounds's bound for the step s (bc4_span_bound.c: the
+ * targets' least circular sum of squares modulo s over every phase, less the rounding allowance; the
+ * ends of the palette ignored, which only lowers it). In 6-value mode the fixed entries -1 and +1 are
+ * off the lattice: the bound holds for a pair scoring <= T only if no target lies within sqrt(T) of
+ * either (then no pixel whose term is <= T can use them), so that mode gets every span otherwise.
+ * alive->w: bit d set unless span d's bound exceeds tb; the caller shifts it by L (bit L + d = H) into
+ * the low anchor's mask. On wide blocks few spans fit (bc4_span_bound.c: 4-9 of 50-60 against the
+ * optimum), and the per-low masks of the mean and the extreme pixels, blind to the phase all
+ * entries share, keep many high anchors that the lattice bound then rejects one by one (issue 13:
+ * that walk was ~60% of the optimal encoder's time on terrain and ridges). The bound is the one the
+ * common search prunes with, so the mask only drops pairs that cannot score <= tb. */
+static void span_alive(const double sorted[16], int six, double delta, double tb, anchor_mask *alive)
+{
+    const double r = sqrt(tb) * (1.0 + 1e-9) + 1e-12;
+    if (six && (sorted[0] - r <= -1.0 || sorted[15] + r >= 1.0)) {
+        mask_set_range(alive, 0, 255);
+        return;
+    }
+    /* the ends: a pair scoring <= tb has entries within r + delta of the smallest and the largest
+     * target, and its entries lie in [A(L) - delta, A(H) + delta] (-1 and +1 out of reach in 6-value
+     * mode, see above), so A(H) - A(L) = 2 d / 255 >= tmax - tmin - 2 (r + delta): the spans below
+     * d0 (lowered by 1e-6 code) cannot, and their bounds are not computed (in lanes of 16 from d0) */
+    double d0 = floor(((sorted[15] - sorted[0]) - 2.0 * (r + delta)) * 127.5 - 1e-6);
+    const int first = d0 <= 0.0 ? 0 : (d0 >= 255.0 ? 255 : (int)d0) & ~15;
+    double lb[256];
+    sol_nm_span_bounds_all(sorted, (six ? step5_table : step7_table) + first, 256 - first, delta, tb, lb + first);
+    for (int d = 0; d < first; ++d)
+        lb[d] = INFINITY;
+    for (int w = 0; w < 4; ++w) {
+        uint64_t bits = 0;
+        for (int b = 0; b < 64; ++b)
+            bits |= (uint64_t)(lb[64 * w + b] <= tb) << b;
+        alive->w[w] = bits;
+    }
+}
+
+/* The mask a with bit d moved to bit d + s (0 <= s <= 255; bits past 255 drop out). */
+static inline anchor_mask mask_shift_up(const anchor_mask *a, int s)
+{
+    anchor_mask m = {{0, 0, 0, 0}};
+    const int q = s >> 6, b = s & 63;
+    for (int w = q; w < 4; ++w)
+        m.w[w] = (a->w[w - q] << b) | (b && w > q ? a->w[w - q - 1] >> (64 - b) : 0);
+    return m;
+}
+
+void sol_nm_span_mask(const double t[16], int six_value, sol_bc4_precision precision, double tb, uint64_t out[4])
+{
+    double sorted[16];
+    anchor_mask alive = {{0, 0, 0, 0}};
+    sol_nm_sort16(t, sorted);
+    span_alive(sorted, six_value, rounding_delta(precision) + 1e-12, tb, &alive);
+    memcpy(out, alive.w, sizeof alive.w);
+}
+
+/* Blocks at least this many codes wide (largest - smallest target) use span_alive: on narrower ones
+ * every step fits at some phase and its 32 bound evaluations per mode would be wasted. */
+#define SPAN_MASK_CODES 3.0
 
 /* Visits candidate pairs: argmin (budget shrinks to the best score; *best_pair updated with the
  * least (score, pair)) or collect (fixed budget, survivors appended to out). Returns the count. */
@@ -539,16 +742,25 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
 #endif
     if (lat)
         lattice_lanes_init(ch, &lat_ll);
+    const int tight_lanes = lat && ch->loose == 0; /* score_tight_avx2 scores the pairs */
     /* the mean bound (see mean_bound): sum metric, every pixel tight */
     const int meanb = !ch->use_max && ch->loose == 0;
     mean_bound mb = {0.0, {0.0}, -1.0, INFINITY};
     if (meanb)
         mean_bound_init(&mb, ch->t);
+    /* the span bound's masks (see span_alive): the sum metric, every pixel tight, wide blocks */
+    double sorted[16];
+    anchor_mask alive = {{0, 0, 0, 0}};
+    const int spanb = meanb && (ch->t[ch->order[1]] - ch->t[ch->order[0]]) * 127.5 >= SPAN_MASK_CODES;
+    if (spanb)
+        sol_nm_sort16(ch->t, sorted);
     for (int six = 0; six < 2; ++six) {
         /* 8-value: e0 > e1, low anchor e1; 6-value: e0 <= e1, low anchor e0 */
         int low_lo = six ? ch->e0_lo : ch->e1_lo, low_hi = six ? ch->e0_hi : ch->e1_hi;
         int high_lo = six ? ch->e1_lo : ch->e0_lo, high_hi = six ? ch->e1_hi : ch->e0_hi;
         /* lows visited outward from the smallest target's code: good pairs early, budget shrinks */
+        if (spanb) /* at the budget now: it only shrinks (argmin), so the mask stays a superset */
+            span_alive(sorted, six, delta, *budget, &alive);
         int centre = (int)lround((ch->t[ch->order[0]] + 1.0) * 127.5);
         centre = centre < low_lo ? low_lo : (centre > low_hi ? low_hi : centre);
         for (int step = 0; step <= 2 * (low_hi - low_lo); ++step) {
@@ -569,13 +781,20 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
                 continue;
             const int divisions = six ? 5 : 7;
             mask_set_range(&m, hmin, high_hi);
+            if (spanb) {
+                anchor_mask a = mask_shift_up(&alive, low);
+                for (int w = 0; w < 4; ++w)
+                    m.w[w] &= a.w[w];
+                if (!(m.w[0] | m.w[1] | m.w[2] | m.w[3]))
+                    continue;
+            }
             if (meanb) { /* the mean bound's mask first: the most selective on narrow blocks */
                 double reach = mean_bound_reach(&mb, tb) + delta;
                 /* 8-value entries are >= A(low) - delta: none within reach of c if A(low) is above c + reach
                  * (6-value: unless -1 or +1 is within reach, which reachable() then lets through) */
                 if (!six && anchor_value(low) > mb.c + reach)
                     continue;
-                anchor_mask b = reachable(mb.c, low, divisions, six, reach, hmin, high_hi);
+                anchor_mask b = reachable(lat, mb.c, low, divisions, six, reach, hmin, high_hi);
                 for (int w = 0; w < 4; ++w)
                     m.w[w] &= b.w[w];
             }
@@ -584,7 +803,7 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
             for (int k = 0; k < 3 && (m.w[0] | m.w[1] | m.w[2] | m.w[3]); ++k) {
                 if ((ch->loose >> ch->order[k]) & 1)
                     continue;
-                anchor_mask b = reachable(ch->t[ch->order[k]], low, divisions, six, r, hmin, high_hi);
+                anchor_mask b = reachable(lat, ch->t[ch->order[k]], low, divisions, six, r, hmin, high_hi);
                 for (int w = 0; w < 4; ++w)
                     m.w[w] &= b.w[w];
             }
@@ -624,7 +843,14 @@ static size_t enumerate_pairs(const sol_nm_channel *ch, double *budget, int *bes
                         continue;
                     }
 #if LOOSE_AVX2
-                    double v = lanes ? score_loose_avx2(ch, &ll, ch->palettes[pair], *budget) : score_pair(ch, pair, *budget);
+                    double v;
+                    if (tight_lanes) {
+                        double pal[8];
+                        sol_nm_small_palette(ch->precision, pair, pal);
+                        v = score_tight_avx2(lat_ll.t, pal, ch->use_max, *budget);
+                    } else {
+                        v = lanes ? score_loose_avx2(ch, &ll, ch->palettes[pair], *budget) : score_pair(ch, pair, *budget);
+                    }
 #else
                     double v = score_pair(ch, pair, *budget);
 #endif

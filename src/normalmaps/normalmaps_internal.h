@@ -50,6 +50,19 @@ int sol_nm_channel_argmin(const sol_nm_channel *ch, double *score);
 /* Every pair in the ranges with score <= budget, in e0-major order; returns the count.
  * out holds at least (e0_hi - e0_lo + 1) (e1_hi - e1_lo + 1) entries. */
 size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pair *out);
+/* The enumeration's mask of high anchors (anchor_bounds.c, for the tests): bit H of out (H in
+ * [hmin, hmax]) set when the palette of low anchor low and high anchor H, divisions = 7 (8-value
+ * mode) or 5 (6-value mode, six_value = 1: -1 and +1 count too), has a lattice entry
+ * A(low) + (k / divisions) (A(H) - A(low)), k = 0..divisions, within r of t (a superset: the interval
+ * ends are widened by 1e-6 code; NaN ends give the whole range). simd = 0: the scalar form, 1: the
+ * AVX2 form where the processor has it (bit-identical). */
+/* The enumeration's span mask (anchor_bounds.c, for the tests): bit d of out set unless every pair
+ * of span d = H - L in the mode (six_value: 6-value, e0 <= e1; else 8-value) scores above tb against
+ * the targets t (sum metric, every pixel tight) by the span bound of sol_nm_span_bounds; every bit
+ * in 6-value mode when a target lies within sqrt(tb) of -1 or +1. */
+void sol_nm_span_mask(const double t[16], int six_value, sol_bc4_precision precision, double tb, uint64_t out[4]);
+void sol_nm_reachable_mask(int simd, double t, int low, int divisions, int six_value, double r, int hmin, int hmax,
+                           uint64_t out[4]);
 
 /* The exact least-squares BC4 pair over all 65536 ordered pairs (bc4_common.c): the same pair and
  * score as sol_nm_channel_argmin on the full range with use_max = 0 and no loose pixels (least
