@@ -406,40 +406,42 @@ static size_t best_partner(sol_nm_couple *cs, const double n[16][3], int c, int 
     return arg;
 }
 
+/* The last best_partner call of one channel: its partner pair, answer and work. */
+typedef struct {
+    int partner, result;
+    uint64_t work;
+} partner_memo;
+
+/* best_partner for channel c against partner pair `partner`, through that channel's memo.
+ * best_partner is a function of the partner pair (the lists are fixed during a descent), so a call
+ * repeating the last one of its channel takes that one's answer and charges its work again (the same
+ * work as calling it: each call starts a new generation, so it meets the same values and pairs). A
+ * descent that settles repeats its last step before it stops (issue 13: a third of its calls). */
+static int memo_partner(partner_memo *m, sol_nm_couple *cs, const double n[16][3], int c, int use_max,
+                        int partner, const double (*pal)[8], double half_q, const sol_nm_pair *list,
+                        size_t count, uint64_t *work)
+{
+    if (m->partner != partner) {
+        uint64_t w0 = *work;
+        m->result = list[best_partner(cs, n, c, use_max, pal[partner], pal, half_q, list, count, work)].pair;
+        m->partner = partner;
+        m->work = *work - w0;
+    } else {
+        *work += m->work;
+    }
+    return m->result;
+}
+
 int sol_nm_couple_descent(sol_nm_couple *cs, const double n[16][3], int use_max, const double (*pal)[8],
                           sol_bc4_precision precision, const sol_nm_pair *xl, size_t nx, const sol_nm_pair *yl,
                           size_t ny, int start_x, int out[][2], uint64_t *work)
 {
     const double half_q = precision == SOL_BC4_INTERP_FLOAT ? 4462.5 : 32767.5;
     int cnt = 0, x = start_x, y = -1;
-    /* best_partner is a function of the partner pair (the lists are fixed here), so a call repeating
-     * the last one of its channel takes that one's answer and charges its work again (the same work
-     * as calling it: each call starts a new generation, so it meets the same values and pairs). A
-     * descent that settles repeats its last step before it stops (issue 13: a third of its calls). */
-    int memo_partner[2] = {-1, -1}, memo_result[2] = {0, 0};
-    uint64_t memo_work[2] = {0, 0};
+    partner_memo memo[2] = {{-1, 0, 0}, {-1, 0, 0}};
     for (int step = 0; step < 4 && nx && ny; ++step) {
-        int yn, xn;
-        if (memo_partner[1] == x) {
-            yn = memo_result[1];
-            *work += memo_work[1];
-        } else {
-            uint64_t w0 = *work;
-            yn = yl[best_partner(cs, n, 1, use_max, pal[x], pal, half_q, yl, ny, work)].pair;
-            memo_partner[1] = x;
-            memo_result[1] = yn;
-            memo_work[1] = *work - w0;
-        }
-        if (memo_partner[0] == yn) {
-            xn = memo_result[0];
-            *work += memo_work[0];
-        } else {
-            uint64_t w0 = *work;
-            xn = xl[best_partner(cs, n, 0, use_max, pal[yn], pal, half_q, xl, nx, work)].pair;
-            memo_partner[0] = yn;
-            memo_result[0] = xn;
-            memo_work[0] = *work - w0;
-        }
+        int yn = memo_partner(&memo[1], cs, n, 1, use_max, x, pal, half_q, yl, ny, work);
+        int xn = memo_partner(&memo[0], cs, n, 0, use_max, yn, pal, half_q, xl, nx, work);
         if (xn == x && yn == y)
             break;
         x = xn;
