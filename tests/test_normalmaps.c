@@ -863,9 +863,10 @@ Test(normalmaps, search_simd_forms_equal_the_scalar_forms)
     }
 }
 
-/* The window search's one-pass channel side (bc5_window.c: sol_nm_window_side_scalar and its AVX2
- * form) against the two-pass definition (bc5.c channel_side_nearest: the first nearest entry's value,
- * its squared distance, the least squared distance of an entry of another value), bit for bit: every
+/* The one-pass channel side (bc5_side.c: sol_nm_channel_side_scalar and its AVX2 form, used by the
+ * exact search and the window search) against the two-pass definition (side_two_pass: the first
+ * nearest entry's value, its squared distance, the least squared distance of an entry of another
+ * value), bit for bit: every
  * mode of palette (8 and 6 values, e0 == e1 where every entry is equal so m2 is INFINITY, entries
  * repeated), targets on entries, halfway between two (equal distances), outside [-1, 1], +-0; every
  * precision; strided output. Then the adaptive encoder with a small work bound (the window's
@@ -888,7 +889,7 @@ static void side_two_pass(const double pal[8], double t, double out[3])
     out[2] = m2;
 }
 
-Test(normalmaps, window_side_one_pass_equals_two_pass)
+Test(normalmaps, channel_side_one_pass_equals_two_pass)
 {
     for (int trial = 0; trial < 3000; ++trial) {
         const sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
@@ -914,9 +915,9 @@ Test(normalmaps, window_side_one_pass_equals_two_pass)
         for (int k = 0; k < 16; ++k)
             side_two_pass(a, t[k], ref[k]);
         const size_t stride = 1 + (size_t)(trial % 3); /* 1, 2, 3: strided columns */
-        sol_nm_window_side_scalar(a, t, out[0][0], out[0][1], out[0][2], stride);
+        sol_nm_channel_side_scalar(a, t, out[0][0], out[0][1], out[0][2], stride);
         if (__builtin_cpu_supports("avx2"))
-            sol_nm_window_side_avx2(a, t, out[1][0], out[1][1], out[1][2], stride);
+            sol_nm_channel_side_avx2(a, t, out[1][0], out[1][1], out[1][2], stride);
         else
             memcpy(out[1], out[0], sizeof out[1]);
         for (int f = 0; f < 2; ++f)

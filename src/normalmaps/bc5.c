@@ -428,64 +428,16 @@ typedef struct channel_side {
 /* The nearest-entry part of a channel side: for each target t[k], the first nearest entry's value v
  * (strict comparisons in palette order), its squared distance m1 and the least squared distance m2
  * of an entry of another value. */
-static void channel_side_nearest(const double pal[8], const double t[16], channel_side *s)
-{
-    for (int k = 0; k < 16; ++k) {
-        double d[8];
-        int i0 = 0;
-        for (int i = 0; i < 8; ++i) {
-            d[i] = (pal[i] - t[k]) * (pal[i] - t[k]);
-            i0 = d[i] < d[i0] ? i : i0;
-        }
-        double m2 = INFINITY;
-        for (int i = 0; i < 8; ++i)
-            if (pal[i] != pal[i0] && d[i] < m2)
-                m2 = d[i];
-        s->v[k] = pal[i0];
-        s->m1[k] = d[i0];
-        s->m2[k] = m2;
-    }
-}
-
-#if SEARCH_AVX2
-/* channel_side_nearest, 4 pixels at a time: d < m1 (ordered, strict) keeps the first nearest entry;
- * _mm256_min_pd(d, m) is d < m ? d : m. */
-static AVX2_FN void channel_side_nearest_avx2(const double pal[8], const double t[16], channel_side *s)
-{
-    for (int k = 0; k < 16; k += 4) {
-        __m256d tk = _mm256_loadu_pd(t + k), p = _mm256_set1_pd(pal[0]), d = _mm256_sub_pd(p, tk);
-        __m256d m1 = _mm256_mul_pd(d, d), v = p, m2 = _mm256_set1_pd(INFINITY);
-        for (int i = 1; i < 8; ++i) {
-            p = _mm256_set1_pd(pal[i]);
-            d = _mm256_sub_pd(p, tk);
-            d = _mm256_mul_pd(d, d);
-            v = _mm256_blendv_pd(v, p, _mm256_cmp_pd(d, m1, _CMP_LT_OQ));
-            m1 = _mm256_min_pd(d, m1);
-        }
-        for (int i = 0; i < 8; ++i) {
-            p = _mm256_set1_pd(pal[i]);
-            d = _mm256_sub_pd(p, tk);
-            d = _mm256_mul_pd(d, d);
-            __m256d take = _mm256_and_pd(_mm256_cmp_pd(p, v, _CMP_NEQ_UQ), _mm256_cmp_pd(d, m2, _CMP_LT_OQ));
-            m2 = _mm256_blendv_pd(m2, d, take);
-        }
-        _mm256_storeu_pd(s->v + k, v);
-        _mm256_storeu_pd(s->m1 + k, m1);
-        _mm256_storeu_pd(s->m2 + k, m2);
-    }
-}
-#endif
-
 /* s's nearest-entry fields for targets t (in visiting order), by the AVX2 form where it runs. */
 static void channel_side_fill(const double pal[8], const double t[16], channel_side *s)
 {
 #if SEARCH_AVX2
     if (search_avx2()) {
-        channel_side_nearest_avx2(pal, t, s);
+        sol_nm_channel_side_avx2(pal, t, s->v, s->m1, s->m2, 1);
         return;
     }
 #endif
-    channel_side_nearest(pal, t, s);
+    sol_nm_channel_side_scalar(pal, t, s->v, s->m1, s->m2, 1);
 }
 
 /* Fills s for palette pal against component c (0 = x, 1 = y) of the pixels n[order[k]]. */
@@ -4361,10 +4313,7 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                     prepared = 1;
                 }
                 if (!x_ready) {
-                    if (chunked) /* only v, m1, m2 are read (window_chunk_quick) */
-                        sol_nm_window_side_avx2(a, tord[0], xside.v, xside.m1, xside.m2, 1);
-                    else
-                        window_side_init(a, tord[0], &xside);
+                    window_side_init(a, tord[0], &xside);
                     for (int k = 0; k < 16; ++k)
                         xa2[k] = 1.0 - xside.v[k] * xside.v[k];
                     x_ready = 1;
@@ -4380,7 +4329,7 @@ static int window_search(const double n[16][3], const sol_bc5_range *r, int base
                             ++lanes;
                         for (int q = j; q < j + lanes; ++q)
                             if (!w->ready[q]) { /* straight into the columns window_chunk_quick reads */
-                                sol_nm_window_side_avx2(pal[w->list[1][q].pair], tord[1], &w->yt[0][0][q],
+                                sol_nm_channel_side_avx2(pal[w->list[1][q].pair], tord[1], &w->yt[0][0][q],
                                                         &w->yt[1][0][q], &w->yt[2][0][q], WINDOW_PAIRS + 4);
                                 w->ready[q] = 1;
                             }

@@ -56,13 +56,13 @@ size_t sol_nm_channel_collect(const sol_nm_channel *ch, double budget, sol_nm_pa
  * A(low) + (k / divisions) (A(H) - A(low)), k = 0..divisions, within r of t (a superset: the interval
  * ends are widened by 1e-6 code; NaN ends give the whole range). simd = 0: the scalar form, 1: the
  * AVX2 form where the processor has it (bit-identical). */
+void sol_nm_reachable_mask(int simd, double t, int low, int divisions, int six_value, double r, int hmin, int hmax,
+                           uint64_t out[4]);
 /* The enumeration's span mask (anchor_bounds.c, for the tests): bit d of out set unless every pair
  * of span d = H - L in the mode (six_value: 6-value, e0 <= e1; else 8-value) scores above tb against
  * the targets t (sum metric, every pixel tight) by the span bound of sol_nm_span_bounds; every bit
  * in 6-value mode when a target lies within sqrt(tb) of -1 or +1. */
 void sol_nm_span_mask(const double t[16], int six_value, sol_bc4_precision precision, double tb, uint64_t out[4]);
-void sol_nm_reachable_mask(int simd, double t, int low, int divisions, int six_value, double r, int hmin, int hmax,
-                           uint64_t out[4]);
 
 /* The exact least-squares BC4 pair over all 65536 ordered pairs (bc4_common.c): the same pair and
  * score as sol_nm_channel_argmin on the full range with use_max = 0 and no loose pixels (least
@@ -165,14 +165,14 @@ void sol_nm_bc4_fast_anchors(const double t[16], int *lo, int *hi, int *lo6, int
  * results are bit-identical either way, the tests compare them). Zero (the default) otherwise. */
 extern int sol_nm_simd_disable;
 
-/* The adaptive window search's channel side of palette pal against targets t (bc5_window.c): for pixel
- * k, v[k stride] the first nearest entry's value, m1[k stride] its squared distance, m2[k stride] the
- * least squared distance of an entry of another value (INFINITY if none) - the values of bc5.c's
- * channel_side_nearest, bit for bit, in one pass over the entries (proof in bc5_window.c). The AVX2
+/* The channel side of palette pal against targets t (bc5_side.c; bc5.c's exact search and window
+ * search): for pixel k, v[k stride] the first nearest entry's value, m1[k stride] its squared
+ * distance, m2[k stride] the least squared distance of an entry of another value (INFINITY if none),
+ * in one pass over the entries (proof in bc5_side.c). The AVX2
  * form needs a CPU with AVX2 (the caller checks); the scalar form is its reference. */
-void sol_nm_window_side_scalar(const double pal[8], const double t[16], double *v, double *m1, double *m2,
+void sol_nm_channel_side_scalar(const double pal[8], const double t[16], double *v, double *m1, double *m2,
                                size_t stride);
-void sol_nm_window_side_avx2(const double pal[8], const double t[16], double *v, double *m1, double *m2,
+void sol_nm_channel_side_avx2(const double pal[8], const double t[16], double *v, double *m1, double *m2,
                              size_t stride);
 
 /* At least the largest cosine between unit n (nz < 0: a pixel pointing away) and the 64 decodes

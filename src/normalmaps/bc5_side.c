@@ -1,13 +1,14 @@
-/* bc5_window.c - kernels of the adaptive encoder's window search (T13, issue 13) that only the window
- * path (bc5.c window_search) uses.
+/* bc5_side.c - an anchor pair's channel side (issue 13), read by the exact search's per-pixel bound
+ * (bc5.c joint_objective_quick) and the adaptive encoder's window quick bound (T13).
  *
- * sol_nm_window_side: an anchor pair's channel side for the window's quick bound, per pixel the
- * nearest palette entry's value v (the first one, in palette order, on equal distances), its squared
- * distance m1 and the least squared distance m2 of an entry of ANOTHER value (INFINITY if every entry
- * has v's value): the values of bc5.c channel_side_nearest, in one pass over the 8 entries instead of
- * two. Why one pass gives the same m2: m2 is the least of {d_i : pal_i != v}, the distances of the
+ * sol_nm_channel_side: per pixel the nearest palette entry's value v (the first one, in palette
+ * order, on equal distances), its squared distance m1 and the least squared distance m2 of an entry of
+ * ANOTHER value (INFINITY if every entry has v's value). The definition takes two passes (find the
+ * nearest, then the least distance over the entries of other values; the tests hold it literally);
+ * this takes one pass over the 8 entries.
+ * Why one pass gives the same m2: m2 is the least of {d_i : pal_i != v}, the distances of the
  * entries whose value is not the final nearest one. Walk the entries in order keeping the nearest so
- * far (v, m1: replaced only on a strictly smaller d, as channel_side_nearest's strict comparison) and
+ * far (v, m1: replaced only on a strictly smaller d, the definition's strict comparison) and
  * m2 = the least d of the entries seen whose value is not v:
  *   - an entry with d < m1 becomes the nearest; the entries of the previous nearest value v' (all at
  *     distance m1, the same value) now count, so m2 = min(m2, m1). None of the entries seen before has
@@ -17,13 +18,13 @@
  * No entry seen can take the final nearest value later (that value's distance would be below m1 at
  * the time it came), so at the end m2 is the least d over exactly the entries of a value other than
  * v: the same set of doubles as the two-pass form, hence the same least value (squares are >= +0, no
- * NaN: min is exact). Values compare as numbers (!=, as channel_side_nearest: -0 equals +0).
+ * NaN: min is exact). Values compare as numbers (!=: -0 equals +0).
  * The AVX2 form (4 pixels per instruction) takes per lane the operations of the scalar walk: the same
  * IEEE subtraction and product per entry, comparisons and blends selecting as the ternaries. */
 #include "normalmaps_internal.h"
 
 /* The scalar walk (reference; the tests compare the AVX2 form with it). */
-void sol_nm_window_side_scalar(const double pal[8], const double t[16], double *v, double *m1, double *m2,
+void sol_nm_channel_side_scalar(const double pal[8], const double t[16], double *v, double *m1, double *m2,
                                size_t stride)
 {
     for (int k = 0; k < 16; ++k) {
@@ -47,7 +48,7 @@ void sol_nm_window_side_scalar(const double pal[8], const double t[16], double *
 #if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
 #include <immintrin.h>
 
-__attribute__((target("avx2"))) void sol_nm_window_side_avx2(const double pal[8], const double t[16], double *v,
+__attribute__((target("avx2"))) void sol_nm_channel_side_avx2(const double pal[8], const double t[16], double *v,
                                                             double *m1, double *m2, size_t stride)
 {
     const __m256d inf = _mm256_set1_pd(INFINITY);
@@ -79,9 +80,9 @@ __attribute__((target("avx2"))) void sol_nm_window_side_avx2(const double pal[8]
     }
 }
 #else
-void sol_nm_window_side_avx2(const double pal[8], const double t[16], double *v, double *m1, double *m2,
+void sol_nm_channel_side_avx2(const double pal[8], const double t[16], double *v, double *m1, double *m2,
                              size_t stride)
 {
-    sol_nm_window_side_scalar(pal, t, v, m1, m2, stride);
+    sol_nm_channel_side_scalar(pal, t, v, m1, m2, stride);
 }
 #endif
