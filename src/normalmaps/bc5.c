@@ -3582,12 +3582,13 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             candidates += evals;
             work += 8 * nx + 32 * evals;
         }
-        /* the pair screen (see there): every candidate that can still beat the incumbent, per row */
-        int screened = 0;
+        /* the pair screen (see there): every candidate that can still beat the incumbent, per row. It is
+         * built where the enumeration first reads it, after the reductions due at that row (issue 13:
+         * built before the loop, it was built again at row 0 whenever reductions were due there, on
+         * the same incumbent - a second identical screen when they removed nothing, a third of the
+         * survey's slowest block), and again after later reductions (screen_due) */
+        int screened = 0, screen_due = filter && !solved && (ws->screen || (ws->screen = pair_screen_new()));
         size_t screen_base = 0; /* the screen's row 0 is x list position screen_base */
-        if (filter && !solved && (ws->screen || (ws->screen = pair_screen_new())))
-            screened = pair_screen_build(ws->screen, n, order, loose, &aw, away_off, use_max, best, pal, precision,
-                                         ws->x, nx, ws->y, ny, ws->yside, &work, rq->work_limit);
         channel_side xside;
         y_filter yf;
         /* joint_objective_away's use: while it rejects at least 1 in 8 candidates it meets (after 1024;
@@ -3624,13 +3625,18 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     work += 8 * ny;
                 }
                 if (screened) { /* the lists changed: the screen again, on the rest, at the new incumbent */
-                    screen_base = i;
-                    screened = pair_screen_build(ws->screen, n, order, loose, &aw, away_off, use_max, best, pal,
-                                                 precision, ws->x + i, nx - i, ws->y, ny, ws->yside, &work,
-                                                 rq->work_limit);
+                    screened = 0;
+                    screen_due = 1;
                 }
                 if (combine(ws->x[i].score, ws->y[0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                     break;
+            }
+            if (screen_due) {
+                screen_due = 0;
+                screen_base = i;
+                screened = pair_screen_build(ws->screen, n, order, loose, &aw, away_off, use_max, best, pal,
+                                             precision, ws->x + i, nx - i, ws->y, ny, ws->yside, &work,
+                                             rq->work_limit);
             }
             if (screened && ws->screen->start[i - screen_base] == ws->screen->start[i - screen_base + 1])
                 continue; /* no candidate of the row can beat the incumbent */
