@@ -184,7 +184,9 @@ $(foreach e,$(EXPERIMENTS),$(eval $(call experiment_rules,$(e))))
 
 experiments: $(foreach e,$(EXPERIMENTS),$(BUILD)/experiments/$(e)/$(e))
 
-$(TEST_BIN): $(TEST_OBJ) $(LIB)
+# The tests share the generator of issue 13's degenerate survey with the T8 driver's make bench.
+TEST_SHARED_OBJ := $(BUILD)/experiments/t8_t14_3dc_encoders/degenerate_survey.o
+$(TEST_BIN): $(TEST_OBJ) $(TEST_SHARED_OBJ) $(LIB)
 	@mkdir -p $(@D)
 	$(CXX) -fopenmp $(LDFLAGS) $^ -o $@ -lcriterion $(LDLIBS_ALL)
 

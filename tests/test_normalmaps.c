@@ -11,6 +11,7 @@
 
 #include "normalmaps_internal.h"
 #include "sol_normalmaps.h"
+#include "../experiments/t8_t14_3dc_encoders/degenerate_survey.h"
 
 /* Small deterministic generator (tests must not depend on rand()'s implementation). */
 static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
@@ -2135,50 +2136,6 @@ Test(normalmaps, away_cosine_bounds_every_decode_and_forms_agree)
     }
 }
 
-/* Blocks of the issue 13 survey (families of normals pointing away; generator below) that the
- * search used to leave bounded (stopped by the default work limit, ~0.5 s): now proven, by the
- * coupled bound of bc5_away.c (an arc of 1 rad) and the separable decision of bc5.c (a narrow cone,
- * a column of normals at one azimuth, sum and max metric; a cone of 0.3 rad, max metric, decided
- * through the holders of its dominant pixel's decode), and an 8-bit equal block whose incumbent
- * meets the equal-block floor. Reference: the previous search with an unlimited work_limit (error and anchors,
- * 0.7-21 s per block); and literal brute force in a +-2 window around the result. */
-static void survey_block(int family, double spread, double n[16][3])
-{
-    unsigned long long s = 88172645463325252ULL + 1000003ULL * (unsigned)(family * 100) +
-                           (unsigned long long)(spread * 1e6);
-#define SURVEY_U() (s ^= s << 13, s ^= s >> 7, s ^= s << 17, (s >> 11) * (1.0 / 9007199254740992.0))
-    double phi = 2 * M_PI * SURVEY_U(), h = 0.05 + 0.9 * SURVEY_U(), rho = sqrt(1 - h * h);
-    double cx = rho * cos(phi), cy = rho * sin(phi), cz = -h;
-    for (int p = 0; p < 16; ++p) {
-        double fa = phi + spread * (p / 15.0 - 0.5);
-        if (family == 0) { /* an arc pointing away */
-            n[p][0] = rho * cos(fa), n[p][1] = rho * sin(fa), n[p][2] = -h;
-        } else if (family == 1) { /* an arc on the rim */
-            n[p][0] = cos(fa), n[p][1] = sin(fa), n[p][2] = 0.0;
-        } else if (family == 2) { /* an arc, every other pixel pointing away */
-            n[p][0] = rho * cos(fa), n[p][1] = rho * sin(fa), n[p][2] = p % 2 ? -h : h;
-        } else if (family == 3) { /* a rim arc, every third pixel jittered a hair above or below */
-            n[p][0] = cos(fa), n[p][1] = sin(fa), n[p][2] = p % 3 ? 0.0 : 0.01 * (SURVEY_U() - 0.5);
-        } else if (family == 7) { /* an arc just below the rim */
-            double hh = 0.02 * SURVEY_U() * (1 + spread);
-            n[p][0] = sqrt(1 - hh * hh) * cos(fa), n[p][1] = sqrt(1 - hh * hh) * sin(fa), n[p][2] = -hh;
-        } else if (family == 5) { /* one azimuth, heights varied */
-            double hh = h * (1 + spread * (SURVEY_U() - 0.5) * 0.5);
-            hh = hh > 1 ? 1 : hh;
-            double r = sqrt(1 - hh * hh);
-            n[p][0] = r * cos(phi), n[p][1] = r * sin(phi), n[p][2] = -hh;
-        } else { /* a cone of radius spread around (cx, cy, cz) */
-            double a = spread * sqrt(SURVEY_U()), b = 2 * M_PI * SURVEY_U();
-            double ux = -sin(phi), uy = cos(phi), uz = 0;
-            double wx = cy * uz - cz * uy, wy = cz * ux - cx * uz, wz = cx * uy - cy * ux;
-            n[p][0] = cos(a) * cx + sin(a) * (cos(b) * ux + sin(b) * wx);
-            n[p][1] = cos(a) * cy + sin(a) * (cos(b) * uy + sin(b) * wy);
-            n[p][2] = cos(a) * cz + sin(a) * (cos(b) * uz + sin(b) * wz);
-        }
-    }
-#undef SURVEY_U
-}
-
 /* A survey block (survey_block) encoded by the optimal search at full range: proven (not bounded),
  * with the reference error and anchors to the last bit, and equal to brute force over +-2 codes
  * around its anchors. */
@@ -2199,6 +2156,53 @@ static void expect_survey_case(int family, double spread, sol_bc5_metric metric,
     cr_assert_eq(bc5_brute_force(n, &r, &o), error, "case %zu", c);
 }
 
+/* issue 13 (make bench's degenerate survey, bench_degenerate in the T8 driver): the generator's
+ * blocks are pinned (a changed generator would change the bench's blocks and the references below
+ * silently), it visits 8 spread families x 7 spreads + 5 fixed blocks, and the fixed families - flat,
+ * all equal, all z = -1, all equal pointing away, rim normals on the axes (exactly tied anchors) -
+ * are proven by the optimal search with both metrics and every precision, their errors equal to the
+ * literal brute force over +-2 codes around the result. */
+Test(normalmaps, degenerate_survey_is_pinned_and_its_fixed_blocks_exact)
+{
+    static const double pinned[3][3] = {{-0x1.c9c91e07c2819p-2, -0x1.09964e32ef51fp-3, -0x1.c5260327c6b06p-1},
+                                        {-0x1.5537f4d73fab8p-1, 0x1.43ee77214e2c8p-1, -0x1.93e47211922ddp-2},
+                                        {-0x1.f8f0a2c50c3c4p-1, 0x1.52ee2dc01ffb8p-3, -0x1.02d3fb9e16863p-8}};
+    double n[16][3], m[16][3];
+    survey_block(SURVEY_AWAY_CONE, 1.0, n);
+    survey_block(SURVEY_RIM_JITTER, 0.3, m);
+    const double *got[3] = {n[0], n[15], m[3]};
+    for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 3; ++k)
+            cr_assert(fabs(got[r][k] - pinned[r][k]) <= 1e-15, "row %d component %d: %a", r, k, got[r][k]);
+    cr_assert_eq(survey_block_count(), 8 * 7 + 5);
+    for (int i = SURVEY_SPREAD_FAMILIES * SURVEY_SPREADS; i < survey_block_count(); ++i) {
+        int family;
+        double spread;
+        survey_block_at(i, &family, &spread);
+        survey_block(family, spread, n);
+        for (int metric = 0; metric < 2; ++metric)
+            for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec) {
+                sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = (sol_bc5_metric)metric,
+                                     .precision = (sol_bc4_precision)prec};
+                sol_bc5_block b;
+                sol_bc5_info info;
+                cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+                cr_assert(!info.bounded, "%s: stopped by the work bound", survey_family_name(family));
+                sol_bc5_range r = range_around(&b, 2);
+                cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "%s metric %d precision %d",
+                             survey_family_name(family), metric, prec);
+            }
+    }
+}
+
+/* Blocks of the issue 13 survey (families of normals pointing away; generator: survey_block,
+ * experiments/t8_t14_3dc_encoders/degenerate_survey.c, family numbers as its SURVEY_* enum) that the
+ * search used to leave bounded (stopped by the default work limit, ~0.5 s): now proven, by the
+ * coupled bound of bc5_away.c (an arc of 1 rad) and the separable decision of bc5.c (a narrow cone,
+ * a column of normals at one azimuth, sum and max metric; a cone of 0.3 rad, max metric, decided
+ * through the holders of its dominant pixel's decode), and an 8-bit equal block whose incumbent
+ * meets the equal-block floor. Reference: the previous search with an unlimited work_limit (error and anchors,
+ * 0.7-21 s per block); and literal brute force in a +-2 window around the result. */
 Test(normalmaps, pointing_away_survey_blocks_are_proven_exactly)
 {
     static const struct {

@@ -2,6 +2,7 @@
  * T8 source depth, T9 3Dc vs ARGB8 and interpolation precision, T10/T12 common vs optimal joint
  * encoder, T11 brute-force and branch-and-bound times, T13 adaptive window/threshold sweeps,
  * T14 banding of a specular highlight on a car-hood-like panel; libsquish and nvtt side by side. */
+#include "degenerate_survey.h"
 #include "inputs.h"
 #include "peers.h"
 #include "exp_harness.h"
@@ -1160,7 +1161,8 @@ static void t14(const exp_run *exp)
  * off), "adaptive-fast" the window around the fast encoder's anchors. Then the accuracy knobs' tables
  * (bench_threshold, bench_threshold_goals, bench_gap, bench_work_limit; see bench_thresholds below). Env:
  * T8_BENCH_MAPS, T8_BENCH_ENCODERS (encoder names, plus "thresholds" and "work-limits" for the knob
- * tables) and T8_BENCH_BITS ("16", "8") restrict the run; unset = everything. */
+ * tables and "degenerate" for the degenerate survey, bench_degenerate) and T8_BENCH_BITS ("16", "8")
+ * restrict the run; unset = everything. */
 /* 1 if name is in the comma-separated list (or the list is unset). */
 static int bench_wanted(const char *list, const char *name)
 {
@@ -1634,6 +1636,147 @@ static void bench_set(const exp_run *exp)
         sol_image_free(&maps_[k].exact);
 }
 
+/* ---- make bench: the degenerate survey (issue 13) ----
+ * The goal "degenerate blocks (flat, all normals equal, all z = -1 or pointing away, z = 0 rims,
+ * exactly tied anchors) finish in milliseconds with the exact answer; no block takes more than 1 s"
+ * measured on the constructed blocks of degenerate_survey.c: every block, both metrics, the three
+ * interpolation precisions, encoded by the optimal encoder through sol_bc5_encode_block (one thread,
+ * a fresh search workspace per call, as a caller encoding one block gets), each timed by its thread
+ * CPU time, the least of 3 runs where a run takes under 50 ms. Exactness: the encoder must prove the
+ * block (not stopped by the work bound), and the literal minimum over the anchors within +-1 code of
+ * its result (sol_bc5_choose_indices on each of the up to 81 anchor sets: joint indices, the
+ * objective the search minimises) must equal its error to the last bit. */
+typedef struct degen_time {
+    int family, metric, precision;
+    double spread, ms;
+    uint64_t candidates;
+} degen_time;
+
+static int degen_time_cmp(const void *pa, const void *pb)
+{
+    double a = ((const degen_time *)pa)->ms, b = ((const degen_time *)pb)->ms;
+    return (a > b) - (a < b);
+}
+
+/* The least error over the anchor sets within +-1 code of b's (clipped to 0..255). */
+static double window_minimum(const sol_bc5_block *b, const double n[16][3], const sol_bc5_options *o)
+{
+    double least = INFINITY;
+    const int c[4] = {b->x.e0, b->x.e1, b->y.e0, b->y.e1};
+    for (int d = 0; d < 81; ++d) {
+        int v[4], ok = 1;
+        for (int k = 0, r = d; k < 4; ++k, r /= 3) {
+            v[k] = c[k] + r % 3 - 1;
+            ok &= v[k] >= 0 && v[k] <= 255;
+        }
+        if (!ok)
+            continue;
+        sol_bc5_block t = *b;
+        t.x.e0 = (uint8_t)v[0], t.x.e1 = (uint8_t)v[1], t.y.e0 = (uint8_t)v[2], t.y.e1 = (uint8_t)v[3];
+        double e;
+        exp_check(sol_bc5_choose_indices(&t, n, o->precision, o->metric, &e), "window minimum");
+        least = e < least ? e : least;
+    }
+    return least;
+}
+
+/* The quantile q of sorted times (nearest rank). */
+static double degen_quantile(const degen_time *t, int count, double q)
+{
+    int i = (int)ceil(q * count) - 1;
+    return t[i < 0 ? 0 : (i >= count ? count - 1 : i)].ms;
+}
+
+/* One row of the summary: the blocks t[0 .. count) sorted by time. */
+static void degen_summary_row(exp_table *tab, const char *family, degen_time *t, int count, int bounded, int exact)
+{
+    qsort(t, (size_t)count, sizeof *t, degen_time_cmp);
+    int over100 = 0, within10 = 0, over1s = 0;
+    uint64_t cand_max = 0;
+    double cand_sum = 0.0;
+    for (int i = 0; i < count; ++i) {
+        over100 += t[i].ms > 100.0;
+        over1s += t[i].ms > 1000.0;
+        within10 += t[i].ms <= 10.0;
+        cand_sum += (double)t[i].candidates;
+        cand_max = t[i].candidates > cand_max ? t[i].candidates : cand_max;
+    }
+    exp_table_row(tab, "%s|%d|%.2f|%.2f|%.2f|%d|%d|%d|%.0f|%llu|%d|%d", family, count, degen_quantile(t, count, 0.5),
+                  degen_quantile(t, count, 0.9), t[count - 1].ms, within10, over100, over1s, cand_sum / count,
+                  (unsigned long long)cand_max, bounded, exact);
+}
+
+static void bench_degenerate(const exp_run *exp)
+{
+    const int nblocks = survey_block_count(), total = nblocks * 2 * SOL_BC4_PRECISION_COUNT;
+    degen_time *all = malloc(sizeof *all * (size_t)total), *fam = malloc(sizeof *fam * (size_t)total);
+    if (!all || !fam)
+        exp_die("out of memory");
+    int count = 0, bounded_all = 0, exact_all = 0;
+    int fam_bounded[SURVEY_FAMILIES] = {0}, fam_exact[SURVEY_FAMILIES] = {0};
+    int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    for (int i = 0; i < nblocks; ++i) {
+        int family;
+        double spread, n[16][3];
+        survey_block_at(i, &family, &spread);
+        survey_block(family, spread, n);
+        for (int metric = 0; metric < 2; ++metric)
+            for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec) {
+                sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL,
+                                     .metric = metric ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED,
+                                     .precision = (sol_bc4_precision)prec};
+                sol_bc5_block b;
+                sol_bc5_info info;
+                double least = INFINITY;
+                for (int run = 0; run < 3; ++run) {
+                    double t0 = thread_cpu_s();
+                    exp_check(sol_bc5_encode_block(n, &o, &b, &info), "degenerate survey block");
+                    double ms = (thread_cpu_s() - t0) * 1e3;
+                    least = ms < least ? ms : least;
+                    if (ms >= 50.0)
+                        break;
+                }
+                int exact = !info.bounded && window_minimum(&b, n, &o) == info.error;
+                all[count] = (degen_time){family, metric, prec, spread, least, info.candidates};
+                ++count;
+                bounded_all += info.bounded != 0;
+                exact_all += exact;
+                fam_bounded[family] += info.bounded != 0;
+                fam_exact[family] += exact;
+                exp_progress("degenerate survey", (size_t)count, (size_t)total);
+            }
+    }
+    omp_set_num_threads(threads);
+    exp_progress_done("degenerate survey");
+    exp_table *sum = exp_table_new(
+        "make bench: degenerate survey, optimal encoder per block (one thread, CPU ms; both metrics, 3 precisions)",
+        "family,blocks,median ms,p90 ms,max ms,blocks <= 10 ms,blocks > 100 ms,blocks > 1 s,mean candidates,"
+        "max candidates,bounded,exact in +-1 window");
+    for (int f = 0; f < SURVEY_FAMILIES; ++f) {
+        int m = 0;
+        for (int i = 0; i < count; ++i)
+            if (all[i].family == f)
+                fam[m++] = all[i];
+        if (m > 0)
+            degen_summary_row(sum, survey_family_name(f), fam, m, fam_bounded[f], fam_exact[f]);
+    }
+    degen_summary_row(sum, "all", all, count, bounded_all, exact_all);
+    exp_table_write(sum, exp, "bench_degenerate");
+    static const char *const prec_names[] = {"16-bit", "8-bit", "float"};
+    exp_table *slow = exp_table_new("make bench: degenerate survey, the 10 slowest blocks",
+                                    "family,spread rad,metric,interpolation,ms,candidates");
+    for (int i = count - 1; i >= 0 && i >= count - 10; --i) /* all[] is sorted by the "all" row */
+        exp_table_row(slow, "%s|%g|%s|%s|%.2f|%llu", survey_family_name(all[i].family), all[i].spread,
+                      all[i].metric ? "max" : "sum", prec_names[all[i].precision], all[i].ms,
+                      (unsigned long long)all[i].candidates);
+    exp_table_write(slow, exp, "bench_degenerate_slowest");
+    fprintf(stderr, "bench: degenerate survey: %d blocks, %d bounded, %d exact in the +-1 window\n", count, bounded_all,
+            exact_all);
+    free(all);
+    free(fam);
+}
+
 int main(int argc, char **argv)
 {
     exp_run exp;
@@ -1654,9 +1797,14 @@ int main(int argc, char **argv)
     make_maps(&m, exp.quick ? 32 : 128);
     results r;
     pareto(&exp, &m, &r);
-    if (exp.bench)
-        bench_set(&exp);
-    else {
+    if (exp.bench) {
+        /* T8_BENCH_ENCODERS=degenerate runs the survey alone */
+        const char *only_encs = getenv("T8_BENCH_ENCODERS");
+        if (bench_wanted(only_encs, "degenerate"))
+            bench_degenerate(&exp);
+        if (!only_encs || strcmp(only_encs, "degenerate") != 0)
+            bench_set(&exp);
+    } else {
         t8(&exp, &m);
         t9(&exp, &m, &r);
         t10_t12(&exp, &m, &r);
