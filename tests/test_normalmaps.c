@@ -2156,6 +2156,34 @@ static void expect_survey_case(int family, double spread, sol_bc5_metric metric,
     cr_assert_eq(bc5_brute_force(n, &r, &o), error, "case %zu", c);
 }
 
+/* issue 13 (the pair screen built where the enumeration first reads it, and carried over to the
+ * reduced lists by pair_screen_remap instead of built again while they keep most of their pairs):
+ * survey blocks whose screen is carried over several times as the incumbent falls (a cone pointing
+ * away, sum metric: eight times; an arc pointing away, max metric) or whose first screen only fits
+ * after the reductions due at row 0 (a cone of 1 rad), with their errors and anchors from the search
+ * that built every screen anew, proven, and equal to brute force over +-2 codes. */
+Test(normalmaps, carried_over_screens_keep_the_survey_results)
+{
+    static const struct {
+        int family;
+        double spread;
+        sol_bc5_metric metric;
+        sol_bc4_precision precision;
+        double error;
+        int anchors[4];
+    } cases[] = {
+        {SURVEY_AWAY_CONE2, 0.03, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_16BIT, 3.3450884167092889, {9, 1, 181, 173}},
+        {SURVEY_AWAY_CONE2, 0.03, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_FLOAT, 3.3450884065056781, {9, 1, 181, 173}},
+        {SURVEY_AWAY_ARC, 1.0, SOL_BC5_MAX, SOL_BC4_INTERP_16BIT, 0.38524241405689008, {1, 17, 208, 88}},
+        {SURVEY_AWAY_ARC, 1.0, SOL_BC5_MAX, SOL_BC4_INTERP_8BIT, 0.38545342159466739, {0, 13, 210, 87}},
+        {SURVEY_HALF_AWAY_ARC, 1.0, SOL_BC5_MAX, SOL_BC4_INTERP_16BIT, 0.42458145112785173, {2, 11, 188, 69}},
+        {SURVEY_AWAY_CONE, 1.0, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 5.4698640920361958, {5, 70, 96, 233}},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c)
+        expect_survey_case(cases[c].family, cases[c].spread, cases[c].metric, cases[c].precision, cases[c].error,
+                           cases[c].anchors, c);
+}
+
 /* issue 13 (make bench's degenerate survey, bench_degenerate in the T8 driver): the generator's
  * blocks are pinned (a changed generator would change the bench's blocks and the references below
  * silently), it visits 8 spread families x 7 spreads + 5 fixed blocks, and the fixed families - flat,

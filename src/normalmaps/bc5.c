@@ -1511,6 +1511,10 @@ typedef struct pair_screen {
     uint32_t crow[8 * 65536];
     uint32_t rstamp[65536];
     uint32_t rgen;
+    /* the lists the rows and columns stand for (pair_screen_remap): nrows x pairs, ncols y pairs */
+    size_t nrows, ncols;
+    uint16_t xpair[65536], ypair[65536];
+    uint32_t ymap[65536]; /* pair_screen_remap's old column -> new column */
 } pair_screen;
 
 /* A pair screen's tables, uninitialised but for the generations (pair_screen_build initialises what
@@ -1938,6 +1942,12 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
             return 0;
     }
     sc->jstart[ny] = (uint32_t)passes;
+    for (size_t i = 0; i < nx; ++i)
+        sc->xpair[i] = xl[i].pair;
+    for (size_t j = 0; j < ny; ++j)
+        sc->ypair[j] = yl[j].pair;
+    sc->nrows = nx;
+    sc->ncols = ny;
     /* per row, its passing y positions in increasing order */
     memset(sc->start, 0, (nx + 1) * sizeof *sc->start);
     for (size_t t = 0; t < passes; ++t)
@@ -1951,6 +1961,57 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
         sc->start[i] = sc->start[i - 1];
     sc->start[0] = 0;
     *work += 2 * passes;
+    return 1;
+}
+
+/* Carries a built screen over to reduced lists instead of building it again: xl[0 .. nx) and
+ * yl[0 .. ny) the lists after a reduction (value_reduce, sol_nm_couple_reduce), the screen's first
+ * `skip` rows already enumerated. Sound: the reductions only drop pairs (filters, and merges that keep
+ * the first of each class) and keep the order of the rest, so each remaining row and column has a
+ * place in the screen; every candidate the screen rules out has an objective at or above the
+ * incumbent it was built at, so at or above every later (lower) incumbent - it keeps passing a
+ * superset of the candidates that can still win, and the enumeration, which replaces its incumbent
+ * only by a strictly lower objective, returns the same block. Returns 1 with the rows renumbered
+ * from xl[0] and the columns from yl[0] (each row's passing columns still ascending: the map is
+ * increasing), or 0 if the lists are not such subsequences of the screen's (then nothing is left to
+ * read and the caller builds the screen again). Work: 1 per old column and row, 1 per pass read.
+ * (issue 13: on a cone pointing away the incumbent fell nine times by a few 1e-7 relative, each fall
+ * a reduction that dropped under 2% of the pairs and a screen built again - most of the block's time.) */
+static int pair_screen_remap(pair_screen *sc, size_t skip, const sol_nm_pair *xl, size_t nx, const sol_nm_pair *yl,
+                             size_t ny, uint64_t *work)
+{
+    const uint32_t drop = UINT32_MAX;
+    size_t k = 0;
+    for (size_t j = 0; j < sc->ncols; ++j)
+        sc->ymap[j] = k < ny && yl[k].pair == sc->ypair[j] ? (uint32_t)k++ : drop;
+    if (k != ny || skip > sc->nrows)
+        return 0;
+    /* rows in order; a kept row's new index never exceeds its old one, and its columns are written
+     * at or before where they are read, so the compaction runs in place */
+    uint32_t lo = sc->start[skip], w = 0;
+    size_t kn = 0;
+    for (size_t r = skip; r < sc->nrows; ++r) {
+        const uint32_t hi = sc->start[r + 1];
+        if (kn < nx && xl[kn].pair == sc->xpair[r]) {
+            sc->start[kn] = w;
+            for (uint32_t t = lo; t < hi; ++t)
+                if (sc->ymap[sc->col[t]] != drop)
+                    sc->col[w++] = sc->ymap[sc->col[t]];
+            ++kn;
+        }
+        *work += 1 + (hi - lo);
+        lo = hi;
+    }
+    *work += sc->ncols;
+    if (kn != nx)
+        return 0;
+    sc->start[nx] = w;
+    for (size_t i = 0; i < nx; ++i)
+        sc->xpair[i] = xl[i].pair;
+    for (size_t j = 0; j < ny; ++j)
+        sc->ypair[j] = yl[j].pair;
+    sc->nrows = nx;
+    sc->ncols = ny;
     return 1;
 }
 
@@ -3589,6 +3650,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
          * survey's slowest block), and again after later reductions (screen_due) */
         int screened = 0, screen_due = filter && !solved && (ws->screen || (ws->screen = pair_screen_new()));
         size_t screen_base = 0; /* the screen's row 0 is x list position screen_base */
+        size_t screen_pairs = 0; /* x rows and y pairs at the screen's last build */
         channel_side xside;
         y_filter yf;
         /* joint_objective_away's use: while it rejects at least 1 in 8 candidates it meets (after 1024;
@@ -3624,9 +3686,17 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     y_index_init(&yix, ws->y, ny, pal, ws->ybucket);
                     work += 8 * ny;
                 }
-                if (screened) { /* the lists changed: the screen again, on the rest, at the new incumbent */
-                    screened = 0;
-                    screen_due = 1;
+                /* the lists changed: while they keep most of the pairs the screen was built on (the
+                 * incumbent fell a little), the screen carried over to them; else built again, on the
+                 * rest, at the new incumbent */
+                if (screened) {
+                    if (4 * (nx - i + ny) >= 3 * screen_pairs &&
+                        pair_screen_remap(ws->screen, i - screen_base, ws->x + i, nx - i, ws->y, ny, &work)) {
+                        screen_base = i;
+                    } else {
+                        screened = 0;
+                        screen_due = 1;
+                    }
                 }
                 if (combine(ws->x[i].score, ws->y[0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
                     break;
@@ -3637,6 +3707,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 screened = pair_screen_build(ws->screen, n, order, loose, &aw, away_off, use_max, best, pal,
                                              precision, ws->x + i, nx - i, ws->y, ny, ws->yside, &work,
                                              rq->work_limit);
+                screen_pairs = nx - i + ny;
             }
             if (screened && ws->screen->start[i - screen_base] == ws->screen->start[i - screen_base + 1])
                 continue; /* no candidate of the row can beat the incumbent */
