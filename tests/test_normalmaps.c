@@ -2184,6 +2184,51 @@ Test(normalmaps, carried_over_screens_keep_the_survey_results)
                            cases[c].anchors, c);
 }
 
+/* sol_bc5_workspace (issue 13): a workspace reused over a sequence of blocks - survey blocks pointing
+ * away and at rims, which grow every part of the scratch, between smooth and flat ones - gives every
+ * encoder's result of sol_bc5_encode_block, bytes and info, bit for bit; NULL workspace, normals or
+ * out are refused, bad options too, and freeing NULL does nothing. */
+Test(normalmaps, reused_workspace_equals_fresh_encodes)
+{
+    sol_bc5_workspace *ws = sol_bc5_workspace_new();
+    cr_assert_not_null(ws);
+    static const sol_bc5_encoder encoders[] = {SOL_BC5_OPTIMAL, SOL_BC5_ADAPTIVE, SOL_BC5_COMMON, SOL_BC5_FAST};
+    static const struct {
+        int family;
+        double spread;
+    } blocks[] = {{SURVEY_AWAY_CONE2, 0.03}, {SURVEY_FLAT, 0.0}, {SURVEY_RIM_JITTER, 0.3}, {SURVEY_EQUAL, 0.0},
+                  {SURVEY_AWAY_ARC, 1.0},    {SURVEY_TIED_RIM, 0.0}, {SURVEY_BELOW_RIM, 0.1}};
+    for (size_t k = 0; k < sizeof blocks / sizeof blocks[0]; ++k) {
+        double n[16][3];
+        survey_block(blocks[k].family, blocks[k].spread, n);
+        for (size_t e = 0; e < 4; ++e)
+            for (int metric = 0; metric < 2; ++metric) {
+                sol_bc5_options o = {.encoder = encoders[e], .metric = (sol_bc5_metric)metric,
+                                     .precision = (sol_bc4_precision)(k % SOL_BC4_PRECISION_COUNT)};
+                sol_bc5_block fresh, reused;
+                sol_bc5_info fi, ri;
+                cr_assert_eq(sol_bc5_encode_block(n, &o, &fresh, &fi), SOL_OK);
+                cr_assert_eq(sol_bc5_encode_block_with(ws, n, &o, &reused, &ri), SOL_OK);
+                cr_assert(memcmp(&fresh, &reused, sizeof fresh) == 0, "block %zu encoder %zu metric %d", k, e, metric);
+                cr_assert(fi.error == ri.error && fi.candidates == ri.candidates && fi.bounded == ri.bounded &&
+                              fi.searched == ri.searched,
+                          "block %zu encoder %zu metric %d", k, e, metric);
+            }
+    }
+    double n[16][3] = {{0, 0, 1}};
+    for (int p = 1; p < 16; ++p)
+        n[p][2] = 1.0;
+    sol_bc5_block b;
+    sol_bc5_options bad = {.encoder = (sol_bc5_encoder)99};
+    cr_assert_eq(sol_bc5_encode_block_with(NULL, n, NULL, &b, NULL), SOL_ERR_NULL_ARG);
+    cr_assert_eq(sol_bc5_encode_block_with(ws, NULL, NULL, &b, NULL), SOL_ERR_NULL_ARG);
+    cr_assert_eq(sol_bc5_encode_block_with(ws, n, NULL, NULL, NULL), SOL_ERR_NULL_ARG);
+    cr_assert_eq(sol_bc5_encode_block_with(ws, n, &bad, &b, NULL), SOL_ERR_INVALID_ARG);
+    cr_assert_eq(sol_bc5_encode_block_with(ws, n, NULL, &b, NULL), SOL_OK);
+    sol_bc5_workspace_free(ws);
+    sol_bc5_workspace_free(NULL);
+}
+
 /* issue 13 (make bench's degenerate survey, bench_degenerate in the T8 driver): the generator's
  * blocks are pinned (a changed generator would change the bench's blocks and the references below
  * silently), it visits 8 spread families x 7 spreads + 5 fixed blocks, and the fixed families - flat,

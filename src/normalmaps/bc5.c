@@ -4673,8 +4673,10 @@ static void encode_unit(const double n[16][3], const double t[3][16], const sol_
         search_unit(n, &rq, ws, out, info);
 }
 
-sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_options *options, sol_bc5_block *out,
-                                sol_bc5_info *info)
+/* sol_bc5_encode_block's checks and encode with workspace ws (NULL: one allocated for the call, if
+ * the encoder searches). */
+static sol_status encode_block_in(search_workspace *ws, const double normals[16][3], const sol_bc5_options *options,
+                                  sol_bc5_block *out, sol_bc5_info *info)
 {
     static const sol_bc5_options defaults;
     if (!normals || !out)
@@ -4686,16 +4688,54 @@ sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_optio
     sol_status st = sol_nm_unit_normals(normals, n);
     if (st != SOL_OK)
         return st;
-    search_workspace ws = {0};
-    if (o->encoder != SOL_BC5_COMMON && o->encoder != SOL_BC5_FAST && (st = workspace_alloc(&ws)) != SOL_OK)
+    search_workspace own = {0};
+    const int searches = o->encoder != SOL_BC5_COMMON && o->encoder != SOL_BC5_FAST;
+    if (!ws && searches && (st = workspace_alloc(&own)) != SOL_OK)
         return st;
     double t[3][16];
     for (int p = 0; p < 16; ++p)
         for (int c = 0; c < 3; ++c)
             t[c][p] = n[p][c];
-    encode_unit(n, (const double(*)[16])t, o, &ws, out, info, info != NULL);
-    workspace_free(&ws);
+    encode_unit(n, (const double(*)[16])t, o, ws ? ws : &own, out, info, info != NULL);
+    if (!ws)
+        workspace_free(&own);
     return SOL_OK;
+}
+
+sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_options *options, sol_bc5_block *out,
+                                sol_bc5_info *info)
+{
+    return encode_block_in(NULL, normals, options, out, info);
+}
+
+struct sol_bc5_workspace {
+    search_workspace ws;
+};
+
+sol_bc5_workspace *sol_bc5_workspace_new(void)
+{
+    sol_bc5_workspace *e = malloc(sizeof *e);
+    if (e && workspace_alloc(&e->ws) != SOL_OK) {
+        free(e);
+        e = NULL;
+    }
+    return e;
+}
+
+void sol_bc5_workspace_free(sol_bc5_workspace *workspace)
+{
+    if (!workspace)
+        return;
+    workspace_free(&workspace->ws);
+    free(workspace);
+}
+
+sol_status sol_bc5_encode_block_with(sol_bc5_workspace *workspace, const double normals[16][3],
+                                     const sol_bc5_options *options, sol_bc5_block *out, sol_bc5_info *info)
+{
+    if (!workspace)
+        return SOL_ERR_NULL_ARG;
+    return encode_block_in(&workspace->ws, normals, options, out, info);
 }
 
 /* ---- images ---- */

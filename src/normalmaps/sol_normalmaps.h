@@ -246,9 +246,25 @@ sol_status sol_bc5_block_error(const sol_bc5_block *block, const double normals[
 sol_status sol_bc5_choose_indices(sol_bc5_block *block, const double normals[16][3], sol_bc4_precision precision,
                                   sol_bc5_metric metric, double *error);
 
-/* Encodes one block with options (NULL = all defaults). info may be NULL. */
+/* Encodes one block with options (NULL = all defaults). info may be NULL. The searching encoders
+ * (adaptive, optimal) allocate their scratch on each call (up to ~30 MB, most of it touched only by
+ * blocks pointing away or at rims): to encode many blocks one at a time, reuse a sol_bc5_workspace. */
 sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_options *options, sol_bc5_block *out,
                                 sol_bc5_info *info);
+
+/* A reusable workspace for block encodes: the searches' scratch, kept (and grown on demand) between
+ * calls, so that a caller encoding blocks one at a time does not allocate and fault in fresh memory
+ * per block (issue 13: on the hard blocks of the degenerate survey, first-touch page faults were up
+ * to half of a single block's time; sol_bc5_encode_image keeps one per thread). One workspace per thread (calls with one workspace must not overlap); the
+ * results are those of sol_bc5_encode_block, bit for bit, whatever blocks it encoded before.
+ * sol_bc5_workspace_new: NULL if out of memory. sol_bc5_workspace_free(NULL) does nothing.
+ * sol_bc5_encode_block_with: as sol_bc5_encode_block (same errors), plus SOL_ERR_NULL_ARG for a NULL
+ * workspace. */
+typedef struct sol_bc5_workspace sol_bc5_workspace;
+sol_bc5_workspace *sol_bc5_workspace_new(void);
+void sol_bc5_workspace_free(sol_bc5_workspace *workspace);
+sol_status sol_bc5_encode_block_with(sol_bc5_workspace *workspace, const double normals[16][3],
+                                     const sol_bc5_options *options, sol_bc5_block *out, sol_bc5_info *info);
 
 /* The exact minimum of the joint objective (sol_bc5_choose_indices) over all anchors inside
  * `range` (NULL = all 2^32 anchor combinations), by branch and bound: separable lower bounds
