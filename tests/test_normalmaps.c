@@ -2225,6 +2225,12 @@ Test(normalmaps, reused_workspace_equals_fresh_encodes)
     cr_assert_eq(sol_bc5_encode_block_with(ws, n, NULL, NULL, NULL), SOL_ERR_NULL_ARG);
     cr_assert_eq(sol_bc5_encode_block_with(ws, n, &bad, &b, NULL), SOL_ERR_INVALID_ARG);
     cr_assert_eq(sol_bc5_encode_block_with(ws, n, NULL, &b, NULL), SOL_OK);
+    n[3][0] = NAN; /* as sol_bc5_encode_block: refused, and the workspace still serves */
+    sol_bc5_options opt = {.encoder = SOL_BC5_OPTIMAL};
+    cr_assert_eq(sol_bc5_encode_block_with(ws, n, &opt, &b, NULL), sol_bc5_encode_block(n, &opt, &b, NULL));
+    cr_assert_neq(sol_bc5_encode_block_with(ws, n, &opt, &b, NULL), SOL_OK);
+    n[3][0] = 0.0;
+    cr_assert_eq(sol_bc5_encode_block_with(ws, n, &opt, &b, NULL), SOL_OK);
     sol_bc5_workspace_free(ws);
     sol_bc5_workspace_free(NULL);
 }
