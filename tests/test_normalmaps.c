@@ -2184,6 +2184,76 @@ Test(normalmaps, carried_over_screens_keep_the_survey_results)
                            cases[c].anchors, c);
 }
 
+/* issue 13 (the common encoder's per-block helpers made branch-free, same results): the reference
+ * order (least, largest, then by decreasing distance from the mean, ties to the lower pixel) by
+ * ranks, scalar and AVX2, equals the insertion sort it replaced; the 16 nearest indices by the fast
+ * encoder's scan equal sol_nm_nearest_index's (the first entry on ties) - over random targets, targets
+ * with repeated values and exact ties between palette entries, and +-0. */
+static void reference_order_literal(const double t[16], int order[16])
+{
+    double mean = 0.0;
+    for (int p = 0; p < 16; ++p)
+        mean += t[p];
+    mean /= 16.0;
+    int lo = 0, hi = 0;
+    for (int p = 1; p < 16; ++p) {
+        if (t[p] < t[lo])
+            lo = p;
+        if (t[p] > t[hi])
+            hi = p;
+    }
+    int n = 0;
+    order[n++] = lo;
+    if (hi != lo)
+        order[n++] = hi;
+    const int first = n;
+    double key[16];
+    for (int p = 0; p < 16; ++p) {
+        if (p == lo || p == hi)
+            continue;
+        double k = fabs(t[p] - mean);
+        int q = n++;
+        for (; q > first && key[q - 1] < k; --q) {
+            key[q] = key[q - 1];
+            order[q] = order[q - 1];
+        }
+        key[q] = k;
+        order[q] = p;
+    }
+}
+
+Test(normalmaps, reference_order_and_nearest_indices_equal_their_literal_forms)
+{
+    unsigned long long s = 12345;
+    for (int trial = 0; trial < 4000; ++trial) {
+        double t[16];
+        for (int p = 0; p < 16; ++p) {
+            s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+            double u = (double)(s >> 11) / 9007199254740992.0;
+            /* trial % 4: random; a few repeated values (ties of keys); 8-bit codes; all equal, +-0 */
+            t[p] = trial % 4 == 0   ? 2.0 * u - 1.0
+                   : trial % 4 == 1 ? (double)((int)(u * 3.0)) / 2.0 - 0.5
+                   : trial % 4 == 2 ? 2.0 * ((int)(u * 255.0) / 255.0) - 1.0
+                                    : (p % 2 ? 0.0 : -0.0);
+        }
+        int want[16], got[16];
+        reference_order_literal(t, want);
+        for (int f = 0; f < 2; ++f) {
+            sol_nm_simd_disable = f;
+            sol_nm_reference_order(t, got);
+            cr_assert(memcmp(want, got, sizeof want) == 0, "trial %d simd off %d", trial, f);
+        }
+        sol_nm_simd_disable = 0;
+        const double(*pal)[8] = sol_nm_palettes((sol_bc4_precision)(trial % SOL_BC4_PRECISION_COUNT));
+        s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+        int pair = (int)(s >> 48); /* any of the 65536 anchor pairs, both modes */
+        uint8_t idx[16];
+        sol_nm_nearest_indices(pal[pair], t, idx);
+        for (int p = 0; p < 16; ++p)
+            cr_assert_eq(idx[p], sol_nm_nearest_index(pal[pair], t[p]), "trial %d pixel %d", trial, p);
+    }
+}
+
 /* sol_bc5_workspace (issue 13): a workspace reused over a sequence of blocks - survey blocks pointing
  * away and at rims, which grow every part of the scratch, between smooth and flat ones - gives every
  * encoder's result of sol_bc5_encode_block, bytes and info, bit for bit; NULL workspace, normals or

@@ -141,8 +141,7 @@ sol_status sol_bc4_encode_block(const double values[16], sol_bc4_precision preci
     const double *pal = sol_nm_palettes(precision)[pair];
     out->e0 = (uint8_t)(pair >> 8);
     out->e1 = (uint8_t)(pair & 255);
-    for (int p = 0; p < 16; ++p)
-        out->index[p] = (uint8_t)sol_nm_nearest_index(pal, t[p]);
+    sol_nm_nearest_indices(pal, t, out->index);
     if (squared_error)
         *squared_error = score / 4.0; /* decoded units are 2 v - 1 */
     return SOL_OK;

@@ -178,6 +178,11 @@ static inline int code_of(double t)
     return (int)((v + magic) - magic);
 }
 
+void sol_nm_nearest_indices(const double pal[8], const double t[16], uint8_t index[16])
+{
+    (void)squared_error(pal, t, index, 0);
+}
+
 void sol_nm_bc4_fast(const double t[16], sol_bc4_block *out)
 {
     sol_nm_bc4_fast_path(t, 0, out);

@@ -4574,10 +4574,8 @@ static void encode_common(const double tx[16], const double ty[16], sol_bc4_prec
     out->x.e1 = (uint8_t)(px & 255);
     out->y.e0 = (uint8_t)(py >> 8);
     out->y.e1 = (uint8_t)(py & 255);
-    for (int p = 0; p < 16; ++p) {
-        out->x.index[p] = (uint8_t)sol_nm_nearest_index(pal[px], tx[p]);
-        out->y.index[p] = (uint8_t)sol_nm_nearest_index(pal[py], ty[p]);
-    }
+    sol_nm_nearest_indices(pal[px], tx, out->x.index);
+    sol_nm_nearest_indices(pal[py], ty, out->y.index);
 }
 
 static double own_index_objective(const sol_bc5_block *b, const double n[16][3], sol_bc4_precision precision,
