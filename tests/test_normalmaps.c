@@ -2139,6 +2139,16 @@ Test(normalmaps, away_cosine_bounds_every_decode_and_forms_agree)
 /* A survey block (survey_block) encoded by the optimal search at full range: proven (not bounded),
  * with the reference error and anchors to the last bit, and equal to brute force over +-2 codes
  * around its anchors. */
+/* A survey block's reference result: what expect_survey_case checks. */
+typedef struct survey_ref {
+    int family;
+    double spread;
+    sol_bc5_metric metric;
+    sol_bc4_precision precision;
+    double error;
+    int anchors[4];
+} survey_ref;
+
 static void expect_survey_case(int family, double spread, sol_bc5_metric metric, sol_bc4_precision precision,
                                double error, const int anchors[4], size_t c)
 {
@@ -2164,14 +2174,7 @@ static void expect_survey_case(int family, double spread, sol_bc5_metric metric,
  * that built every screen anew, proven, and equal to brute force over +-2 codes. */
 Test(normalmaps, carried_over_screens_keep_the_survey_results)
 {
-    static const struct {
-        int family;
-        double spread;
-        sol_bc5_metric metric;
-        sol_bc4_precision precision;
-        double error;
-        int anchors[4];
-    } cases[] = {
+    static const survey_ref cases[] = {
         {SURVEY_AWAY_CONE2, 0.03, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_16BIT, 3.3450884167092889, {9, 1, 181, 173}},
         {SURVEY_AWAY_CONE2, 0.03, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_FLOAT, 3.3450884065056781, {9, 1, 181, 173}},
         {SURVEY_AWAY_ARC, 1.0, SOL_BC5_MAX, SOL_BC4_INTERP_16BIT, 0.38524241405689008, {1, 17, 208, 88}},
@@ -2354,14 +2357,7 @@ Test(normalmaps, degenerate_survey_is_pinned_and_its_fixed_blocks_exact)
  * 0.7-21 s per block); and literal brute force in a +-2 window around the result. */
 Test(normalmaps, pointing_away_survey_blocks_are_proven_exactly)
 {
-    static const struct {
-        int family;
-        double spread;
-        sol_bc5_metric metric;
-        sol_bc4_precision precision;
-        double error;
-        int anchors[4];
-    } cases[] = {
+    static const survey_ref cases[] = {
         {0, 0.0, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 0.63801834251637657, {0, 4, 0, 148}},
         {6, 0.01, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 0.31456252637523008, {1, 9, 174, 179}},
         {0, 1.0, SOL_BC5_SUM_SQUARED, SOL_BC4_INTERP_8BIT, 2.3668588813894837, {2, 20, 210, 87}},

@@ -1691,6 +1691,17 @@ static inline int screen_repeat(const uint16_t code[8], int e)
     return 0;
 }
 
+/* Records the lists a screen's rows and columns stand for (pair_screen_remap reads them). */
+static void screen_record_lists(pair_screen *sc, const sol_nm_pair *xl, size_t nx, const sol_nm_pair *yl, size_t ny)
+{
+    for (size_t i = 0; i < nx; ++i)
+        sc->xpair[i] = xl[i].pair;
+    for (size_t j = 0; j < ny; ++j)
+        sc->ypair[j] = yl[j].pair;
+    sc->nrows = nx;
+    sc->ncols = ny;
+}
+
 /* Builds the screen of rows x[0 .. nx) against y[0 .. ny) (y sides ys, pixels in `order`) at incumbent
  * best: 1 if built, 0 if not (a value code with more than two doubles, more passes than the screen
  * holds, or the work limit reached; then the caller enumerates without it). */
@@ -1942,12 +1953,7 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
             return 0;
     }
     sc->jstart[ny] = (uint32_t)passes;
-    for (size_t i = 0; i < nx; ++i)
-        sc->xpair[i] = xl[i].pair;
-    for (size_t j = 0; j < ny; ++j)
-        sc->ypair[j] = yl[j].pair;
-    sc->nrows = nx;
-    sc->ncols = ny;
+    screen_record_lists(sc, xl, nx, yl, ny);
     /* per row, its passing y positions in increasing order */
     memset(sc->start, 0, (nx + 1) * sizeof *sc->start);
     for (size_t t = 0; t < passes; ++t)
@@ -2006,12 +2012,7 @@ static int pair_screen_remap(pair_screen *sc, size_t skip, const sol_nm_pair *xl
     if (kn != nx)
         return 0;
     sc->start[nx] = w;
-    for (size_t i = 0; i < nx; ++i)
-        sc->xpair[i] = xl[i].pair;
-    for (size_t j = 0; j < ny; ++j)
-        sc->ypair[j] = yl[j].pair;
-    sc->nrows = nx;
-    sc->ncols = ny;
+    screen_record_lists(sc, xl, nx, yl, ny);
     return 1;
 }
 
