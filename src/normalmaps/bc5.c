@@ -1154,19 +1154,72 @@ static int cone_line(double a, double dx, double dy, double c, double s, double 
     return 1;
 }
 
-/* The b of the unclamped decodes (a, b, z), z = sqrt(1 - a^2 - b^2), with |u - q|^2 <= R2 for unit q,
- * exactly (z kept, not dropped as in pixel_y_intervals): a q0 + b q1 + z q2 >= 1 - R2 / 2, and with
- * (b, z) = L (cos phi, sin phi), L = sqrt(1 - a^2), phi in [0, pi], that is
+/* What the intervals of one ball (target q, squared radius R2) share across x values: (q[1], q[2])
+ * in polar form (r, psi: sphere_line's; they depend on q alone, so a caller testing many radii around
+ * one pixel computes them once), and the cone of the clamped decodes that reach the ball (clamped: 0
+ * none, 1 the cone of half-angle acos c around (dx, dy), 2 every direction). Splitting them out of
+ * pixel_intervals changes no double: the same expressions on the same inputs (issue 13: the pair
+ * screen asked pixel_intervals for one value at a time, ~1.2 M calls on `away-cone s=1 sum p16`, each
+ * redoing two hypots and an atan2 that depend on the pixel only). */
+typedef struct ball_lines {
+    const double *q;
+    double R2, r, psi;
+    int clamped;
+    double c, sn, dx, dy;
+} ball_lines;
+
+/* bl's polar form of (q[1], q[2]) for target q (unit when exact intervals are asked). */
+static void ball_lines_polar(ball_lines *bl, const double q[3])
+{
+    bl->q = q;
+    bl->r = hypot(q[1], q[2]);
+    bl->psi = atan2(q[2], q[1]);
+}
+
+/* bl's radius R2 and its cone of clamped decodes: 0, or -1 if the ball constrains nothing (R2 >= 4,
+ * or a cone of half a plane or more), as pixel_intervals returns it. */
+static int ball_lines_radius(ball_lines *bl, double R2, double cone_slack)
+{
+    const double *q = bl->q;
+    bl->R2 = R2;
+    if (!(R2 < 4.0))
+        return -1;
+    double rq = hypot(q[0], q[1]), rc2 = R2 - q[2] * q[2];
+    bl->clamped = 1;
+    bl->c = bl->sn = bl->dx = bl->dy = 0.0;
+    if (rc2 < 0.0) {
+        bl->clamped = 0;
+    } else if (rq == 0.0) {
+        bl->clamped = 1.0 - rc2 <= 0.0 ? 2 : 0; /* w . q_xy = 0 >= (1 - rc2) / 2 */
+    } else {
+        bl->c = (1.0 + rq * rq - rc2) / (2.0 * rq) - cone_slack;
+        if (bl->c > 1.0)
+            bl->clamped = 0;
+        else if (bl->c < 1e-3)
+            return -1; /* a cone of half a plane or more */
+        else {
+            bl->sn = sqrt((1.0 - bl->c) * (1.0 + bl->c));
+            bl->dx = q[0] / rq;
+            bl->dy = q[1] / rq;
+        }
+    }
+    return 0;
+}
+
+/* The b of the unclamped decodes (a, b, z), z = sqrt(1 - a^2 - b^2), with |u - q|^2 <= R2 for unit q
+ * (bl's), exactly (z kept, not dropped as in pixel_y_intervals): a q0 + b q1 + z q2 >= 1 - R2 / 2, and
+ * with (b, z) = L (cos phi, sin phi), L = sqrt(1 - a^2), phi in [0, pi], that is
  * L r cos(phi - psi) >= C' (r, psi: (q1, q2) in polar form, C' = 1 - R2 / 2 - a q0), an arc of phi
  * around psi of half-width acos(C' / (L r)), intersected with [0, pi] (b = L cos phi decreasing).
  * The half-width is widened by 1e-6 and the ends by 1e-9 against rounding (acos is steep near +-1).
  * Appends up to two intervals at lo[k], hi[k]; returns the new k. */
-static int sphere_line(double a, const double q[3], double R2, double *lo, double *hi, int k)
+static int sphere_line(double a, const ball_lines *bl, double *lo, double *hi, int k)
 {
     const double L2 = (1.0 - a) * (1.0 + a);
     if (!(L2 >= 0.0))
         return k;
-    const double L = sqrt(L2), r = hypot(q[1], q[2]), C = 1.0 - 0.5 * R2 - a * q[0] - 1e-12;
+    const double *q = bl->q, R2 = bl->R2, r = bl->r;
+    const double L = sqrt(L2), C = 1.0 - 0.5 * R2 - a * q[0] - 1e-12;
     double alpha;
     if (L * r == 0.0 || C / (L * r) <= -1.0) {
         if (!(L * r == 0.0) || 0.0 >= C - 1e-12) {
@@ -1184,7 +1237,7 @@ static int sphere_line(double a, const double q[3], double R2, double *lo, doubl
         hi[k++] = L + 1e-9;
         return k;
     }
-    const double psi = atan2(q[2], q[1]);
+    const double psi = bl->psi;
     for (int s = -1; s <= 1; ++s) {
         const double c = psi + 2.0 * M_PI * s, p0 = c - alpha > 0.0 ? c - alpha : 0.0,
                      p1 = c + alpha < M_PI ? c + alpha : M_PI;
@@ -1196,36 +1249,66 @@ static int sphere_line(double a, const double q[3], double R2, double *lo, doubl
     return k;
 }
 
+/* The intervals of one x value a against bl's ball (pixel_intervals' body for one entry): appends up
+ * to five (exact) or two at lo[k], hi[k] and returns the new k. */
+static int ball_lines_value(const ball_lines *bl, double a, int exact, double *lo, double *hi, int k)
+{
+    const double *q = bl->q;
+    double da = a - q[0], rem = bl->R2 - da * da;
+    if (exact) {
+        k = sphere_line(a, bl, lo, hi, k);
+    } else if (rem >= 0.0) { /* unclamped */
+        double w = sqrt(rem), lim = sqrt(fmax(0.0, (1.0 - a) * (1.0 + a)));
+        double l = fmax(q[1] - w, -lim) - 1e-9, h = fmin(q[1] + w, lim) + 1e-9;
+        if (l <= h) {
+            lo[k] = l;
+            hi[k++] = h;
+        }
+    }
+    double l, h;
+    if (bl->clamped == 2) {
+        l = -1.0;
+        h = 1.0;
+    } else if (bl->clamped == 1 && cone_line(a, bl->dx, bl->dy, bl->c, bl->sn, &l, &h) && l <= 1.0 + 1e-9 &&
+               h >= -1.0 - 1e-9) {
+        l = fmax(l, -1.0) - 1e-9;
+        h = fmin(h, 1.0) + 1e-9;
+    } else {
+        return k;
+    }
+    if (!exact) {
+        lo[k] = l;
+        hi[k++] = h;
+        return k;
+    }
+    /* a decode is clamped only off the unit disc: |b| >= L = sqrt(1 - a^2) (widened) */
+    const double L = sqrt(fmax(0.0, (1.0 - a) * (1.0 + a))) - 1e-9;
+    if (l <= -L) {
+        lo[k] = l;
+        hi[k++] = h < -L ? h : -L;
+    }
+    if (h >= L) {
+        lo[k] = l > L ? l : L;
+        hi[k++] = h;
+    }
+    return k;
+}
+
 /* The y intervals for one pixel (target q, squared radius R2) and x palette a: returns their
  * count (up to cap, at least 16), or -1 if the pixel constrains nothing. exact (unit q only): the
  * unclamped decodes' intervals from sphere_line instead of the projection that drops z, and the
  * clamped ones' (the cone) only off the unit disc, where decodes are clamped: up to five intervals per
- * distinct entry (-1 once cap could overflow; callers pass one value eight times, cap 16, or a
- * palette with cap Y_FILTER_CAP). Not exact: at most two per entry (cap 16 always suffices). */
+ * distinct entry (-1 once cap could overflow; callers pass a palette with cap Y_FILTER_CAP, or use
+ * ball_lines_value per value). Not exact: at most two per entry (cap 16 always suffices). */
 static int pixel_intervals(const double a[8], const double q[3], double R2, double cone_slack, int exact,
                            int cap, double *lo, double *hi)
 {
-    if (!(R2 < 4.0))
+    ball_lines bl;
+    bl.q = q;
+    if (ball_lines_radius(&bl, R2, cone_slack) < 0)
         return -1;
-    double rq = hypot(q[0], q[1]), rc2 = R2 - q[2] * q[2];
-    int clamped = 1; /* 0: no clamped decode reaches the ball; 1: the cone; 2: every direction */
-    double c = 0.0, sn = 0.0, dx = 0.0, dy = 0.0;
-    if (rc2 < 0.0) {
-        clamped = 0;
-    } else if (rq == 0.0) {
-        clamped = 1.0 - rc2 <= 0.0 ? 2 : 0; /* w . q_xy = 0 >= (1 - rc2) / 2 */
-    } else {
-        c = (1.0 + rq * rq - rc2) / (2.0 * rq) - cone_slack;
-        if (c > 1.0)
-            clamped = 0;
-        else if (c < 1e-3)
-            return -1; /* a cone of half a plane or more */
-        else {
-            sn = sqrt((1.0 - c) * (1.0 + c));
-            dx = q[0] / rq;
-            dy = q[1] / rq;
-        }
-    }
+    if (exact)
+        ball_lines_polar(&bl, q);
     int k = 0;
     for (int e = 0; e < 8; ++e) {
         int dup = 0;
@@ -1235,42 +1318,7 @@ static int pixel_intervals(const double a[8], const double q[3], double R2, doub
             continue;
         if (exact && k > cap - 5)
             return -1; /* no room for this entry's five intervals: constrain nothing (valid) */
-        double da = a[e] - q[0], rem = R2 - da * da;
-        if (exact) {
-            k = sphere_line(a[e], q, R2, lo, hi, k);
-        } else if (rem >= 0.0) { /* unclamped */
-            double w = sqrt(rem), lim = sqrt(fmax(0.0, (1.0 - a[e]) * (1.0 + a[e])));
-            double l = fmax(q[1] - w, -lim) - 1e-9, h = fmin(q[1] + w, lim) + 1e-9;
-            if (l <= h) {
-                lo[k] = l;
-                hi[k++] = h;
-            }
-        }
-        double l, h;
-        if (clamped == 2) {
-            l = -1.0;
-            h = 1.0;
-        } else if (clamped == 1 && cone_line(a[e], dx, dy, c, sn, &l, &h) && l <= 1.0 + 1e-9 && h >= -1.0 - 1e-9) {
-            l = fmax(l, -1.0) - 1e-9;
-            h = fmin(h, 1.0) + 1e-9;
-        } else {
-            continue;
-        }
-        if (!exact) {
-            lo[k] = l;
-            hi[k++] = h;
-            continue;
-        }
-        /* a decode is clamped only off the unit disc: |b| >= L = sqrt(1 - a^2) (widened) */
-        const double L = sqrt(fmax(0.0, (1.0 - a[e]) * (1.0 + a[e]))) - 1e-9;
-        if (l <= -L) {
-            lo[k] = l;
-            hi[k++] = h < -L ? h : -L;
-        }
-        if (h >= L) {
-            lo[k] = l > L ? l : L;
-            hi[k++] = h;
-        }
+        k = ball_lines_value(&bl, a[e], exact, lo, hi, k);
     }
     return k;
 }
@@ -1754,6 +1802,15 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                 sc->crow[sc->cstart[k] + sc->cnum[k]++] = (uint32_t)i;
             }
     *work += 8 * nx;
+    double xq[16][3]; /* per visiting position: the pixel's normal with x and y swapped */
+    ball_lines xball[16];
+    for (int k = 0; k < 16; ++k) {
+        const int p = order[k];
+        xq[k][0] = n[p][1];
+        xq[k][1] = n[p][0];
+        xq[k][2] = n[p][2];
+        ball_lines_polar(&xball[k], xq[k]);
+    }
     size_t passes = 0;
     for (size_t j = 0; j < ny; ++j) {
         sc->jstart[j] = (uint32_t)passes;
@@ -1826,21 +1883,18 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                 break;
             }
             pixel_chord_ball(n, p, T, q, &R2); /* pixel_ball decided only whether the pixel takes part */
-            const double qs[3] = {q[1], q[0], q[2]}; /* x and y swapped: intervals of x values */
-            int any = 0, unconstrained = 0;
+            /* the ball's intervals of x values (pixel_intervals' exact mode, one entry at a time; its
+             * target is the pixel's normal, x and y swapped, whatever the y pair: polar part hoisted) */
+            ball_lines bl = xball[k];
+            int any = 0, unconstrained = ball_lines_radius(&bl, R2, 1e-9) < 0; /* it constrains nothing */
             for (int e = 0; e < 8 && !unconstrained; ++e) {
                 int dup = 0;
                 for (int f = 0; f < e && !dup; ++f)
                     dup = b[f] == b[e];
                 if (dup)
                     continue;
-                const double one[8] = {b[e], b[e], b[e], b[e], b[e], b[e], b[e], b[e]};
                 double ilo[16], ihi[16];
-                int cnt = pixel_intervals(one, qs, R2, 1e-9, 1, 16, ilo, ihi);
-                if (cnt < 0) {
-                    unconstrained = 1; /* the pixel constrains nothing */
-                    break;
-                }
+                const int cnt = ball_lines_value(&bl, b[e], 1, ilo, ihi, 0);
                 for (int u = 0; u < cnt; ++u) {
                     long k0, k1;
                     interval_codes(ilo[u], ihi[u], half_q, top, &k0, &k1);
@@ -2042,13 +2096,16 @@ static int floor_scan(pixel_floor *pf, const double n[16][3], const away_info *a
     const double half_q = pf->half_q;
     const long top = lround(2.0 * half_q);
     const value_codes *vx = &pf->v[0], *vy = &pf->v[1];
+    ball_lines bl; /* one ball for every x value (pixel_intervals' exact mode, one value at a time) */
+    ball_lines_polar(&bl, q);
+    const int unconstrained = ball_lines_radius(&bl, R2, 1e-9) < 0;
     for (long w = 0; w <= top >> 6; ++w)
         for (uint64_t xbits = vx->bits[w]; xbits; xbits &= xbits - 1) {
             const long c = 64 * w + __builtin_ctzll(xbits);
             for (int d = 0; d < vx->nval[c]; ++d) {
-                const double a = vx->val[c][d], one[8] = {a, a, a, a, a, a, a, a};
+                const double a = vx->val[c][d];
                 double lo[16], hi[16];
-                int cnt = pixel_intervals(one, q, R2, 1e-9, 1, 16, lo, hi);
+                const int cnt = unconstrained ? -1 : ball_lines_value(&bl, a, 1, lo, hi, 0);
                 ++*work;
                 if (cnt < 0)
                     return -1; /* the ball constrains nothing */
