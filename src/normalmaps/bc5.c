@@ -1571,15 +1571,17 @@ static pair_screen *pair_screen_new(void)
     return sc;
 }
 
-/* The levels of 8 values of one x pair, least per pixel (columns masked by keep), then either 1
- * (some pixel at 255: ruled out) or 0 with *sum the sum of the levels. */
-static inline int screen_levels(const pair_screen *sc, const uint16_t code[8], const uint8_t keep[16], unsigned *sum)
+/* The levels of 8 values of one x pair, least per pixel (columns masked by keep: least[k]), then
+ * either 1 (some pixel at 255: ruled out) or 0 with *sum the sum of the levels. */
+static inline int screen_levels(const pair_screen *sc, const uint16_t code[8], const uint8_t keep[16],
+                                uint8_t least[16], unsigned *sum)
 {
 #if defined(__SSE2__)
     __m128i m = _mm_loadu_si128((const __m128i *)sc->lv[code[0]]);
     for (int e = 1; e < 8; ++e)
         m = _mm_min_epu8(m, _mm_loadu_si128((const __m128i *)sc->lv[code[e]]));
     m = _mm_and_si128(m, _mm_loadu_si128((const __m128i *)keep));
+    _mm_storeu_si128((__m128i *)least, m);
     if (_mm_movemask_epi8(_mm_cmpeq_epi8(m, _mm_set1_epi8((char)-1))))
         return 1;
     __m128i s = _mm_sad_epu8(m, _mm_setzero_si128());
@@ -1592,6 +1594,7 @@ static inline int screen_levels(const pair_screen *sc, const uint16_t code[8], c
         for (int e = 1; e < 8; ++e)
             l = sc->lv[code[e]][k] < l ? sc->lv[code[e]][k] : l;
         l &= keep[k];
+        least[k] = (uint8_t)l;
         if (l == 255)
             return 1;
         t += l;
@@ -1698,18 +1701,22 @@ static int screen_row(const screen_row_ctx *x, size_t i, uint64_t *work)
     const uint16_t *code = sc->xcode[i];
     const int use_max = x->use_max;
     unsigned sum;
+    uint8_t least[16]; /* per pixel the row's least level so far, computed or not (0) */
     ++*work;
-    if (screen_levels(sc, code, x->keep, &sum) || (!use_max && sum >= x->lmin))
+    if (screen_levels(sc, code, x->keep, least, &sum) || (!use_max && sum >= x->lmin))
         return 0;
     unsigned todo = 0;
     for (int e = 0; e < 8; ++e)
         todo |= (unsigned)(sc->marked[code[e]] & ~sc->done[code[e]]);
     for (; todo; todo &= todo - 1) {
         const int k = __builtin_ctz(todo);
-        unsigned before = 255, after = 255;
+        /* before: least[k] (todo holds marked pixels only, which keep unmasked; the levels computed
+         * at earlier pixels are other columns, and a repeated code's new level only rises above the
+         * 0 already counted) */
+        const unsigned before = least[k];
+        unsigned after = 255;
         for (int e = 0; e < 8; ++e) {
             const long c = code[e];
-            before = sc->lv[c][k] < before ? sc->lv[c][k] : before;
             if ((sc->marked[c] >> k) & 1 && !((sc->done[c] >> k) & 1)) {
                 sc->lv[c][k] = (uint8_t)screen_level(x, c, k, work);
                 sc->done[c] |= (uint16_t)(1u << k);
