@@ -1534,11 +1534,14 @@ static int y_filter_pass(const y_filter *f, const double b[8])
 #define SCREEN_TESTS_MAX (1u << 23)
 
 typedef struct pair_screen {
-    /* per x value code k its slot cid[k] (the x list's distinct codes numbered in order of first
-     * appearance, so that the per-value state below fills a few pages instead of 65536 codes' worth:
-     * on fresh memory each page is a fault, ~30 ms a screen on the survey's blocks) */
-    uint16_t cid[SCREEN_CODES];
+    /* per x value code k its slot: its rank among the codes present, before[k / 64] plus the codes
+     * present below k in its word (the x list's distinct codes numbered in code order, so that the
+     * per-value state below fills a few pages instead of 65536 codes' worth: on fresh memory each
+     * page is a fault, ~30 ms a screen on the survey's blocks; and so that an interval of codes is an
+     * interval of slots, which phase 1 marks without visiting the codes' bits one by one) */
     uint64_t bits[SCREEN_CODES / 64]; /* the codes present */
+    uint32_t before[SCREEN_CODES / 64 + 1];
+    uint64_t seen[SCREEN_CODES / 64]; /* value_code_add's codes met so far (slot numbering pass) */
     /* per slot: */
     uint8_t lv[SCREEN_CODES][16];  /* per pixel (visiting order): the level */
     double val[SCREEN_CODES][2];   /* the distinct doubles of the code */
@@ -1645,6 +1648,13 @@ static inline uint64_t bits_in_range(const uint64_t *bits, long w, long k0, long
     if (w == k1 >> 6 && (k1 & 63) != 63)
         b &= (UINT64_C(1) << ((k1 & 63) + 1)) - 1;
     return b;
+}
+
+/* The number of codes present below code k (0 <= k <= SCREEN_CODES): a present code's slot. */
+static inline uint32_t screen_rank(const pair_screen *sc, long k)
+{
+    const uint64_t below = (UINT64_C(1) << (k & 63)) - 1;
+    return sc->before[k >> 6] + ((k & 63) ? (uint32_t)__builtin_popcountll(sc->bits[k >> 6] & below) : 0u);
 }
 
 /* What one row test of pair_screen_build reads. */
@@ -1767,20 +1777,30 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
     if (tests > SCREEN_TESTS_MAX)
         return 0;
     memset(sc->bits, 0, sizeof sc->bits);
+    memset(sc->seen, 0, sizeof sc->seen);
     memset(sc->rstamp, 0, nx * sizeof *sc->rstamp);
     sc->rgen = 0;
-    long nid = 0; /* slots in use */
+    /* the codes present (xcode holds the codes until the slots are known), then their ranks */
     for (size_t i = 0; i < nx; ++i)
         for (int e = 0; e < 8; ++e) {
-            double v = pal[xl[i].pair][e];
-            long k = lround((v + 1.0) * half_q);
-            const long id = (sc->bits[k >> 6] >> (k & 63)) & 1 ? sc->cid[k] : nid;
-            const int added = value_code_add(sc->bits, sc->nval, sc->val, k, id, v);
+            const long k = lround((pal[xl[i].pair][e] + 1.0) * half_q);
+            sc->bits[k >> 6] |= UINT64_C(1) << (k & 63);
+            sc->xcode[i][e] = (uint16_t)k;
+        }
+    uint32_t nid = 0; /* slots in use */
+    for (long w = 0; w < SCREEN_CODES / 64; ++w) {
+        sc->before[w] = nid;
+        nid += (uint32_t)__builtin_popcountll(sc->bits[w]);
+    }
+    sc->before[SCREEN_CODES / 64] = nid;
+    for (size_t i = 0; i < nx; ++i)
+        for (int e = 0; e < 8; ++e) {
+            const double v = pal[xl[i].pair][e];
+            const long k = sc->xcode[i][e], id = screen_rank(sc, k);
+            const int added = value_code_add(sc->seen, sc->nval, sc->val, k, id, v);
             if (added < 0)
                 return 0;
             if (added == 1) { /* a new code: its slot's state starts clear */
-                sc->cid[k] = (uint16_t)id;
-                ++nid;
                 sc->stamp[id] = 0;
                 sc->done[id] = sc->marked[id] = 0;
                 memset(sc->jm[id], 0, 16);
@@ -1797,7 +1817,7 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
         for (int e = 0; e < 8; ++e)
             sc->cnum[sc->xcode[i][e]] += !screen_repeat(sc->xcode[i], e);
     uint32_t acc = 0;
-    for (long id = 0; id < nid; ++id) {
+    for (uint32_t id = 0; id < nid; ++id) {
         sc->cstart[id] = acc;
         acc += sc->cnum[id];
         sc->cnum[id] = 0;
@@ -1905,22 +1925,23 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                 for (int u = 0; u < cnt; ++u) {
                     long k0, k1;
                     interval_codes(ilo[u], ihi[u], half_q, top, &k0, &k1);
-                    for (long w = k0 >> 6; w <= k1 >> 6 && k0 <= k1; ++w) {
-                        for (uint64_t bits = bits_in_range(sc->bits, w, k0, k1); bits; bits &= bits - 1) {
-                            const long code = sc->cid[64 * w + __builtin_ctzll(bits)]; /* its slot */
-                            if (sc->stamp[code] != sc->gen) {
-                                sc->stamp[code] = sc->gen;
-                                sc->touched[ntouched++] = (uint32_t)code;
-                            }
-                            sc->jm[code][k] |= (uint8_t)(1u << e);
-                            if (!((sc->marked[code] >> k) & 1))
-                                inc[k] += sc->cnum[code];
-                            sc->marked[code] |= (uint16_t)(1u << k);
-                            sc->lv[code][k] = 0;
-                            any = 1;
-                            ++*work;
+                    if (k0 > k1)
+                        continue;
+                    /* the slots of the codes present in [k0, k1], ascending (the codes' order) */
+                    const uint32_t s0 = screen_rank(sc, k0), s1 = screen_rank(sc, k1 + 1);
+                    for (uint32_t code = s0; code < s1; ++code) {
+                        if (sc->stamp[code] != sc->gen) {
+                            sc->stamp[code] = sc->gen;
+                            sc->touched[ntouched++] = code;
                         }
+                        sc->jm[code][k] |= (uint8_t)(1u << e);
+                        if (!((sc->marked[code] >> k) & 1))
+                            inc[k] += sc->cnum[code];
+                        sc->marked[code] |= (uint16_t)(1u << k);
+                        sc->lv[code][k] = 0;
                     }
+                    any |= s1 > s0;
+                    *work += s1 - s0;
                 }
             }
             if (unconstrained) { /* undo its marks: it counts base only */
