@@ -2601,17 +2601,33 @@ static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[
 {
     uint32_t *slots = ws->slots;
     const size_t size = slots_clear(slots, count);
+    /* each pair's key and hash MERGE_LAG pairs before its probe, its first slot then asked for (issue
+     * 13: the probe waited on the table, half of merge_stored's time). The keys are computed once
+     * each, in list order, as before; key_fn's results and the work it charges do not depend on when
+     * it runs (its tables fill per value, whatever the order), so the walk is the same. */
+    enum { MERGE_LAG = 4, MERGE_RING = 8 }; /* the ring holds pairs i .. i + MERGE_LAG */
+    pair_key ring[MERGE_RING];
+    uint64_t rhash[MERGE_RING];
     size_t kept = 0;
-    for (size_t i = 0; i < count; ++i) {
-        PREFETCH_PAIR(pal, list, i, count);
-        if (i + PREFETCH_AHEAD / 2 < count) /* the tables key_fn reads for a pair further down */
-            ahead(ctx, pal[list[i + PREFETCH_AHEAD / 2].pair]);
+    for (size_t j = 0; j < count + MERGE_LAG; ++j) {
+        if (j < count) { /* the key of pair j */
+            PREFETCH_PAIR(pal, list, j, count);
+            if (j + PREFETCH_AHEAD / 2 < count) /* the tables key_fn reads for a pair further down */
+                ahead(ctx, pal[list[j + PREFETCH_AHEAD / 2].pair]);
+            pair_key *kj = &ring[j % MERGE_RING];
+            if (work)
+                *work += 16;
+            key_fn(ctx, pal[list[j].pair], kj->m, kj->seed);
+            rhash[j % MERGE_RING] = masks_hash(pal[list[j].pair], kj->m, kj->seed, npix);
+            __builtin_prefetch(&slots[(size_t)rhash[j % MERGE_RING] & (size - 1)]);
+        }
+        if (j < MERGE_LAG)
+            continue;
+        const size_t i = j - MERGE_LAG; /* the probe of pair i */
         const double *a = pal[list[i].pair];
-        pair_key key, other;
-        if (work)
-            *work += 16;
-        key_fn(ctx, a, key.m, key.seed);
-        uint64_t hash = masks_hash(a, key.m, key.seed, npix);
+        const pair_key *key = &ring[i % MERGE_RING];
+        pair_key other;
+        const uint64_t hash = rhash[i % MERGE_RING];
         size_t h = (size_t)hash & (size - 1);
         uint32_t tag = slot_tag(hash);
         int dup = 0;
@@ -2623,7 +2639,7 @@ static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[
             const pair_key *kb = r < ws->kkey_cap ? &ws->kkey[r] : &other;
             if (r >= ws->kkey_cap)
                 key_fn(ctx, b, other.m, other.seed);
-            if (keys_equal(b, kb, a, &key, npix)) {
+            if (keys_equal(b, kb, a, key, npix)) {
                 dup = 1;
                 break;
             }
@@ -2639,7 +2655,7 @@ static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[
             }
         }
         if (kept < ws->kkey_cap)
-            ws->kkey[kept] = key;
+            ws->kkey[kept] = *key;
         list[kept] = list[i];
         slots[h] = tag | (uint32_t)++kept;
     }
