@@ -1323,6 +1323,37 @@ static int pixel_intervals(const double a[8], const double q[3], double R2, doub
     return k;
 }
 
+/* pixel_intervals' exact mode with its per-call parts taken out: bl holds the polar form of the
+ * target (ball_lines_polar, set up once per pixel), a[0 .. na) the palette's distinct entries in
+ * palette order (palette_distinct, once per palette); the same intervals, count and -1 verdicts. */
+static int ball_intervals_exact(ball_lines bl, double R2, double cone_slack, const double *a, int na, int cap,
+                                double *lo, double *hi)
+{
+    if (ball_lines_radius(&bl, R2, cone_slack) < 0)
+        return -1;
+    int k = 0;
+    for (int e = 0; e < na; ++e) {
+        if (k > cap - 5)
+            return -1; /* no room for this entry's five intervals: constrain nothing (valid) */
+        k = ball_lines_value(&bl, a[e], 1, lo, hi, k);
+    }
+    return k;
+}
+
+/* The distinct entries of palette a in palette order (pixel_intervals' duplicate rule); their count. */
+static int palette_distinct(const double a[8], double out[8])
+{
+    int na = 0;
+    for (int e = 0; e < 8; ++e) {
+        int dup = 0;
+        for (int f = 0; f < e && !dup; ++f)
+            dup = a[f] == a[e];
+        if (!dup)
+            out[na++] = a[e];
+    }
+    return na;
+}
+
 static int pixel_y_intervals(const double a[8], const double q[3], double R2, double cone_slack, double lo[16],
                              double hi[16])
 {
@@ -1421,9 +1452,15 @@ static void pixel_chord_ball(const double n[16][3], int p, double t, double q[3]
 /* Builds the filter for x palette a (its channel side xs, pixels in `order`): 1 if it filters, 0 if
  * no pixel constrains y, -1 if no y pair can beat the budget with a. */
 static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs, const double n[16][3],
-                         const int order[16], unsigned loose, const away_info *aw, const double away_off[16],
-                         const int group[16], int use_max, double best, const y_index *ix)
+                         const ball_lines nball[16], const int order[16], unsigned loose, const away_info *aw,
+                         const double away_off[16], const int group[16], int use_max, double best,
+                         const y_index *ix)
 {
+    /* a's distinct entries once for its pixels, the pixels' polar forms (nball: of n[p], the exact
+     * balls' centre) once per search (issue 13 deg-speed: pixel_intervals redid both per pixel, a
+     * third of the cones' time) */
+    double ad[8];
+    const int na = palette_distinct(a, ad);
     const double budget = best * (1.0 + 1e-9);
     double lb[16], total = 0.0; /* per pixel (index p) lower bounds given a, and their sum */
     for (int k = 0; k < 16; ++k) {
@@ -1451,7 +1488,7 @@ static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs,
             return -1;
         pixel_chord_ball(n, p, t, q3, &R2); /* the exact ball (pixel_ball: only whether p takes part) */
         int i = f->np;
-        int cnt = pixel_intervals(a, q3, R2, 1e-9, 1, Y_FILTER_CAP, f->lo[i], f->hi[i]);
+        int cnt = ball_intervals_exact(nball[p], R2, 1e-9, ad, na, Y_FILTER_CAP, f->lo[i], f->hi[i]);
         if (cnt < 0)
             continue;
         if (cnt == 0)
@@ -3715,6 +3752,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                                          ws->x, nx, ws->y, ny, ws->yside, &work, rq->work_limit);
         channel_side xside;
         y_filter yf;
+        ball_lines nball[16]; /* y_filter_init's exact balls' polar forms (their centre is n[p]) */
+        for (int p = 0; p < 16 && filter; ++p)
+            ball_lines_polar(&nball[p], n[p]);
         /* joint_objective_away's use: while it rejects at least 1 in 8 candidates it meets (after 1024;
          * else on every 16th candidate only, which keeps the count current) */
         uint64_t away_tried = 0, away_hits = 0;
@@ -3774,7 +3814,8 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     ws->ymark[sc->col[t] >> 6] |= UINT64_C(1) << (sc->col[t] & 63);
                 work += sc->start[row + 1] - sc->start[row];
             } else if (filter) {
-                filtered = y_filter_init(&yf, a, &xside, n, order, loose, &aw, away_off, group, use_max, best, &yix);
+                filtered = y_filter_init(&yf, a, &xside, n, nball, order, loose, &aw, away_off, group, use_max, best,
+                                         &yix);
                 work += 64;
                 if (filtered < 0)
                     continue;
