@@ -1271,8 +1271,10 @@ static int ball_lines_value(const ball_lines *bl, double a, int exact, double *l
         h = 1.0;
     } else if (bl->clamped == 1 && cone_line(a, bl->dx, bl->dy, bl->c, bl->sn, &l, &h) && l <= 1.0 + 1e-9 &&
                h >= -1.0 - 1e-9) {
-        l = fmax(l, -1.0) - 1e-9;
-        h = fmin(h, 1.0) + 1e-9;
+        /* fmax / fmin written out (library calls otherwise): the same doubles for every l, h,
+         * NaN included (the bound is taken) */
+        l = (l > -1.0 ? l : -1.0) - 1e-9;
+        h = (h < 1.0 ? h : 1.0) + 1e-9;
     } else {
         return k;
     }
@@ -1281,8 +1283,9 @@ static int ball_lines_value(const ball_lines *bl, double a, int exact, double *l
         hi[k++] = h;
         return k;
     }
-    /* a decode is clamped only off the unit disc: |b| >= L = sqrt(1 - a^2) (widened) */
-    const double L = sqrt(fmax(0.0, (1.0 - a) * (1.0 + a))) - 1e-9;
+    /* a decode is clamped only off the unit disc: |b| >= L = sqrt(1 - a^2) (widened; the root of
+     * max(0, .) written out: of -0 it gives -0 where fmax may give +0, both end at -1e-9) */
+    const double L2 = (1.0 - a) * (1.0 + a), L = sqrt(L2 > 0.0 ? L2 : 0.0) - 1e-9;
     if (l <= -L) {
         lo[k] = l;
         hi[k++] = h < -L ? h : -L;
