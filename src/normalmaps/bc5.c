@@ -1258,8 +1258,9 @@ static int ball_lines_value(const ball_lines *bl, double a, int exact, double *l
     if (exact) {
         k = sphere_line(a, bl, lo, hi, k);
     } else if (rem >= 0.0) { /* unclamped */
-        double w = sqrt(rem), lim = sqrt(fmax(0.0, (1.0 - a) * (1.0 + a)));
-        double l = fmax(q[1] - w, -lim) - 1e-9, h = fmin(q[1] + w, lim) + 1e-9;
+        /* max / min written out as below (only a zero's sign can differ, and -+1e-9 removes it) */
+        const double s2 = (1.0 - a) * (1.0 + a), w = sqrt(rem), lim = sqrt(s2 > 0.0 ? s2 : 0.0);
+        const double l = (q[1] - w > -lim ? q[1] - w : -lim) - 1e-9, h = (q[1] + w < lim ? q[1] + w : lim) + 1e-9;
         if (l <= h) {
             lo[k] = l;
             hi[k++] = h;
