@@ -3042,6 +3042,42 @@ Test(normalmaps, screened_survey_blocks_are_proven_exactly, .timeout = 120)
                            cases[c].anchors, c);
 }
 
+/* The pair screen's phase 1 (bc5.c, issue 13 deg-speed): slots numbered by code rank and marked a
+ * range at a time, the balls' per-pixel parts hoisted out of pixel_intervals (ball_lines). On the
+ * survey's slowest screened blocks (cones pointing away, sum metric) the screen must keep every
+ * candidate that can beat the incumbent (error and anchors of the search before the change, brute
+ * force in a +-2 window agreeing) and rule out as much as before: a slot range off by one code or a
+ * ball of the wrong radius either loses the optimum or lets more candidates through than the 22-396
+ * that the search before the change evaluated (reference: branch deg-speed's base, commit bd85e83). */
+Test(normalmaps, screen_slot_ranges_keep_the_screened_candidates, .timeout = 60)
+{
+    static const struct {
+        int family;
+        double spread;
+        sol_bc4_precision precision;
+        double error;
+        int anchors[4];
+        uint64_t candidates;
+    } cases[] = {
+        {4, 1.0, SOL_BC4_INTERP_16BIT, 5.4700626668172445, {5, 70, 96, 233}, 22},
+        {4, 1.0, SOL_BC4_INTERP_8BIT, 5.4698640920361958, {5, 70, 96, 233}, 33},
+        {6, 2.0, SOL_BC4_INTERP_16BIT, 6.1416001398975162, {4, 254, 70, 249}, 394},
+        {6, 2.0, SOL_BC4_INTERP_FLOAT, 6.1415970388801613, {4, 254, 70, 249}, 396},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        expect_survey_case(cases[c].family, cases[c].spread, SOL_BC5_SUM_SQUARED, cases[c].precision, cases[c].error,
+                           cases[c].anchors, c);
+        double n[16][3];
+        survey_block(cases[c].family, cases[c].spread, n);
+        sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .metric = SOL_BC5_SUM_SQUARED, .precision = cases[c].precision};
+        sol_bc5_block b;
+        sol_bc5_info info;
+        cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+        cr_assert(info.candidates <= cases[c].candidates, "case %zu: %llu candidates, reference %llu", c,
+                  (unsigned long long)info.candidates, (unsigned long long)cases[c].candidates);
+    }
+}
+
 /* The exact balls of bc5.c (pixel_chord_ball with pixel_intervals' exact mode: decodes within the
  * angle budget itself, z kept, clamped decodes only off the unit disc) in the pair screen, the coupling
  * filter and the pixel floor: the survey blocks whose screen or filter they cut most (cones and arcs

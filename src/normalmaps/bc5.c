@@ -1154,19 +1154,72 @@ static int cone_line(double a, double dx, double dy, double c, double s, double 
     return 1;
 }
 
-/* The b of the unclamped decodes (a, b, z), z = sqrt(1 - a^2 - b^2), with |u - q|^2 <= R2 for unit q,
- * exactly (z kept, not dropped as in pixel_y_intervals): a q0 + b q1 + z q2 >= 1 - R2 / 2, and with
- * (b, z) = L (cos phi, sin phi), L = sqrt(1 - a^2), phi in [0, pi], that is
+/* What the intervals of one ball (target q, squared radius R2) share across x values: (q[1], q[2])
+ * in polar form (r, psi: sphere_line's; they depend on q alone, so a caller testing many radii around
+ * one pixel computes them once), and the cone of the clamped decodes that reach the ball (clamped: 0
+ * none, 1 the cone of half-angle acos c around (dx, dy), 2 every direction). Splitting them out of
+ * pixel_intervals changes no double: the same expressions on the same inputs (issue 13: the pair
+ * screen asked pixel_intervals for one value at a time, ~1.2 M calls on `away-cone s=1 sum p16`, each
+ * redoing two hypots and an atan2 that depend on the pixel only). */
+typedef struct ball_lines {
+    const double *q;
+    double R2, r, psi;
+    int clamped;
+    double c, sn, dx, dy;
+} ball_lines;
+
+/* bl's polar form of (q[1], q[2]) for target q (unit when exact intervals are asked). */
+static void ball_lines_polar(ball_lines *bl, const double q[3])
+{
+    bl->q = q;
+    bl->r = hypot(q[1], q[2]);
+    bl->psi = atan2(q[2], q[1]);
+}
+
+/* bl's radius R2 and its cone of clamped decodes: 0, or -1 if the ball constrains nothing (R2 >= 4,
+ * or a cone of half a plane or more), as pixel_intervals returns it. */
+static int ball_lines_radius(ball_lines *bl, double R2, double cone_slack)
+{
+    const double *q = bl->q;
+    bl->R2 = R2;
+    if (!(R2 < 4.0))
+        return -1;
+    double rq = hypot(q[0], q[1]), rc2 = R2 - q[2] * q[2];
+    bl->clamped = 1;
+    bl->c = bl->sn = bl->dx = bl->dy = 0.0;
+    if (rc2 < 0.0) {
+        bl->clamped = 0;
+    } else if (rq == 0.0) {
+        bl->clamped = 1.0 - rc2 <= 0.0 ? 2 : 0; /* w . q_xy = 0 >= (1 - rc2) / 2 */
+    } else {
+        bl->c = (1.0 + rq * rq - rc2) / (2.0 * rq) - cone_slack;
+        if (bl->c > 1.0)
+            bl->clamped = 0;
+        else if (bl->c < 1e-3)
+            return -1; /* a cone of half a plane or more */
+        else {
+            bl->sn = sqrt((1.0 - bl->c) * (1.0 + bl->c));
+            bl->dx = q[0] / rq;
+            bl->dy = q[1] / rq;
+        }
+    }
+    return 0;
+}
+
+/* The b of the unclamped decodes (a, b, z), z = sqrt(1 - a^2 - b^2), with |u - q|^2 <= R2 for unit q
+ * (bl's), exactly (z kept, not dropped as in pixel_y_intervals): a q0 + b q1 + z q2 >= 1 - R2 / 2, and
+ * with (b, z) = L (cos phi, sin phi), L = sqrt(1 - a^2), phi in [0, pi], that is
  * L r cos(phi - psi) >= C' (r, psi: (q1, q2) in polar form, C' = 1 - R2 / 2 - a q0), an arc of phi
  * around psi of half-width acos(C' / (L r)), intersected with [0, pi] (b = L cos phi decreasing).
  * The half-width is widened by 1e-6 and the ends by 1e-9 against rounding (acos is steep near +-1).
  * Appends up to two intervals at lo[k], hi[k]; returns the new k. */
-static int sphere_line(double a, const double q[3], double R2, double *lo, double *hi, int k)
+static int sphere_line(double a, const ball_lines *bl, double *lo, double *hi, int k)
 {
     const double L2 = (1.0 - a) * (1.0 + a);
     if (!(L2 >= 0.0))
         return k;
-    const double L = sqrt(L2), r = hypot(q[1], q[2]), C = 1.0 - 0.5 * R2 - a * q[0] - 1e-12;
+    const double *q = bl->q, R2 = bl->R2, r = bl->r;
+    const double L = sqrt(L2), C = 1.0 - 0.5 * R2 - a * q[0] - 1e-12;
     double alpha;
     if (L * r == 0.0 || C / (L * r) <= -1.0) {
         if (!(L * r == 0.0) || 0.0 >= C - 1e-12) {
@@ -1184,7 +1237,7 @@ static int sphere_line(double a, const double q[3], double R2, double *lo, doubl
         hi[k++] = L + 1e-9;
         return k;
     }
-    const double psi = atan2(q[2], q[1]);
+    const double psi = bl->psi;
     for (int s = -1; s <= 1; ++s) {
         const double c = psi + 2.0 * M_PI * s, p0 = c - alpha > 0.0 ? c - alpha : 0.0,
                      p1 = c + alpha < M_PI ? c + alpha : M_PI;
@@ -1196,36 +1249,70 @@ static int sphere_line(double a, const double q[3], double R2, double *lo, doubl
     return k;
 }
 
+/* The intervals of one x value a against bl's ball (pixel_intervals' body for one entry): appends up
+ * to five (exact) or two at lo[k], hi[k] and returns the new k. */
+static int ball_lines_value(const ball_lines *bl, double a, int exact, double *lo, double *hi, int k)
+{
+    const double *q = bl->q;
+    double da = a - q[0], rem = bl->R2 - da * da;
+    if (exact) {
+        k = sphere_line(a, bl, lo, hi, k);
+    } else if (rem >= 0.0) { /* unclamped */
+        /* max / min written out as below (only a zero's sign can differ, and -+1e-9 removes it) */
+        const double s2 = (1.0 - a) * (1.0 + a), w = sqrt(rem), lim = sqrt(s2 > 0.0 ? s2 : 0.0);
+        const double l = (q[1] - w > -lim ? q[1] - w : -lim) - 1e-9, h = (q[1] + w < lim ? q[1] + w : lim) + 1e-9;
+        if (l <= h) {
+            lo[k] = l;
+            hi[k++] = h;
+        }
+    }
+    double l, h;
+    if (bl->clamped == 2) {
+        l = -1.0;
+        h = 1.0;
+    } else if (bl->clamped == 1 && cone_line(a, bl->dx, bl->dy, bl->c, bl->sn, &l, &h) && l <= 1.0 + 1e-9 &&
+               h >= -1.0 - 1e-9) {
+        /* fmax / fmin written out (library calls otherwise): the same doubles for every l, h,
+         * NaN included (the bound is taken) */
+        l = (l > -1.0 ? l : -1.0) - 1e-9;
+        h = (h < 1.0 ? h : 1.0) + 1e-9;
+    } else {
+        return k;
+    }
+    if (!exact) {
+        lo[k] = l;
+        hi[k++] = h;
+        return k;
+    }
+    /* a decode is clamped only off the unit disc: |b| >= L = sqrt(1 - a^2) (widened; the root of
+     * max(0, .) written out: of -0 it gives -0 where fmax may give +0, both end at -1e-9) */
+    const double L2 = (1.0 - a) * (1.0 + a), L = sqrt(L2 > 0.0 ? L2 : 0.0) - 1e-9;
+    if (l <= -L) {
+        lo[k] = l;
+        hi[k++] = h < -L ? h : -L;
+    }
+    if (h >= L) {
+        lo[k] = l > L ? l : L;
+        hi[k++] = h;
+    }
+    return k;
+}
+
 /* The y intervals for one pixel (target q, squared radius R2) and x palette a: returns their
  * count (up to cap, at least 16), or -1 if the pixel constrains nothing. exact (unit q only): the
  * unclamped decodes' intervals from sphere_line instead of the projection that drops z, and the
  * clamped ones' (the cone) only off the unit disc, where decodes are clamped: up to five intervals per
- * distinct entry (-1 once cap could overflow; callers pass one value eight times, cap 16, or a
- * palette with cap Y_FILTER_CAP). Not exact: at most two per entry (cap 16 always suffices). */
+ * distinct entry (-1 once cap could overflow; callers pass a palette with cap Y_FILTER_CAP, or use
+ * ball_lines_value per value). Not exact: at most two per entry (cap 16 always suffices). */
 static int pixel_intervals(const double a[8], const double q[3], double R2, double cone_slack, int exact,
                            int cap, double *lo, double *hi)
 {
-    if (!(R2 < 4.0))
+    ball_lines bl;
+    bl.q = q;
+    if (ball_lines_radius(&bl, R2, cone_slack) < 0)
         return -1;
-    double rq = hypot(q[0], q[1]), rc2 = R2 - q[2] * q[2];
-    int clamped = 1; /* 0: no clamped decode reaches the ball; 1: the cone; 2: every direction */
-    double c = 0.0, sn = 0.0, dx = 0.0, dy = 0.0;
-    if (rc2 < 0.0) {
-        clamped = 0;
-    } else if (rq == 0.0) {
-        clamped = 1.0 - rc2 <= 0.0 ? 2 : 0; /* w . q_xy = 0 >= (1 - rc2) / 2 */
-    } else {
-        c = (1.0 + rq * rq - rc2) / (2.0 * rq) - cone_slack;
-        if (c > 1.0)
-            clamped = 0;
-        else if (c < 1e-3)
-            return -1; /* a cone of half a plane or more */
-        else {
-            sn = sqrt((1.0 - c) * (1.0 + c));
-            dx = q[0] / rq;
-            dy = q[1] / rq;
-        }
-    }
+    if (exact)
+        ball_lines_polar(&bl, q);
     int k = 0;
     for (int e = 0; e < 8; ++e) {
         int dup = 0;
@@ -1235,44 +1322,40 @@ static int pixel_intervals(const double a[8], const double q[3], double R2, doub
             continue;
         if (exact && k > cap - 5)
             return -1; /* no room for this entry's five intervals: constrain nothing (valid) */
-        double da = a[e] - q[0], rem = R2 - da * da;
-        if (exact) {
-            k = sphere_line(a[e], q, R2, lo, hi, k);
-        } else if (rem >= 0.0) { /* unclamped */
-            double w = sqrt(rem), lim = sqrt(fmax(0.0, (1.0 - a[e]) * (1.0 + a[e])));
-            double l = fmax(q[1] - w, -lim) - 1e-9, h = fmin(q[1] + w, lim) + 1e-9;
-            if (l <= h) {
-                lo[k] = l;
-                hi[k++] = h;
-            }
-        }
-        double l, h;
-        if (clamped == 2) {
-            l = -1.0;
-            h = 1.0;
-        } else if (clamped == 1 && cone_line(a[e], dx, dy, c, sn, &l, &h) && l <= 1.0 + 1e-9 && h >= -1.0 - 1e-9) {
-            l = fmax(l, -1.0) - 1e-9;
-            h = fmin(h, 1.0) + 1e-9;
-        } else {
-            continue;
-        }
-        if (!exact) {
-            lo[k] = l;
-            hi[k++] = h;
-            continue;
-        }
-        /* a decode is clamped only off the unit disc: |b| >= L = sqrt(1 - a^2) (widened) */
-        const double L = sqrt(fmax(0.0, (1.0 - a[e]) * (1.0 + a[e]))) - 1e-9;
-        if (l <= -L) {
-            lo[k] = l;
-            hi[k++] = h < -L ? h : -L;
-        }
-        if (h >= L) {
-            lo[k] = l > L ? l : L;
-            hi[k++] = h;
-        }
+        k = ball_lines_value(&bl, a[e], exact, lo, hi, k);
     }
     return k;
+}
+
+/* pixel_intervals' exact mode with its per-call parts taken out: bl holds the polar form of the
+ * target (ball_lines_polar, set up once per pixel), a[0 .. na) the palette's distinct entries in
+ * palette order (palette_distinct, once per palette); the same intervals, count and -1 verdicts. */
+static int ball_intervals_exact(ball_lines bl, double R2, double cone_slack, const double *a, int na, int cap,
+                                double *lo, double *hi)
+{
+    if (ball_lines_radius(&bl, R2, cone_slack) < 0)
+        return -1;
+    int k = 0;
+    for (int e = 0; e < na; ++e) {
+        if (k > cap - 5)
+            return -1; /* no room for this entry's five intervals: constrain nothing (valid) */
+        k = ball_lines_value(&bl, a[e], 1, lo, hi, k);
+    }
+    return k;
+}
+
+/* The distinct entries of palette a in palette order (pixel_intervals' duplicate rule); their count. */
+static int palette_distinct(const double a[8], double out[8])
+{
+    int na = 0;
+    for (int e = 0; e < 8; ++e) {
+        int dup = 0;
+        for (int f = 0; f < e && !dup; ++f)
+            dup = a[f] == a[e];
+        if (!dup)
+            out[na++] = a[e];
+    }
+    return na;
 }
 
 static int pixel_y_intervals(const double a[8], const double q[3], double R2, double cone_slack, double lo[16],
@@ -1373,9 +1456,15 @@ static void pixel_chord_ball(const double n[16][3], int p, double t, double q[3]
 /* Builds the filter for x palette a (its channel side xs, pixels in `order`): 1 if it filters, 0 if
  * no pixel constrains y, -1 if no y pair can beat the budget with a. */
 static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs, const double n[16][3],
-                         const int order[16], unsigned loose, const away_info *aw, const double away_off[16],
-                         const int group[16], int use_max, double best, const y_index *ix)
+                         const ball_lines nball[16], const int order[16], unsigned loose, const away_info *aw,
+                         const double away_off[16], const int group[16], int use_max, double best,
+                         const y_index *ix)
 {
+    /* a's distinct entries once for its pixels, the pixels' polar forms (nball: of n[p], the exact
+     * balls' centre) once per search (issue 13 deg-speed: pixel_intervals redid both per pixel, a
+     * third of the cones' time) */
+    double ad[8];
+    const int na = palette_distinct(a, ad);
     const double budget = best * (1.0 + 1e-9);
     double lb[16], total = 0.0; /* per pixel (index p) lower bounds given a, and their sum */
     for (int k = 0; k < 16; ++k) {
@@ -1403,7 +1492,7 @@ static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs,
             return -1;
         pixel_chord_ball(n, p, t, q3, &R2); /* the exact ball (pixel_ball: only whether p takes part) */
         int i = f->np;
-        int cnt = pixel_intervals(a, q3, R2, 1e-9, 1, Y_FILTER_CAP, f->lo[i], f->hi[i]);
+        int cnt = ball_intervals_exact(nball[p], R2, 1e-9, ad, na, Y_FILTER_CAP, f->lo[i], f->hi[i]);
         if (cnt < 0)
             continue;
         if (cnt == 0)
@@ -1486,11 +1575,14 @@ static int y_filter_pass(const y_filter *f, const double b[8])
 #define SCREEN_TESTS_MAX (1u << 23)
 
 typedef struct pair_screen {
-    /* per x value code k its slot cid[k] (the x list's distinct codes numbered in order of first
-     * appearance, so that the per-value state below fills a few pages instead of 65536 codes' worth:
-     * on fresh memory each page is a fault, ~30 ms a screen on the survey's blocks) */
-    uint16_t cid[SCREEN_CODES];
+    /* per x value code k its slot: its rank among the codes present, before[k / 64] plus the codes
+     * present below k in its word (the x list's distinct codes numbered in code order, so that the
+     * per-value state below fills a few pages instead of 65536 codes' worth: on fresh memory each
+     * page is a fault, ~30 ms a screen on the survey's blocks; and so that an interval of codes is an
+     * interval of slots, which phase 1 marks without visiting the codes' bits one by one) */
     uint64_t bits[SCREEN_CODES / 64]; /* the codes present */
+    uint32_t before[SCREEN_CODES / 64 + 1];
+    uint64_t seen[SCREEN_CODES / 64]; /* value_code_add's codes met so far (slot numbering pass) */
     /* per slot: */
     uint8_t lv[SCREEN_CODES][16];  /* per pixel (visiting order): the level */
     double val[SCREEN_CODES][2];   /* the distinct doubles of the code */
@@ -1527,15 +1619,17 @@ static pair_screen *pair_screen_new(void)
     return sc;
 }
 
-/* The levels of 8 values of one x pair, least per pixel (columns masked by keep), then either 1
- * (some pixel at 255: ruled out) or 0 with *sum the sum of the levels. */
-static inline int screen_levels(const pair_screen *sc, const uint16_t code[8], const uint8_t keep[16], unsigned *sum)
+/* The levels of 8 values of one x pair, least per pixel (columns masked by keep: least[k]), then
+ * either 1 (some pixel at 255: ruled out) or 0 with *sum the sum of the levels. */
+static inline int screen_levels(const pair_screen *sc, const uint16_t code[8], const uint8_t keep[16],
+                                uint8_t least[16], unsigned *sum)
 {
 #if defined(__SSE2__)
     __m128i m = _mm_loadu_si128((const __m128i *)sc->lv[code[0]]);
     for (int e = 1; e < 8; ++e)
         m = _mm_min_epu8(m, _mm_loadu_si128((const __m128i *)sc->lv[code[e]]));
     m = _mm_and_si128(m, _mm_loadu_si128((const __m128i *)keep));
+    _mm_storeu_si128((__m128i *)least, m);
     if (_mm_movemask_epi8(_mm_cmpeq_epi8(m, _mm_set1_epi8((char)-1))))
         return 1;
     __m128i s = _mm_sad_epu8(m, _mm_setzero_si128());
@@ -1548,6 +1642,7 @@ static inline int screen_levels(const pair_screen *sc, const uint16_t code[8], c
         for (int e = 1; e < 8; ++e)
             l = sc->lv[code[e]][k] < l ? sc->lv[code[e]][k] : l;
         l &= keep[k];
+        least[k] = (uint8_t)l;
         if (l == 255)
             return 1;
         t += l;
@@ -1598,6 +1693,13 @@ static inline uint64_t bits_in_range(const uint64_t *bits, long w, long k0, long
     if (w == k1 >> 6 && (k1 & 63) != 63)
         b &= (UINT64_C(1) << ((k1 & 63) + 1)) - 1;
     return b;
+}
+
+/* The number of codes present below code k (0 <= k <= SCREEN_CODES): a present code's slot. */
+static inline uint32_t screen_rank(const pair_screen *sc, long k)
+{
+    const uint64_t below = (UINT64_C(1) << (k & 63)) - 1;
+    return sc->before[k >> 6] + ((k & 63) ? (uint32_t)__builtin_popcountll(sc->bits[k >> 6] & below) : 0u);
 }
 
 /* What one row test of pair_screen_build reads. */
@@ -1654,18 +1756,22 @@ static int screen_row(const screen_row_ctx *x, size_t i, uint64_t *work)
     const uint16_t *code = sc->xcode[i];
     const int use_max = x->use_max;
     unsigned sum;
+    uint8_t least[16]; /* per pixel the row's least level so far, computed or not (0) */
     ++*work;
-    if (screen_levels(sc, code, x->keep, &sum) || (!use_max && sum >= x->lmin))
+    if (screen_levels(sc, code, x->keep, least, &sum) || (!use_max && sum >= x->lmin))
         return 0;
     unsigned todo = 0;
     for (int e = 0; e < 8; ++e)
         todo |= (unsigned)(sc->marked[code[e]] & ~sc->done[code[e]]);
     for (; todo; todo &= todo - 1) {
         const int k = __builtin_ctz(todo);
-        unsigned before = 255, after = 255;
+        /* before: least[k] (todo holds marked pixels only, which keep unmasked; the levels computed
+         * at earlier pixels are other columns, and a repeated code's new level only rises above the
+         * 0 already counted) */
+        const unsigned before = least[k];
+        unsigned after = 255;
         for (int e = 0; e < 8; ++e) {
             const long c = code[e];
-            before = sc->lv[c][k] < before ? sc->lv[c][k] : before;
             if ((sc->marked[c] >> k) & 1 && !((sc->done[c] >> k) & 1)) {
                 sc->lv[c][k] = (uint8_t)screen_level(x, c, k, work);
                 sc->done[c] |= (uint16_t)(1u << k);
@@ -1727,20 +1833,30 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
     if (tests > SCREEN_TESTS_MAX)
         return 0;
     memset(sc->bits, 0, sizeof sc->bits);
+    memset(sc->seen, 0, sizeof sc->seen);
     memset(sc->rstamp, 0, nx * sizeof *sc->rstamp);
     sc->rgen = 0;
-    long nid = 0; /* slots in use */
+    /* the codes present (xcode holds the codes until the slots are known), then their ranks */
     for (size_t i = 0; i < nx; ++i)
         for (int e = 0; e < 8; ++e) {
-            double v = pal[xl[i].pair][e];
-            long k = lround((v + 1.0) * half_q);
-            const long id = (sc->bits[k >> 6] >> (k & 63)) & 1 ? sc->cid[k] : nid;
-            const int added = value_code_add(sc->bits, sc->nval, sc->val, k, id, v);
+            const long k = lround((pal[xl[i].pair][e] + 1.0) * half_q);
+            sc->bits[k >> 6] |= UINT64_C(1) << (k & 63);
+            sc->xcode[i][e] = (uint16_t)k;
+        }
+    uint32_t nid = 0; /* slots in use */
+    for (long w = 0; w < SCREEN_CODES / 64; ++w) {
+        sc->before[w] = nid;
+        nid += (uint32_t)__builtin_popcountll(sc->bits[w]);
+    }
+    sc->before[SCREEN_CODES / 64] = nid;
+    for (size_t i = 0; i < nx; ++i)
+        for (int e = 0; e < 8; ++e) {
+            const double v = pal[xl[i].pair][e];
+            const long k = sc->xcode[i][e], id = screen_rank(sc, k);
+            const int added = value_code_add(sc->seen, sc->nval, sc->val, k, id, v);
             if (added < 0)
                 return 0;
             if (added == 1) { /* a new code: its slot's state starts clear */
-                sc->cid[k] = (uint16_t)id;
-                ++nid;
                 sc->stamp[id] = 0;
                 sc->done[id] = sc->marked[id] = 0;
                 memset(sc->jm[id], 0, 16);
@@ -1757,7 +1873,7 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
         for (int e = 0; e < 8; ++e)
             sc->cnum[sc->xcode[i][e]] += !screen_repeat(sc->xcode[i], e);
     uint32_t acc = 0;
-    for (long id = 0; id < nid; ++id) {
+    for (uint32_t id = 0; id < nid; ++id) {
         sc->cstart[id] = acc;
         acc += sc->cnum[id];
         sc->cnum[id] = 0;
@@ -1769,6 +1885,15 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                 sc->crow[sc->cstart[k] + sc->cnum[k]++] = (uint32_t)i;
             }
     *work += 8 * nx;
+    double xq[16][3]; /* per visiting position: the pixel's normal with x and y swapped */
+    ball_lines xball[16];
+    for (int k = 0; k < 16; ++k) {
+        const int p = order[k];
+        xq[k][0] = n[p][1];
+        xq[k][1] = n[p][0];
+        xq[k][2] = n[p][2];
+        ball_lines_polar(&xball[k], xq[k]);
+    }
     size_t passes = 0;
     for (size_t j = 0; j < ny; ++j) {
         sc->jstart[j] = (uint32_t)passes;
@@ -1841,40 +1966,38 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                 break;
             }
             pixel_chord_ball(n, p, T, q, &R2); /* pixel_ball decided only whether the pixel takes part */
-            const double qs[3] = {q[1], q[0], q[2]}; /* x and y swapped: intervals of x values */
-            int any = 0, unconstrained = 0;
+            /* the ball's intervals of x values (pixel_intervals' exact mode, one entry at a time; its
+             * target is the pixel's normal, x and y swapped, whatever the y pair: polar part hoisted) */
+            ball_lines bl = xball[k];
+            int any = 0, unconstrained = ball_lines_radius(&bl, R2, 1e-9) < 0; /* it constrains nothing */
             for (int e = 0; e < 8 && !unconstrained; ++e) {
                 int dup = 0;
                 for (int f = 0; f < e && !dup; ++f)
                     dup = b[f] == b[e];
                 if (dup)
                     continue;
-                const double one[8] = {b[e], b[e], b[e], b[e], b[e], b[e], b[e], b[e]};
                 double ilo[16], ihi[16];
-                int cnt = pixel_intervals(one, qs, R2, 1e-9, 1, 16, ilo, ihi);
-                if (cnt < 0) {
-                    unconstrained = 1; /* the pixel constrains nothing */
-                    break;
-                }
+                const int cnt = ball_lines_value(&bl, b[e], 1, ilo, ihi, 0);
                 for (int u = 0; u < cnt; ++u) {
                     long k0, k1;
                     interval_codes(ilo[u], ihi[u], half_q, top, &k0, &k1);
-                    for (long w = k0 >> 6; w <= k1 >> 6 && k0 <= k1; ++w) {
-                        for (uint64_t bits = bits_in_range(sc->bits, w, k0, k1); bits; bits &= bits - 1) {
-                            const long code = sc->cid[64 * w + __builtin_ctzll(bits)]; /* its slot */
-                            if (sc->stamp[code] != sc->gen) {
-                                sc->stamp[code] = sc->gen;
-                                sc->touched[ntouched++] = (uint32_t)code;
-                            }
-                            sc->jm[code][k] |= (uint8_t)(1u << e);
-                            if (!((sc->marked[code] >> k) & 1))
-                                inc[k] += sc->cnum[code];
-                            sc->marked[code] |= (uint16_t)(1u << k);
-                            sc->lv[code][k] = 0;
-                            any = 1;
-                            ++*work;
+                    if (k0 > k1)
+                        continue;
+                    /* the slots of the codes present in [k0, k1], ascending (the codes' order) */
+                    const uint32_t s0 = screen_rank(sc, k0), s1 = screen_rank(sc, k1 + 1);
+                    for (uint32_t code = s0; code < s1; ++code) {
+                        if (sc->stamp[code] != sc->gen) {
+                            sc->stamp[code] = sc->gen;
+                            sc->touched[ntouched++] = code;
                         }
+                        sc->jm[code][k] |= (uint8_t)(1u << e);
+                        if (!((sc->marked[code] >> k) & 1))
+                            inc[k] += sc->cnum[code];
+                        sc->marked[code] |= (uint16_t)(1u << k);
+                        sc->lv[code][k] = 0;
                     }
+                    any |= s1 > s0;
+                    *work += s1 - s0;
                 }
             }
             if (unconstrained) { /* undo its marks: it counts base only */
@@ -2104,13 +2227,16 @@ static int floor_scan(pixel_floor *pf, const double n[16][3], const away_info *a
     const double half_q = pf->half_q;
     const long top = lround(2.0 * half_q);
     const value_codes *vx = &pf->v[0], *vy = &pf->v[1];
+    ball_lines bl; /* one ball for every x value (pixel_intervals' exact mode, one value at a time) */
+    ball_lines_polar(&bl, q);
+    const int unconstrained = ball_lines_radius(&bl, R2, 1e-9) < 0;
     for (long w = 0; w <= top >> 6; ++w)
         for (uint64_t xbits = vx->bits[w]; xbits; xbits &= xbits - 1) {
             const long c = 64 * w + __builtin_ctzll(xbits);
             for (int d = 0; d < vx->nval[c]; ++d) {
-                const double a = vx->val[c][d], one[8] = {a, a, a, a, a, a, a, a};
+                const double a = vx->val[c][d];
                 double lo[16], hi[16];
-                int cnt = pixel_intervals(one, q, R2, 1e-9, 1, 16, lo, hi);
+                const int cnt = unconstrained ? -1 : ball_lines_value(&bl, a, 1, lo, hi, 0);
                 ++*work;
                 if (cnt < 0)
                     return -1; /* the ball constrains nothing */
@@ -2318,7 +2444,36 @@ typedef struct pixel_reach {
     unsigned free;
     double q[16][3], R2[16];
     int order[16], count; /* the constrained pixels, one per group of equal normals, smallest ball first */
+    /* per channel c and constrained pixel p, value_usable's ball: q with channel c first (qc), its
+     * cone (ball_lines_radius: a function of c and p alone, so set up once here instead of per value;
+     * issue 13 deg-speed), and whether it constrains nothing (open) */
+    double qc[2][16][3];
+    ball_lines ball[2][16];
+    unsigned open[2];
 } pixel_reach;
+
+/* pr's per-channel balls (pixel_reach above) for the pixels that are not free. */
+static void pixel_reach_balls(pixel_reach *pr)
+{
+    for (int c = 0; c < 2; ++c) {
+        pr->open[c] = 0;
+        for (int p = 0; p < 16; ++p) {
+            if ((pr->free >> p) & 1)
+                continue;
+            double *q = pr->qc[c][p];
+            q[0] = pr->q[p][c];
+            q[1] = pr->q[p][1 - c];
+            q[2] = pr->q[p][2];
+            const double rq = hypot(q[0], q[1]);
+            /* the cone's cosine (1 + rq^2 - rc2) / (2 rq) carries a rounding error of a few 1e-16 / rq:
+             * lowered by much more, but far less than the coupling filter's 1e-9, which would widen a
+             * cone of a few microradians (near-ties at the hemisphere bound) to 4e-5 rad */
+            pr->ball[c][p].q = q;
+            if (ball_lines_radius(&pr->ball[c][p], pr->R2[p], 1e-14 + (rq > 0.0 ? 1e-15 / rq : 0.0)) < 0)
+                pr->open[c] |= 1u << p;
+        }
+    }
+}
 
 /* Returns 0 if some pixel cannot meet its budget at all (then no candidate beats the incumbent). */
 static int pixel_reach_init(pixel_reach *pr, const double n[16][3], const away_info *aw, const int group[16],
@@ -2358,23 +2513,18 @@ static int pixel_reach_init(pixel_reach *pr, const double n[16][3], const away_i
             pr->order[k] = pr->order[k - 1];
         pr->order[k] = p;
     }
+    pixel_reach_balls(pr);
     return 1;
 }
 
 /* Whether value v of channel c (0 = x, 1 = y) can serve pixel p with a value of the other channel's set. */
 static int value_usable(double v, int c, const pixel_reach *pr, int p, const value_set *other)
 {
-    if ((pr->free >> p) & 1)
+    if ((pr->free >> p) & 1 || (pr->open[c] >> p) & 1)
         return 1;
-    const double v8[8] = {v, v, v, v, v, v, v, v};
-    const double q[3] = {pr->q[p][c], pr->q[p][1 - c], pr->q[p][2]}; /* y intervals of x = v, or swapped */
-    double lo[16], hi[16], rq = hypot(q[0], q[1]);
-    /* the cone's cosine (1 + rq^2 - rc2) / (2 rq) carries a rounding error of a few 1e-16 / rq: lowered
-     * by much more, but far less than the coupling filter's 1e-9, which would widen a cone of a few
-     * microradians (near-ties at the hemisphere bound) to 4e-5 rad */
-    int cnt = pixel_y_intervals(v8, q, pr->R2[p], 1e-14 + (rq > 0.0 ? 1e-15 / rq : 0.0), lo, hi);
-    if (cnt < 0)
-        return 1;
+    /* y intervals of x = v, or swapped (pixel_y_intervals of v eight times, its ball set up once) */
+    double lo[16], hi[16];
+    const int cnt = ball_lines_value(&pr->ball[c][p], v, 0, lo, hi, 0);
     for (int k = 0; k < cnt; ++k)
         if (value_set_any(other, lo[k], hi[k]))
             return 1;
@@ -2578,17 +2728,33 @@ static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[
 {
     uint32_t *slots = ws->slots;
     const size_t size = slots_clear(slots, count);
+    /* each pair's key and hash MERGE_LAG pairs before its probe, its first slot then asked for (issue
+     * 13: the probe waited on the table, half of merge_stored's time). The keys are computed once
+     * each, in list order, as before; key_fn's results and the work it charges do not depend on when
+     * it runs (its tables fill per value, whatever the order), so the walk is the same. */
+    enum { MERGE_LAG = 4, MERGE_RING = 8 }; /* the ring holds pairs i .. i + MERGE_LAG */
+    pair_key ring[MERGE_RING];
+    uint64_t rhash[MERGE_RING];
     size_t kept = 0;
-    for (size_t i = 0; i < count; ++i) {
-        PREFETCH_PAIR(pal, list, i, count);
-        if (i + PREFETCH_AHEAD / 2 < count) /* the tables key_fn reads for a pair further down */
-            ahead(ctx, pal[list[i + PREFETCH_AHEAD / 2].pair]);
+    for (size_t j = 0; j < count + MERGE_LAG; ++j) {
+        if (j < count) { /* the key of pair j */
+            PREFETCH_PAIR(pal, list, j, count);
+            if (j + PREFETCH_AHEAD / 2 < count) /* the tables key_fn reads for a pair further down */
+                ahead(ctx, pal[list[j + PREFETCH_AHEAD / 2].pair]);
+            pair_key *kj = &ring[j % MERGE_RING];
+            if (work)
+                *work += 16;
+            key_fn(ctx, pal[list[j].pair], kj->m, kj->seed);
+            rhash[j % MERGE_RING] = masks_hash(pal[list[j].pair], kj->m, kj->seed, npix);
+            __builtin_prefetch(&slots[(size_t)rhash[j % MERGE_RING] & (size - 1)]);
+        }
+        if (j < MERGE_LAG)
+            continue;
+        const size_t i = j - MERGE_LAG; /* the probe of pair i */
         const double *a = pal[list[i].pair];
-        pair_key key, other;
-        if (work)
-            *work += 16;
-        key_fn(ctx, a, key.m, key.seed);
-        uint64_t hash = masks_hash(a, key.m, key.seed, npix);
+        const pair_key *key = &ring[i % MERGE_RING];
+        pair_key other;
+        const uint64_t hash = rhash[i % MERGE_RING];
         size_t h = (size_t)hash & (size - 1);
         uint32_t tag = slot_tag(hash);
         int dup = 0;
@@ -2600,7 +2766,7 @@ static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[
             const pair_key *kb = r < ws->kkey_cap ? &ws->kkey[r] : &other;
             if (r >= ws->kkey_cap)
                 key_fn(ctx, b, other.m, other.seed);
-            if (keys_equal(b, kb, a, &key, npix)) {
+            if (keys_equal(b, kb, a, key, npix)) {
                 dup = 1;
                 break;
             }
@@ -2616,7 +2782,7 @@ static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[
             }
         }
         if (kept < ws->kkey_cap)
-            ws->kkey[kept] = key;
+            ws->kkey[kept] = *key;
         list[kept] = list[i];
         slots[h] = tag | (uint32_t)++kept;
     }
@@ -3654,6 +3820,9 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
         size_t screen_pairs = 0; /* x rows and y pairs at the screen's last build */
         channel_side xside;
         y_filter yf;
+        ball_lines nball[16]; /* y_filter_init's exact balls' polar forms (their centre is n[p]) */
+        for (int p = 0; p < 16 && filter; ++p)
+            ball_lines_polar(&nball[p], n[p]);
         /* joint_objective_away's use: while it rejects at least 1 in 8 candidates it meets (after 1024;
          * else on every 16th candidate only, which keeps the count current) */
         uint64_t away_tried = 0, away_hits = 0;
@@ -3727,7 +3896,8 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                     ws->ymark[sc->col[t] >> 6] |= UINT64_C(1) << (sc->col[t] & 63);
                 work += sc->start[row + 1] - sc->start[row];
             } else if (filter) {
-                filtered = y_filter_init(&yf, a, &xside, n, order, loose, &aw, away_off, group, use_max, best, &yix);
+                filtered = y_filter_init(&yf, a, &xside, n, nball, order, loose, &aw, away_off, group, use_max, best,
+                                         &yix);
                 work += 64;
                 if (filtered < 0)
                     continue;
