@@ -3047,8 +3047,10 @@ Test(normalmaps, screened_survey_blocks_are_proven_exactly, .timeout = 120)
  * survey's slowest screened blocks (cones pointing away, sum metric) the screen must keep every
  * candidate that can beat the incumbent (error and anchors of the search before the change, brute
  * force in a +-2 window agreeing) and rule out as much as before: a slot range off by one code or a
- * ball of the wrong radius either loses the optimum or lets more candidates through than the 22-396
- * that the search before the change evaluated (reference: branch deg-speed's base, commit bd85e83). */
+ * ball of the wrong radius either loses the optimum or lets more candidates through than the 88-396
+ * that the search evaluates with the right ones (reference: the merge of deg-speed into main, whose
+ * pair_screen_remap carries a screen built at an older incumbent over to reduced lists, so a cone of
+ * 1 rad meets 88 and 109 candidates where a screen rebuilt at every incumbent met 22 and 33). */
 Test(normalmaps, screen_slot_ranges_keep_the_screened_candidates, .timeout = 60)
 {
     static const struct {
@@ -3059,8 +3061,8 @@ Test(normalmaps, screen_slot_ranges_keep_the_screened_candidates, .timeout = 60)
         int anchors[4];
         uint64_t candidates;
     } cases[] = {
-        {4, 1.0, SOL_BC4_INTERP_16BIT, 5.4700626668172445, {5, 70, 96, 233}, 22},
-        {4, 1.0, SOL_BC4_INTERP_8BIT, 5.4698640920361958, {5, 70, 96, 233}, 33},
+        {4, 1.0, SOL_BC4_INTERP_16BIT, 5.4700626668172445, {5, 70, 96, 233}, 88},
+        {4, 1.0, SOL_BC4_INTERP_8BIT, 5.4698640920361958, {5, 70, 96, 233}, 109},
         {6, 2.0, SOL_BC4_INTERP_16BIT, 6.1416001398975162, {4, 254, 70, 249}, 394},
         {6, 2.0, SOL_BC4_INTERP_FLOAT, 6.1415970388801613, {4, 254, 70, 249}, 396},
     };
