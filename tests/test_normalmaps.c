@@ -347,6 +347,64 @@ Test(normalmaps, bc4_small_palettes_are_the_table_rows)
     }
 }
 
+/* sol_nm_reference_order against its literal definition (the stable insertion sort it was written
+ * as: smallest first - the first of equal smallest -, then the first largest, then the rest by
+ * decreasing |t - mean|, ties lower pixel first), on random, tied, flat, signed-zero and two-valued
+ * blocks (common-speed tracks the extremes' values beside their indices; same picks on ties). */
+static void reference_order_literal(const double t[16], int order[16])
+{
+    double mean = 0.0;
+    for (int p = 0; p < 16; ++p)
+        mean += t[p];
+    mean /= 16.0;
+    int lo = 0, hi = 0;
+    for (int p = 1; p < 16; ++p) {
+        if (t[p] < t[lo])
+            lo = p;
+        if (t[p] > t[hi])
+            hi = p;
+    }
+    int n = 0;
+    order[n++] = lo;
+    if (hi != lo)
+        order[n++] = hi;
+    const int first = n;
+    double key[16];
+    for (int p = 0; p < 16; ++p) {
+        if (p == lo || p == hi)
+            continue;
+        double k = fabs(t[p] - mean);
+        int q = n++;
+        for (; q > first && key[q - 1] < k; --q) {
+            key[q] = key[q - 1];
+            order[q] = order[q - 1];
+        }
+        key[q] = k;
+        order[q] = p;
+    }
+}
+
+Test(normalmaps, reference_order_matches_literal)
+{
+    for (int trial = 0; trial < 20000; ++trial) {
+        double t[16];
+        for (int p = 0; p < 16; ++p) {
+            double u = uniform();
+            switch (trial % 5) {
+            case 0: t[p] = 2.0 * u - 1.0; break;
+            case 1: t[p] = floor(5.0 * u) / 4.0 - 0.5; break; /* ties, extremes repeated */
+            case 2: t[p] = 0.25; break;                        /* flat: lo == hi */
+            case 3: t[p] = u < 0.5 ? -0.0 : 0.0; break;
+            default: t[p] = u < 0.5 ? -1.0 : 1.0; break;
+            }
+        }
+        int a[16], b[16];
+        sol_nm_reference_order(t, a);
+        reference_order_literal(t, b);
+        cr_assert(memcmp(a, b, sizeof a) == 0, "trial %d: orders differ", trial);
+    }
+}
+
 /* sol_nm_sort16: ascending, the same multiset, on random values, many ties, zeros of both signs,
  * infinities and the extremes of the double range. */
 Test(normalmaps, sort16_sorts)
