@@ -781,6 +781,7 @@ static void refine(common_ctx *c, int six, int l, int h)
     static const double weight[2][8] = {{0.0, 1.0 / 7, 2.0 / 7, 3.0 / 7, 4.0 / 7, 5.0 / 7, 6.0 / 7, 1.0},
                                         {0.0, 1.0 / 5, 2.0 / 5, 3.0 / 5, 4.0 / 5, 1.0, 0.0, 0.0}};
     const int den = six ? 5 : 7;
+    int l_prev = -1000, h_prev = -1000; /* the previous round's rounded refit */
     for (int round = 0; round < 3; ++round) {
         double al = anchor(l), ah = anchor(h), step = (ah - al) / den, inv = step > 0.0 ? 1.0 / step : 0.0;
         double saa = 0.0, sab = 0.0, sbb = 0.0, sat = 0.0, sbt = 0.0;
@@ -803,6 +804,13 @@ static void refine(common_ctx *c, int six, int l, int h)
             return;
         double fl = (sat * sbb - sbt * sab) / det, fh = (sbt * saa - sat * sab) / det;
         int l0 = code_floor(fl), h0 = code_floor(fh), nl = l, nh = h;
+        /* the same refit as the previous round's: its four pairs are scored already, and scoring a
+         * pair again cannot change the incumbent (it is at least as good as that pair, and no later
+         * than it on a tie) - the usual end of the refit (issue 13, common-speed) */
+        if (l0 == l_prev && h0 == h_prev)
+            return;
+        l_prev = l0;
+        h_prev = h0;
         for (int dl = 0; dl < 2; ++dl)
             for (int dh = 0; dh < 2; ++dh)
                 try_move(c, six, l0 + dl, h0 + dh, &nl, &nh);
