@@ -405,6 +405,57 @@ Test(normalmaps, reference_order_matches_literal)
     }
 }
 
+/* The common search's bucketed first_above (sol_nm_entry_first_above) against the literal bisection
+ * over the whole entry index, for every precision: at every index value and its neighbouring
+ * doubles, at the bucket edges -1 + b / 2048 and their neighbours, at random points, outside
+ * [-1, 1], at the infinities and at NaN. */
+static size_t first_above_literal(const sol_nm_entry_index *ix, double x)
+{
+    size_t lo = 0, hi = ix->count;
+    while (lo < hi) {
+        size_t mid = (lo + hi) >> 1;
+        if (ix->value[mid] <= x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+Test(normalmaps, entry_first_above_matches_bisection)
+{
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec) {
+        const sol_nm_entry_index *ix = sol_nm_entry_index_get((sol_bc4_precision)prec);
+        cr_assert(ix != NULL);
+        double probes[8];
+        for (size_t k = 0; k < ix->count + 4096 + 20000; ++k) {
+            double x;
+            if (k < ix->count)
+                x = ix->value[k];
+            else if (k < ix->count + 4096)
+                x = -1.0 + (double)(k - ix->count) / 2048.0;
+            else
+                x = 2.2 * uniform() - 1.1;
+            probes[0] = x;
+            probes[1] = nextafter(x, -INFINITY);
+            probes[2] = nextafter(x, INFINITY);
+            probes[3] = 0.5 * (x + probes[2]);
+            int np = 4;
+            if (k == 0) {
+                probes[np++] = INFINITY;
+                probes[np++] = -INFINITY;
+                probes[np++] = NAN;
+                probes[np++] = 1e300;
+            }
+            for (int i = 0; i < np; ++i) {
+                size_t a = sol_nm_entry_first_above((sol_bc4_precision)prec, probes[i]);
+                size_t b = first_above_literal(ix, probes[i]);
+                cr_assert(a == b, "precision %d, x %a: %zu, bisection %zu", prec, probes[i], a, b);
+            }
+        }
+    }
+}
+
 /* sol_nm_sort16: ascending, the same multiset, on random values, many ties, zeros of both signs,
  * infinities and the extremes of the double range. */
 Test(normalmaps, sort16_sorts)
