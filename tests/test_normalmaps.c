@@ -348,6 +348,116 @@ Test(normalmaps, bc4_small_palettes_are_the_table_rows)
     }
 }
 
+/* sol_nm_reference_order against its literal definition (the stable insertion sort it was written
+ * as: smallest first - the first of equal smallest -, then the first largest, then the rest by
+ * decreasing |t - mean|, ties lower pixel first), on random, tied, flat, signed-zero and two-valued
+ * blocks (the library places each pixel by its rank, AVX2 or scalar; same picks on ties; the scalar
+ * rank form is compared in reference_order_and_nearest_indices_equal_their_literal_forms). */
+static void reference_order_literal(const double t[16], int order[16])
+{
+    double mean = 0.0;
+    for (int p = 0; p < 16; ++p)
+        mean += t[p];
+    mean /= 16.0;
+    int lo = 0, hi = 0;
+    for (int p = 1; p < 16; ++p) {
+        if (t[p] < t[lo])
+            lo = p;
+        if (t[p] > t[hi])
+            hi = p;
+    }
+    int n = 0;
+    order[n++] = lo;
+    if (hi != lo)
+        order[n++] = hi;
+    const int first = n;
+    double key[16];
+    for (int p = 0; p < 16; ++p) {
+        if (p == lo || p == hi)
+            continue;
+        double k = fabs(t[p] - mean);
+        int q = n++;
+        for (; q > first && key[q - 1] < k; --q) {
+            key[q] = key[q - 1];
+            order[q] = order[q - 1];
+        }
+        key[q] = k;
+        order[q] = p;
+    }
+}
+
+Test(normalmaps, reference_order_matches_literal)
+{
+    for (int trial = 0; trial < 20000; ++trial) {
+        double t[16];
+        for (int p = 0; p < 16; ++p) {
+            double u = uniform();
+            switch (trial % 5) {
+            case 0: t[p] = 2.0 * u - 1.0; break;
+            case 1: t[p] = floor(5.0 * u) / 4.0 - 0.5; break; /* ties, extremes repeated */
+            case 2: t[p] = 0.25; break;                        /* flat: lo == hi */
+            case 3: t[p] = u < 0.5 ? -0.0 : 0.0; break;
+            default: t[p] = u < 0.5 ? -1.0 : 1.0; break;
+            }
+        }
+        int a[16], b[16];
+        sol_nm_reference_order(t, a);
+        reference_order_literal(t, b);
+        cr_assert(memcmp(a, b, sizeof a) == 0, "trial %d: orders differ", trial);
+    }
+}
+
+/* The common search's bucketed first_above (sol_nm_entry_first_above) against the literal bisection
+ * over the whole entry index, for every precision: at every index value and its neighbouring
+ * doubles, at the bucket edges -1 + b / 2048 and their neighbours, at random points, outside
+ * [-1, 1], at the infinities and at NaN. */
+static size_t first_above_literal(const sol_nm_entry_index *ix, double x)
+{
+    size_t lo = 0, hi = ix->count;
+    while (lo < hi) {
+        size_t mid = (lo + hi) >> 1;
+        if (ix->value[mid] <= x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+Test(normalmaps, entry_first_above_matches_bisection)
+{
+    for (int prec = 0; prec < SOL_BC4_PRECISION_COUNT; ++prec) {
+        const sol_nm_entry_index *ix = sol_nm_entry_index_get((sol_bc4_precision)prec);
+        cr_assert(ix != NULL);
+        double probes[8];
+        for (size_t k = 0; k < ix->count + 4096 + 20000; ++k) {
+            double x;
+            if (k < ix->count)
+                x = ix->value[k];
+            else if (k < ix->count + 4096)
+                x = -1.0 + (double)(k - ix->count) / 2048.0;
+            else
+                x = 2.2 * uniform() - 1.1;
+            probes[0] = x;
+            probes[1] = nextafter(x, -INFINITY);
+            probes[2] = nextafter(x, INFINITY);
+            probes[3] = 0.5 * (x + probes[2]);
+            int np = 4;
+            if (k == 0) {
+                probes[np++] = INFINITY;
+                probes[np++] = -INFINITY;
+                probes[np++] = NAN;
+                probes[np++] = 1e300;
+            }
+            for (int i = 0; i < np; ++i) {
+                size_t a = sol_nm_entry_first_above((sol_bc4_precision)prec, probes[i]);
+                size_t b = first_above_literal(ix, probes[i]);
+                cr_assert(a == b, "precision %d, x %a: %zu, bisection %zu", prec, probes[i], a, b);
+            }
+        }
+    }
+}
+
 /* sol_nm_sort16: ascending, the same multiset, on random values, many ties, zeros of both signs,
  * infinities and the extremes of the double range. */
 Test(normalmaps, sort16_sorts)
@@ -2192,39 +2302,6 @@ Test(normalmaps, carried_over_screens_keep_the_survey_results)
  * ranks, scalar and AVX2, equals the insertion sort it replaced; the 16 nearest indices by the fast
  * encoder's scan equal sol_nm_nearest_index's (the first entry on ties) - over random targets, targets
  * with repeated values and exact ties between palette entries, and +-0. */
-static void reference_order_literal(const double t[16], int order[16])
-{
-    double mean = 0.0;
-    for (int p = 0; p < 16; ++p)
-        mean += t[p];
-    mean /= 16.0;
-    int lo = 0, hi = 0;
-    for (int p = 1; p < 16; ++p) {
-        if (t[p] < t[lo])
-            lo = p;
-        if (t[p] > t[hi])
-            hi = p;
-    }
-    int n = 0;
-    order[n++] = lo;
-    if (hi != lo)
-        order[n++] = hi;
-    const int first = n;
-    double key[16];
-    for (int p = 0; p < 16; ++p) {
-        if (p == lo || p == hi)
-            continue;
-        double k = fabs(t[p] - mean);
-        int q = n++;
-        for (; q > first && key[q - 1] < k; --q) {
-            key[q] = key[q - 1];
-            order[q] = order[q - 1];
-        }
-        key[q] = k;
-        order[q] = p;
-    }
-}
-
 Test(normalmaps, reference_order_and_nearest_indices_equal_their_literal_forms)
 {
     unsigned long long s = 12345;

@@ -169,6 +169,7 @@ typedef struct common_ctx {
     double q[9], q_slack;
     int q_rows;
     double gcost[16][16]; /* group_cost(i, j) for i >= 1, tabulated with row 2 */
+    const uint32_t *fa; /* first_above's bucket table (blocks that walk) */
 } common_ctx;
 
 /* Sum of squares of sorted[i..j] about their mean. */
@@ -781,6 +782,7 @@ static void refine(common_ctx *c, int six, int l, int h)
     static const double weight[2][8] = {{0.0, 1.0 / 7, 2.0 / 7, 3.0 / 7, 4.0 / 7, 5.0 / 7, 6.0 / 7, 1.0},
                                         {0.0, 1.0 / 5, 2.0 / 5, 3.0 / 5, 4.0 / 5, 1.0, 0.0, 0.0}};
     const int den = six ? 5 : 7;
+    int l_prev = -1000, h_prev = -1000; /* the previous round's rounded refit */
     for (int round = 0; round < 3; ++round) {
         double al = anchor(l), ah = anchor(h), step = (ah - al) / den, inv = step > 0.0 ? 1.0 / step : 0.0;
         double saa = 0.0, sab = 0.0, sbb = 0.0, sat = 0.0, sbt = 0.0;
@@ -803,6 +805,13 @@ static void refine(common_ctx *c, int six, int l, int h)
             return;
         double fl = (sat * sbb - sbt * sab) / det, fh = (sbt * saa - sat * sab) / det;
         int l0 = code_floor(fl), h0 = code_floor(fh), nl = l, nh = h;
+        /* the same refit as the previous round's: its four pairs are scored already, and scoring a
+         * pair again cannot change the incumbent (it is at least as good as that pair, and no later
+         * than it on a tie) - the usual end of the refit (issue 13, common-speed) */
+        if (l0 == l_prev && h0 == h_prev)
+            return;
+        l_prev = l0;
+        h_prev = h0;
         for (int dl = 0; dl < 2; ++dl)
             for (int dh = 0; dh < 2; ++dh)
                 try_move(c, six, l0 + dl, h0 + dh, &nl, &nh);
@@ -899,18 +908,71 @@ static int distinct_values(const common_ctx *c)
     return nv;
 }
 
-/* The first entry value above x. */
-static size_t first_above(const sol_nm_entry_index *ix, double x)
+/* The first entry value above x in value[lo .. hi) (hi if none), by bisection. */
+static size_t bisect_above(const double *value, size_t lo, size_t hi, double x)
 {
-    size_t lo = 0, hi = ix->count;
     while (lo < hi) {
         size_t mid = (lo + hi) >> 1;
-        if (ix->value[mid] <= x)
+        if (value[mid] <= x)
             lo = mid + 1;
         else
             hi = mid;
     }
     return lo;
+}
+
+/* The bisection of first_above started from a bucket: above[b] = the first entry value above the
+ * edge -1 + b / FA_BUCKETS * 2 (b = 0 .. FA_BUCKETS), per precision, so that x between two edges
+ * has its answer between theirs (first_above is non-decreasing in x) and the bisection runs over a
+ * few dozen values near x instead of the ~10^5-10^6 of the index, whose first ~15 levels missed the
+ * caches (issue 13, common-speed: the walk's ~3 searches per distinct value were most of
+ * sol_nm_bc4_common's own time on the noise map, perf). */
+#define FA_BUCKETS 4096
+static uint32_t fa_table[SOL_BC4_PRECISION_COUNT][FA_BUCKETS + 1];
+static pthread_once_t fa_once[SOL_BC4_PRECISION_COUNT] = {PTHREAD_ONCE_INIT, PTHREAD_ONCE_INIT, PTHREAD_ONCE_INIT};
+
+static inline double fa_edge(int b)
+{
+    return -1.0 + b * (2.0 / FA_BUCKETS); /* exact: b 2^-11 */
+}
+
+static void build_fa(sol_bc4_precision precision)
+{
+    const sol_nm_entry_index *ix = sol_nm_entry_index_get(precision);
+    for (int b = 0; b <= FA_BUCKETS; ++b)
+        fa_table[precision][b] = ix ? (uint32_t)bisect_above(ix->value, 0, ix->count, fa_edge(b)) : 0;
+}
+static void build_fa_16bit(void) { build_fa(SOL_BC4_INTERP_16BIT); }
+static void build_fa_8bit(void) { build_fa(SOL_BC4_INTERP_8BIT); }
+static void build_fa_float(void) { build_fa(SOL_BC4_INTERP_FLOAT); }
+
+static const uint32_t *fa_get(sol_bc4_precision precision)
+{
+    static void (*const builders[SOL_BC4_PRECISION_COUNT])(void) = {build_fa_16bit, build_fa_8bit, build_fa_float};
+    pthread_once(&fa_once[precision], builders[precision]);
+    return fa_table[precision];
+}
+
+/* The first entry value above x (count if none): the same index as bisect_above over the whole
+ * index (tested against it), from the bucket table fa of the index's precision. */
+static size_t first_above(const sol_nm_entry_index *ix, const uint32_t *fa, double x)
+{
+    if (x != x)
+        return 0; /* no value is <= NaN: the bisection's answer */
+    const double y = (x + 1.0) * (FA_BUCKETS / 2);
+    int b = y < 0.0 ? -1 : (y >= FA_BUCKETS ? FA_BUCKETS : (int)y);
+    while (b >= 0 && x < fa_edge(b)) /* the rounding of y aside: edge(b) <= x < edge(b + 1) */
+        --b;
+    while (b >= 0 && b < FA_BUCKETS && x >= fa_edge(b + 1))
+        ++b;
+    const size_t lo = b < 0 ? 0 : fa[b], hi = b < 0 ? fa[0] : (b == FA_BUCKETS ? ix->count : fa[b + 1]);
+    return bisect_above(ix->value, lo, hi, x);
+}
+
+size_t sol_nm_entry_first_above(sol_bc4_precision precision, double x)
+{
+    const sol_nm_entry_index *ix = sol_nm_entry_index_get(precision);
+    return ix ? first_above(ix, fa_get(precision), x) : 0;
 }
 
 static void walk_prepare(const common_ctx *c, const sol_nm_entry_index *ix, walk_plan *w)
@@ -921,7 +983,7 @@ static void walk_prepare(const common_ctx *c, const sol_nm_entry_index *ix, walk
         while (j < 16 && c->sorted[j] == c->sorted[i])
             ++j;
         const double t = c->sorted[i];
-        const size_t a = first_above(ix, t);
+        const size_t a = first_above(ix, c->fa, t);
         double m = INFINITY;
         if (a > 0)
             m = (ix->value[a - 1] - t) * (ix->value[a - 1] - t);
@@ -954,7 +1016,7 @@ static size_t walk_work(const common_ctx *c, const sol_nm_entry_index *ix, const
     if (!(slack < INFINITY))
         return SIZE_MAX;
     double r = sqrt((slack > 0.0 ? slack : 0.0) / w->count[i] + w->term[i]) * (1.0 + 1e-9) + 1e-15;
-    return ix->start[first_above(ix, w->val[i] + r)] - ix->start[first_above(ix, w->val[i] - r)];
+    return ix->start[first_above(ix, c->fa, w->val[i] + r)] - ix->start[first_above(ix, c->fa, w->val[i] - r)];
 }
 
 /* The least float at least x (x finite, well inside the float range): for a float g, g >= x exactly
@@ -990,7 +1052,7 @@ static uint32_t next_near(const float *gap, uint32_t j, uint32_t b, float far)
 static int narrow_walk(common_ctx *c, const sol_nm_entry_index *ix, const walk_plan *w, int iu, size_t max_work)
 {
     const double u = w->val[iu];
-    size_t hi = first_above(ix, u), lo = hi, n = ix->count, work = 0; /* next values above and below u */
+    size_t hi = first_above(ix, c->fa, u), lo = hi, n = ix->count, work = 0; /* next values above and below u */
     while (lo > 0 || hi < n) {
         double dlo = lo > 0 ? (ix->value[lo - 1] - u) * (ix->value[lo - 1] - u) : INFINITY;
         double dhi = hi < n ? (ix->value[hi] - u) * (ix->value[hi] - u) : INFINITY;
@@ -1094,6 +1156,7 @@ int sol_nm_bc4_common(const double t[16], sol_bc4_precision precision, double *s
     walk_plan wp;
     int walk_pair = -1;
     if (ix) {
+        c.fa = fa_get(precision);
         walk_prepare(&c, ix, &wp);
         if (nv <= WALK_FIRST_VALUES) { /* flat: the walk needs no incumbent */
             c.best = INFINITY;

@@ -142,6 +142,9 @@ typedef struct sol_nm_entry_index {
 } sol_nm_entry_index;
 /* The index of a precision (valid), built once on first use (thread-safe); NULL if out of memory. */
 const sol_nm_entry_index *sol_nm_entry_index_get(sol_bc4_precision precision);
+/* The first value of that index above x (its count if none; 0 if the index cannot be built), as the
+ * common search finds it (bc4_common.c, from a table of bucket edges; for the tests). */
+size_t sol_nm_entry_first_above(sol_bc4_precision precision, double x);
 /* The BC4 encoders' input check and mapping: UNORM values in [0, 1] to targets t = 2 v - 1 in the
  * decoded units; SOL_ERR_NONFINITE or SOL_ERR_OUT_OF_RANGE (t partly written) otherwise. */
 sol_status sol_nm_bc4_targets(const double values[16], double t[16]);
