@@ -1,41 +1,11 @@
 /* bc5.c - 3Dc (BC5) blocks: decoding with z rebuilt, the angular error of a block (T10), joint
  * index choice, and the exact joint anchor search by branch and bound (T10/T11). */
-#include "normalmaps_internal.h"
+#include "bc5_search.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <float.h>
 #include <string.h>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
-/* Relative slack on lower bounds: the bounds hold exactly in real arithmetic; the slack covers
- * rounding so that no candidate better than the incumbent is ever pruned. */
-#define BOUND_SLACK 1e-9
-
-/* The per-candidate helpers of the searches (channel sides, the quick bound, the window's pair
- * scores) also have an AVX2 form, 4 pixels per instruction, picked at run time on x86-64 CPUs that
- * have it: per pixel the same IEEE operations in the same order (sub, mul, add, sqrt are correctly
- * rounded in either form; min/max and the comparisons select exactly as the scalar ternaries; no FMA),
- * and sums over pixels still taken one pixel at a time in the reference order, so the results are
- * bit-identical to the scalar form (the tests run both). */
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__)
-#include <immintrin.h>
-#define SEARCH_AVX2 1
-#define AVX2_FN __attribute__((target("avx2")))
-/* 1 when the AVX2 forms may run: the CPU has AVX2 and sol_nm_simd_disable has not been set. */
-static int search_avx2(void)
-{
-    return !sol_nm_simd_disable && __builtin_cpu_supports("avx2");
-}
-#else
-#define SEARCH_AVX2 0
-static int search_avx2(void)
-{
-    return 0;
-}
-#endif
 int sol_nm_simd_disable;
 
 /* The palette of the pair PREFETCH_AHEAD places further down a list, asked for ahead of its use: the
@@ -71,39 +41,9 @@ sol_status sol_nm_unit_normals(const double in[16][3], double out[16][3])
     return SOL_OK;
 }
 
-/* The decoded normal for components a, b: z = sqrt(max(0, 1 - a^2 - b^2)) (talk: z reconstructed). */
-/* One pixel's term folded into a block objective: their sum (SOL_BC5_SUM_SQUARED) or their max
- * (SOL_BC5_MAX), the later term kept only if strictly larger. */
-static inline double fold_term(double s, double term, int use_max)
-{
-    return use_max ? (term > s ? term : s) : s + term;
-}
 
-/* Folds terms[0 .. n) into *s in order, one work unit each, stopping as soon as *s reaches budget
- * (the quick bounds' early exit); 1 if it stopped there. */
-static inline int fold_terms_until(double *s, const double *terms, int n, int use_max, double budget, uint64_t *work)
-{
-    for (int k = 0; k < n; ++k) {
-        ++*work;
-        *s = fold_term(*s, terms[k], use_max);
-        if (*s >= budget)
-            return 1;
-    }
-    return 0;
-}
 
-static inline double rebuild_z(double a, double b)
-{
-    double zz = 1.0 - a * a - b * b;
-    return zz > 0.0 ? sqrt(zz) : 0.0;
-}
 
-/* Angle in radians between the decoded (a, b, z) and the unit source n (sol_angle3: atan2 form). */
-static inline double decoded_angle(double a, double b, const double n[3])
-{
-    double u[3] = {a, b, rebuild_z(a, b)};
-    return sol_angle3(u, n);
-}
 
 /* The index pair (i, j) of palettes a, b whose decoded normal is closest in angle to n.
  * Candidates are compared by the cosine of their angle. A candidate with x^2 + y^2 <= 1 decodes to
@@ -119,7 +59,7 @@ static inline double decoded_angle(double a, double b, const double n[3])
  * the reference walk's, bit for bit, and on smooth pixels it costs the seed and a few neighbours
  * instead of 64 pairs. */
 #if SEARCH_AVX2
-/* best_pixel_index's per-channel squared distances d[k] = (p[k] - t)^2 (the same operations) and the
+/* sol_nm_bc5_best_pixel_index's per-channel squared distances d[k] = (p[k] - t)^2 (the same operations) and the
  * first index of their least (the scalar loop's strict comparisons keep the first). */
 static inline AVX2_FN int channel_distances_avx2(const double p[8], double t, double d[8])
 {
@@ -146,7 +86,7 @@ static inline AVX2_FN unsigned within_mask_avx2(const double d[8], double keep, 
 }
 #endif
 
-/* best_pixel_index's walk; avx2: the distances and masks by the AVX2 helpers (same values). */
+/* sol_nm_bc5_best_pixel_index's walk; avx2: the distances and masks by the AVX2 helpers (same values). */
 static inline __attribute__((always_inline)) void best_pixel_index_body(const double a[8], const double b[8],
                                                                         const double n[3], int *bi, int *bj, int avx2)
 {
@@ -243,8 +183,7 @@ static AVX2_FN void best_pixel_index_avx2(const double a[8], const double b[8], 
 }
 #endif
 
-static void best_pixel_index(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
-{
+void sol_nm_bc5_best_pixel_index(const double a[8], const double b[8], const double n[3], int *bi, int *bj) {
 #if SEARCH_AVX2
     if (search_avx2()) {
         best_pixel_index_avx2(a, b, n, bi, bj);
@@ -254,22 +193,20 @@ static void best_pixel_index(const double a[8], const double b[8], const double 
     best_pixel_index_body(a, b, n, bi, bj, 0);
 }
 
-/* The angle (radians) of best_pixel_index's choice. */
-static double best_pixel(const double a[8], const double b[8], const double n[3], int *bi, int *bj)
-{
-    best_pixel_index(a, b, n, bi, bj);
+/* The angle (radians) of sol_nm_bc5_best_pixel_index's choice. */
+double sol_nm_bc5_best_pixel(const double a[8], const double b[8], const double n[3], int *bi, int *bj) {
+    sol_nm_bc5_best_pixel_index(a, b, n, bi, bj);
     return decoded_angle(a[*bi], b[*bj], n);
 }
 
 /* Block objective for palettes a, b (decoded units): sum dN^2 or max dN^2 over pixels with joint
  * index choice. Stops and returns a value >= budget once the partial value reaches it. */
-static double joint_objective(const double a[8], const double b[8], const double n[16][3], int use_max,
-                              double budget, uint8_t *ix, uint8_t *iy)
-{
+double sol_nm_bc5_joint_objective(const double a[8], const double b[8], const double n[16][3], int use_max,
+                                  double budget, uint8_t *ix, uint8_t *iy) {
     double s = 0.0;
     for (int p = 0; p < 16; ++p) {
         int i, j;
-        double e = best_pixel(a, b, n[p], &i, &j);
+        double e = sol_nm_bc5_best_pixel(a, b, n[p], &i, &j);
         s = fold_term(s, e * e, use_max);
         if (ix) {
             ix[p] = (uint8_t)i;
@@ -281,69 +218,24 @@ static double joint_objective(const double a[8], const double b[8], const double
     return s;
 }
 
-/* A lower bound of the squared angle dN^2 of the decoded (a, b) against unit n, without atan2: the
- * chord c between the unit directions gives dN = 2 asin(c / 2), so dN^2 >= c^2 + c^4 / 12 (all the
- * series' terms are positive). c^2 is computed from components (no 2 - 2 cos cancellation); c is
- * lowered by 1e-6 relative and 1e-15 absolute to cover its rounding and that of sol_angle3's atan2,
- * so the bound stays below the computed angle squared (angle2_lower_bound, below: decode_chord2
- * computes c^2, chord2_angle2_lower the rest). */
-static inline double decode_chord2(double a, double b, const double n[3])
-{
-    double r2 = a * a + b * b, c2;
-    if (r2 <= 1.0) {
-        double z = sqrt(1.0 - r2);
-        /* z - nz = (nx^2 + ny^2 - a^2 - b^2) / (z + nz) for unit n, accurate when z ~ nz */
-        double dz = z + n[2] > 0.0 ? (n[0] * n[0] + n[1] * n[1] - r2) / (z + n[2]) : z - n[2];
-        c2 = (a - n[0]) * (a - n[0]) + (b - n[1]) * (b - n[1]) + dz * dz;
-    } else {
-        double inv = 1.0 / sqrt(r2);
-        c2 = (a * inv - n[0]) * (a * inv - n[0]) + (b * inv - n[1]) * (b * inv - n[1]) + n[2] * n[2];
-    }
-    return c2;
-}
-
-/* angle2_lower_bound's conversion of the squared chord c2 to the dN^2 bound: non-decreasing in c2 (in
- * each branch, and at the switch the asin branch gives (2 asin(c / 2))^2 >= c^2 (1 + c^2 / 12) for the
- * larger c), so it maps a least chord to a bound of every decode's angle. */
-static inline double chord2_angle2_lower(double c2)
-{
-    double c = sqrt(c2) * (1.0 - 1e-6) - 1e-15; /* relative and absolute rounding of c and of dN */
-    if (c > 0.2) { /* large angles (rims, pixels pointing away): the series is loose, use dN itself.
-                    * There c and the computed angle (atan2 of a cross product and a dot product of
-                    * magnitude ~1) carry relative rounding errors of a few 1e-16, so lowering c by a
-                    * relative 1e-12 covers them (asin's relative change is at least c's); the closer
-                    * bound lets near-ties at the hemisphere bound be rejected without atan2 */
-        c = sqrt(c2) * (1.0 - 1e-12);
-        double e = 2.0 * asin(c < 2.0 ? 0.5 * c : 1.0);
-        return e * e;
-    }
-    return c > 0.0 ? c * c * (1.0 + c * c / 12.0) : 0.0;
-}
-
-static inline double angle2_lower_bound(double a, double b, const double n[3])
-{
-    return chord2_angle2_lower(decode_chord2(a, b, n));
-}
-
 /* A lower bound of the joint objective with the pixels visited in `order` (worst first, so that
  * hopeless candidates stop early): each pixel's jointly best index pair (the same choice as
- * best_pixel), its dN^2 bounded below by angle2_lower_bound. The search rejects a candidate when
- * this reaches the incumbent and re-evaluates survivors exactly with joint_objective. */
-static double joint_objective_lower(const double a[8], const double b[8], const double n[16][3],
-                                    const int order[16], const double away_off[16], int use_max, double best,
-                                    double budget, uint64_t *work)
-{
+ * sol_nm_bc5_best_pixel), its dN^2 bounded below by angle2_lower_bound. The search rejects a candidate when
+ * this reaches the incumbent and re-evaluates survivors exactly with sol_nm_bc5_joint_objective. */
+double sol_nm_bc5_joint_objective_lower(const double a[8], const double b[8], const double n[16][3],
+                                        const int order[16], const double away_off[16], int use_max, double best,
+                                        double budget, uint64_t *work) {
     double s = 0.0;
     for (int k = 0; k < 16; ++k) {
         *work += 32;
         int i, j;
         const double *np = n[order[k]];
-        best_pixel_index(a, b, np, &i, &j);
+        sol_nm_bc5_best_pixel_index(a, b, np, &i, &j);
         double e2 = angle2_lower_bound(a[i], b[j], np);
         e2 = e2 > away_off[k] ? e2 : away_off[k]; /* the hemisphere bound theta0^2 */
         if (use_max && e2 < budget && e2 >= best * (1.0 - 1e-5)) {
             /* max metric, a pixel within the bounds' slack of the incumbent: its exact angle is the
-             * one joint_objective would compute (same index pair, same function), and the max of the
+             * one sol_nm_bc5_joint_objective would compute (same index pair, same function), and the max of the
              * block is at least it; so a pixel at or above the incumbent rejects the candidate
              * exactly (it cannot be strictly better), which decides exact ties of the worst pixel */
             double e = decoded_angle(a[i], b[j], np);
@@ -356,36 +248,6 @@ static double joint_objective_lower(const double a[8], const double b[8], const 
     }
     return s;
 }
-
-/* ---- pixels pointing away (nz < 0) ----
- *
- * A decoded normal u lies on the upper hemisphere (z >= 0). Write the unit source normal as
- * n = (rho m, -h) with m the unit rim direction of its (x, y), rho = sqrt(1 - h^2), h = -nz > 0,
- * and u = (cos e w, sin e) with elevation e >= 0 and rim direction w. Then
- *     cos dN = u . n = rho cos e (w . m) - h sin e <= rho cos e (w . m) = rho (u . m),
- * and u . m = 1 - c^2 / 2 with c = |u - m| the chord from u to the rim point m. So
- *     dN >= H(c^2) = acos(rho (1 - c^2 / 2)),
- * the angle of the closest point of the hemisphere, theta0 = H(0) = atan2(h, rho) = asin(h) (the
- * hemisphere bound), growing with the chord to m. acos(y)^2 is convex on (-1, 1) (its second
- * derivative is 2 (1 - y acos(y) / sqrt(1 - y^2)) / (1 - y^2) > 0, as alpha < tan alpha for
- * y = cos alpha in (0, 1) and trivially for y <= 0), and y is affine in c^2, so H^2 lies above its
- * tangent at 0:
- *     dN^2 >= theta0^2 + k c^2,  k = 2 theta0 H'(0) = theta0 rho / h (= theta0 cot theta0).
- * The chord splits by channel like the rim pixels' loose bound, with m's components as targets:
- * an unclamped decode (a, b, z) has c^2 >= (a - mx)^2 + (b - my)^2, a clamped one (a, b, 0) / r has
- * x component a / r in [a / sqrt(1 + a^2), a] (see sol_nm_loose_term). So each channel's loose term
- * of such a pixel becomes theta0^2 (half of it per channel for the sum metric, all of it for the
- * max) + k (loose distance of mx)^2, instead of the near-zero loose distance of nx: the lists of
- * anchor pairs of a block pointing away shrink from nearly all 65536 pairs to those whose entries
- * can point the decoded rim direction at every m. rho = 0 (n = (0, 0, -1)) gives k = 0: the
- * hemisphere bound (pi / 2)^2 alone. The quick bound uses the same sum per pixel, and every
- * per-candidate bound at least theta0^2. */
-typedef struct away_info {
-    unsigned mask;       /* bit p: pixel p points away (and is loose) */
-    double m[2][16];     /* the rim targets mx, my (the pixel's nx, ny where not away) */
-    double w[16];        /* k, lowered by 1e-12 relative (rounding) */
-    double off[16];      /* theta0^2, lowered likewise (0 where not away) */
-} away_info;
 
 static void away_info_init(away_info *aw, const double n[16][3], unsigned loose)
 {
@@ -408,29 +270,12 @@ static void away_info_init(away_info *aw, const double n[16][3], unsigned loose)
     }
 }
 
-/* ---- the quick per-candidate bound ----
- *
- * joint_objective_lower finds each pixel's jointly best index pair (an 8 x 8 search): exact, but most
- * of the search's time on rough blocks. The quick bound needs per pixel only what each channel's
- * palette gives alone, precomputed once per anchor pair (channel_side): the nearest entry's value v,
- * its squared distance m1 and the least squared distance m2 of an entry of ANOTHER value. The decode
- * of the two nearest entries (v_x, v_y) has chord^2 c00 (with z); any other index pair (i, j) decodes
- * to a different vector and has, unclamped, chord^2 >= (a_i - nx)^2 + (b_j - ny)^2 >=
- * min(m2_x + m1_y, m1_x + m2_y), and clamped (z = 0) chord^2 >= nz^2. So every pixel's chord^2 is at
- * least min(c00, m2_x + m1_y, m1_x + m2_y, nz^2) whatever pair best_pixel picks, and dN^2 >= chord^2.
- * It equals the exact per-pixel bound whenever the nearest pair wins clearly, which on smooth and
- * rough blocks alike is most pixels; the survivors go on to joint_objective_lower. */
-typedef struct channel_side {
-    double v[16], m1[16], m2[16]; /* per pixel, in the search's visiting order */
-    double lt[16];                /* pixels pointing away: k (loose distance of m's component)^2, else 0 */
-} channel_side;
 
 /* The nearest-entry part of a channel side: for each target t[k], the first nearest entry's value v
  * (strict comparisons in palette order), its squared distance m1 and the least squared distance m2
  * of an entry of another value. */
 /* s's nearest-entry fields for targets t (in visiting order), by the AVX2 form where it runs. */
-static void channel_side_fill(const double pal[8], const double t[16], channel_side *s)
-{
+void sol_nm_bc5_channel_side_fill(const double pal[8], const double t[16], channel_side *s) {
 #if SEARCH_AVX2
     if (search_avx2()) {
         sol_nm_channel_side_avx2(pal, t, s->v, s->m1, s->m2, 1);
@@ -441,16 +286,15 @@ static void channel_side_fill(const double pal[8], const double t[16], channel_s
 }
 
 /* Fills s for palette pal against component c (0 = x, 1 = y) of the pixels n[order[k]]. */
-static void channel_side_init(const double pal[8], const double n[16][3], const int order[16], int c,
-                              const away_info *aw, channel_side *s)
-{
+void sol_nm_bc5_channel_side_init(const double pal[8], const double n[16][3], const int order[16], int c,
+                                  const away_info *aw, channel_side *s) {
     double t[16];
     for (int k = 0; k < 16; ++k) {
         int p = order[k];
         s->lt[k] = (aw->mask >> p) & 1 ? aw->w[p] * sol_nm_loose_term(pal, aw->m[c][p]) : 0.0;
         t[k] = n[p][c];
     }
-    channel_side_fill(pal, t, s);
+    sol_nm_bc5_channel_side_fill(pal, t, s);
 }
 
 /* The quick lower bound of the joint objective (pixels in `order`, stops once it reaches budget).
@@ -480,31 +324,10 @@ static inline double quick_term(const channel_side *xs, const channel_side *ys, 
 }
 
 #if SEARCH_AVX2
-/* joint_objective_quick's tight per-pixel terms for pixels k..k+3 (before the away term and the
- * clamp at 0): the square root of a clamped argument, its result selected only where zz > 0, as the
- * scalar branch. Shared by quick_terms_avx2 and the window's window_quick_avx2. */
-static inline AVX2_FN __m256d quick_tight4(const channel_side *xs, const channel_side *ys, const double nz[16], int k)
-{
-    const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
-    const __m256d lower = _mm256_set1_pd(1.0 - 3e-6), absolute = _mm256_set1_pd(5e-15);
-    __m256d a = _mm256_loadu_pd(xs->v + k), b = _mm256_loadu_pd(ys->v + k), z = _mm256_loadu_pd(nz + k);
-    __m256d m1x = _mm256_loadu_pd(xs->m1 + k), m1y = _mm256_loadu_pd(ys->m1 + k);
-    __m256d nz2 = _mm256_mul_pd(z, z);
-    __m256d lb = _mm256_min_pd(_mm256_add_pd(_mm256_loadu_pd(xs->m2 + k), m1y),
-                               _mm256_add_pd(m1x, _mm256_loadu_pd(ys->m2 + k)));
-    lb = _mm256_min_pd(nz2, lb);
-    __m256d zz = _mm256_sub_pd(_mm256_sub_pd(one, _mm256_mul_pd(a, a)), _mm256_mul_pd(b, b));
-    __m256d up = _mm256_cmp_pd(zz, zero, _CMP_GT_OQ);
-    __m256d dz = _mm256_sub_pd(_mm256_sqrt_pd(_mm256_and_pd(zz, up)), z);
-    __m256d c2 = _mm256_blendv_pd(nz2, _mm256_add_pd(_mm256_add_pd(m1x, m1y), _mm256_mul_pd(dz, dz)), up);
-    lb = _mm256_min_pd(c2, lb);
-    return _mm256_sub_pd(_mm256_mul_pd(lb, lower), absolute);
-}
 
-/* joint_objective_quick's per-pixel terms e2[k], 4 pixels at a time. */
-static AVX2_FN void quick_terms_avx2(const channel_side *xs, const channel_side *ys, const double nz[16],
-                                     const double away_off[16], double e2[16])
-{
+/* sol_nm_bc5_joint_objective_quick's per-pixel terms e2[k], 4 pixels at a time. */
+AVX2_FN void sol_nm_bc5_quick_terms_avx2(const channel_side *xs, const channel_side *ys, const double nz[16],
+                                         const double away_off[16], double e2[16]) {
     const __m256d away_lower = _mm256_set1_pd(1.0 - 1e-12);
     for (int k = 0; k < 16; k += 4) {
         __m256d e = quick_tight4(xs, ys, nz, k);
@@ -516,14 +339,13 @@ static AVX2_FN void quick_terms_avx2(const channel_side *xs, const channel_side 
 #endif
 
 /* nz[k] = n[order[k]][2] (set once per block by the caller: the AVX2 form's loads). */
-static double joint_objective_quick(const channel_side *xs, const channel_side *ys, const double n[16][3],
-                                    const int order[16], const double nz[16], const double away_off[16], int use_max,
-                                    double budget, uint64_t *work)
-{
+double sol_nm_bc5_joint_objective_quick(const channel_side *xs, const channel_side *ys, const double n[16][3],
+                                        const int order[16], const double nz[16], const double away_off[16],
+                                        int use_max, double budget, uint64_t *work) {
 #if SEARCH_AVX2
     if (search_avx2()) { /* every pixel's term at once, then the sum and the stop as below */
         double e2[16], s = 0.0;
-        quick_terms_avx2(xs, ys, nz, away_off, e2);
+        sol_nm_bc5_quick_terms_avx2(xs, ys, nz, away_off, e2);
         fold_terms_until(&s, e2, 16, use_max, budget, work);
         return s;
     }
@@ -540,18 +362,18 @@ static double joint_objective_quick(const channel_side *xs, const channel_side *
 }
 
 /* The coupled bound of the pixels pointing away (bc5_away.c), between the quick bound and
- * joint_objective_lower: per pixel (in `order`) the quick bound's term (the same formula as
- * joint_objective_quick's), and for a pixel pointing away dN >= acos(cos_max), cos_max the largest
+ * sol_nm_bc5_joint_objective_lower: per pixel (in `order`) the quick bound's term (the same formula as
+ * sol_nm_bc5_joint_objective_quick's), and for a pixel pointing away dN >= acos(cos_max), cos_max the largest
  * cosine of the 64 decodes to n: one decode must point close to n with both components at once (the
  * channel scores and the quick bound let x and y reach the rim direction separately). The cosine is
  * raised by 1e-14 absolute (its rounding, see bc5_away.c) and the angle lowered by 1e-12 relative
- * (acos's), so the bound stays below the angle joint_objective computes for the chosen decode.
+ * (acos's), so the bound stays below the angle sol_nm_bc5_joint_objective computes for the chosen decode.
  * Two passes, each stopping once the value reaches budget: first with the cheaper rim form of the
  * cosine (sol_nm_away_cosine_rim: the z term, <= 0, dropped; one division per decode, no roots),
  * which rejects nearly every candidate of the arcs pointing away, then with the full cosine (the
  * unclamped decodes' z counted) for the candidates left. Work: 1 per pixel as the quick bound, plus
  * 5 per pixel pointing away in the first pass (~25 ns, measured) and 16 in the second (~100 ns,
- * half of joint_objective_lower's per-pixel cost, measured on the survey's arcs pointing away). */
+ * half of sol_nm_bc5_joint_objective_lower's per-pixel cost, measured on the survey's arcs pointing away). */
 static double joint_objective_away(const double a[8], const double b[8], const channel_side *xs,
                                    const channel_side *ys, const double n[16][3], const int order[16],
                                    const double away_off[16], const away_info *aw, int use_max, double budget,
@@ -600,13 +422,11 @@ static sol_status check_options(const sol_bc5_options *o)
     return SOL_OK;
 }
 
-static uint64_t work_limit(const sol_bc5_options *o)
-{
+uint64_t sol_nm_bc5_work_limit(const sol_bc5_options *o) {
     return o->work_limit ? o->work_limit : SOL_BC5_DEFAULT_WORK_LIMIT;
 }
 
-static double metric_value(double internal, sol_bc5_metric metric)
-{
+double sol_nm_bc5_metric_value(double internal, sol_bc5_metric metric) {
     return metric == SOL_BC5_MAX ? sqrt(internal) : internal;
 }
 
@@ -648,7 +468,7 @@ sol_status sol_bc5_block_error(const sol_bc5_block *block, const double normals[
         double e = sol_angle3(d[p], n[p]);
         s = metric == SOL_BC5_MAX ? (e * e > s ? e * e : s) : s + e * e;
     }
-    *error = metric_value(s, metric);
+    *error = sol_nm_bc5_metric_value(s, metric);
     return SOL_OK;
 }
 
@@ -664,38 +484,15 @@ sol_status sol_bc5_choose_indices(sol_bc5_block *block, const double normals[16]
     if (st != SOL_OK)
         return st;
     const double(*pal)[8] = sol_nm_palettes(precision);
-    *error = metric_value(joint_objective(pal[block->x.e0 << 8 | block->x.e1], pal[block->y.e0 << 8 | block->y.e1],
-                                          n, metric == SOL_BC5_MAX, INFINITY, block->x.index, block->y.index),
-                          metric);
+    *error = sol_nm_bc5_metric_value(
+        sol_nm_bc5_joint_objective(pal[block->x.e0 << 8 | block->x.e1], pal[block->y.e0 << 8 | block->y.e1], n,
+                                   metric == SOL_BC5_MAX, INFINITY, block->x.index, block->y.index),
+        metric);
     return SOL_OK;
 }
 
 /* ---- the exact joint search ---- */
 
-/* Scratch of one thread, reused across its blocks: the lists of anchor pairs of each channel and
- * a hash table (list positions + 1) for merging equivalent pairs. */
-typedef struct window_scratch window_scratch;
-typedef struct search_workspace {
-    sol_nm_pair *x, *y;
-    uint32_t *slots;     /* 2 * 65536 entries */
-    channel_side *yside; /* the y list's channel sides (quick bound), grown on demand */
-    size_t yside_cap;
-    struct y_item *ybucket; /* the y list's entries by value (y_index), grown on demand */
-    uint64_t *ymark;     /* marks of y list positions (coupling filter), grown on demand */
-    size_t ybucket_cap, ymark_cap;
-    window_scratch *win; /* the adaptive window path's lists (window_search) */
-    struct value_set *vset;   /* value-level usability (see there), allocated on demand */
-    struct value_mask *vtab; /* VALUE_CODES entries */
-    sol_nm_couple *couple;   /* the coupled row bounds' scratch (bc5_couple.c), allocated on demand */
-    struct pair_screen *screen; /* the pair screen's tables (see there), allocated on demand */
-    struct pixel_floor *floor;  /* the pixel floor's value sets (see there), allocated on demand */
-    uint32_t vgen;
-    struct key_mask *ktab; /* merge_keyed's per-value masks (VALUE_CODES entries), allocated on demand */
-    uint32_t kgen;
-    struct pair_key *kkey; /* merge_keyed's keys of the kept pairs, grown on demand */
-    size_t kkey_cap;
-    sol_nm_pair *sort_tmp; /* sort_pairs' scratch (65536 pairs), allocated on demand */
-} search_workspace;
 
 static int compare_pairs(const void *pa, const void *pb)
 {
@@ -757,40 +554,7 @@ static void sort_pairs(sol_nm_pair *list, size_t count, sol_nm_pair *tmp)
         memcpy(list, from, count * sizeof *list);
 }
 
-static double combine(double sx, double sy, int use_max)
-{
-    return use_max ? (sx > sy ? sx : sy) : sx + sy;
-}
-
-/* ---- equivalent anchor pairs (exact ties decided without enumerating them) ----
- *
- * Within a budget T >= the incumbent, a candidate can only reach the incumbent if every pixel's
- * chosen entry a has (a - t_p)^2 <= T (tight pixels: dN^2 >= chord^2 >= (a - t_p)^2, and a clamped
- * decode has dN^2 >= nz^2 > T) or, on rim pixels, the loose distance of t_p to [a / sqrt 2, a] within
- * sqrt T. Call those entries usable. best_pixel's choice is the first entry pair of largest cosine in
- * a fixed visiting order (seed pair first), and depends only on entry values; so two pairs of one
- * channel whose seeds (nearest entry) and usable entries, in palette order, have bit-identical values
- * on every pixel give every candidate the same objective whenever it can reach T. Flat blocks have
- * hundreds of such pairs per channel (different anchors spanning the same value near the target);
- * the search keeps only the first of each class in its visiting order, which is the candidate the
- * full enumeration would have kept (the first of a tied class is met first), so the result is the
- * same pair as without merging, at a fraction of the work. */
-static inline uint64_t value_bits(double v)
-{
-    uint64_t u;
-    memcpy(&u, &v, sizeof u);
-    return u;
-}
-
-typedef struct channel_key {
-    double t[16];  /* the distinct (target, loose) pixels: equal pixels give equal key parts */
-    int loose[16];
-    int count;
-    double budget; /* T */
-} channel_key;
-
-static void channel_key_init(channel_key *k, const double t[16], unsigned loose, double budget)
-{
+void sol_nm_bc5_channel_key_init(channel_key *k, const double t[16], unsigned loose, double budget) {
     k->count = 0;
     k->budget = budget;
     for (int p = 0; p < 16; ++p) {
@@ -814,20 +578,6 @@ static inline int usable_entry(double a, double t, int loose, double budget)
     return d * d <= budget;
 }
 
-/* The entry best_pixel seeds a pixel with: the first of least (a - t)^2. */
-static inline int seed_entry(const double pal[8], double t)
-{
-    int i0 = 0;
-    double d0 = (pal[0] - t) * (pal[0] - t);
-    for (int k = 1; k < 8; ++k) {
-        double d = (pal[k] - t) * (pal[k] - t);
-        if (d < d0) {
-            d0 = d;
-            i0 = k;
-        }
-    }
-    return i0;
-}
 
 /* seed_entry of each of count <= 16 targets t, into e[0 .. count). */
 static void seed_entries_scalar(const double pal[8], const double *t, int count, int *e)
@@ -872,11 +622,6 @@ static void seed_entries(const double pal[8], const double *t, int count, int *e
     seed_entries_scalar(pal, t, count, e);
 }
 
-static inline uint64_t mix64(uint64_t h, uint64_t v)
-{
-    h ^= v + UINT64_C(0x9E3779B97F4A7C15) + (h << 6) + (h >> 2);
-    return h * UINT64_C(0xBF58476D1CE4E5B9);
-}
 
 /* The usable entries' values of two palettes for each pixel, in palette order, equal bit for bit. */
 static int mask_sequences_equal(const double pa[8], const uint16_t ma[8], const double pb[8], const uint16_t mb[8],
@@ -907,7 +652,7 @@ static int mask_sequences_equal(const double pa[8], const uint16_t ma[8], const 
 static uint64_t masks_hash(const double pal[8], const uint16_t m[8], const uint64_t seed[16], int count)
 {
     /* the seeds mixed each with its pixel's own constant and summed: independent multiplications
-     * instead of a chain of 16 (issue 13: the chain was ~5% of a block pointing away; merge_classes
+     * instead of a chain of 16 (issue 13: the chain was ~5% of a block pointing away; sol_nm_bc5_merge_classes
      * keeps the same pairs whatever the hash) */
     uint64_t h = 0, sum = 0;
     for (int p = 0; p < count; ++p)
@@ -958,8 +703,7 @@ static int key_entry_usable(void *ctx, const double pal[8], int e, int p)
     return usable_entry(pal[e], k->t[p], k->loose[p], k->budget);
 }
 
-static int pair_key_equal(const channel_key *k, const double pa[8], const double pb[8])
-{
+int sol_nm_bc5_pair_key_equal(const channel_key *k, const double pa[8], const double pb[8]) {
     for (int p = 0; p < k->count; ++p) {
         if (value_bits(pa[seed_entry(pa, k->t[p])]) != value_bits(pb[seed_entry(pb, k->t[p])]))
             return 0;
@@ -975,12 +719,6 @@ static int pair_key_equal(const channel_key *k, const double pa[8], const double
  * that equality is only tested where those agree: equal palettes have equal hashes); work (if not
  * NULL) is charged 16 per pair before its hash. Returns the count kept (count <= 65536). */
 #define SLOT_POS ((UINT32_C(1) << 17) - 1)
-typedef struct pair_classes {
-    uint64_t (*hash)(void *ctx, const double pal[8]);
-    int (*equal)(void *ctx, const double pa[8], const double pb[8]);
-    void *ctx;
-    uint64_t *work;
-} pair_classes;
 
 /* Clears the slots of a hash set for count pairs (a power of two >= 2 count, at least 64: at most half
  * full) and returns their number. */
@@ -999,9 +737,8 @@ static uint32_t slot_tag(uint64_t hash)
     return (uint32_t)(hash >> 49) << 17;
 }
 
-static size_t merge_classes(sol_nm_pair *list, size_t count, const double (*pal)[8], const pair_classes *pc,
-                            uint32_t *slots)
-{
+size_t sol_nm_bc5_merge_classes(sol_nm_pair *list, size_t count, const double (*pal)[8], const pair_classes *pc,
+                                uint32_t *slots) {
     const size_t size = slots_clear(slots, count);
     size_t kept = 0;
     for (size_t i = 0; i < count; ++i) {
@@ -1030,17 +767,15 @@ static uint64_t key_hash_fn(void *ctx, const double pal[8])
     return pair_key_hash(ctx, pal);
 }
 
-static int key_equal_fn(void *ctx, const double pa[8], const double pb[8])
-{
-    return pair_key_equal(ctx, pa, pb);
+int sol_nm_bc5_key_equal_fn(void *ctx, const double pa[8], const double pb[8]) {
+    return sol_nm_bc5_pair_key_equal(ctx, pa, pb);
 }
 
 /* Keeps the first pair of each equivalence class of a sorted list (in place); returns the count. */
-static size_t merge_equivalent(sol_nm_pair *list, size_t count, const channel_key *k, const double (*pal)[8],
-                               uint32_t *slots)
-{
-    const pair_classes pc = {key_hash_fn, key_equal_fn, (void *)k, NULL};
-    return merge_classes(list, count, pal, &pc, slots);
+size_t sol_nm_bc5_merge_equivalent(sol_nm_pair *list, size_t count, const channel_key *k, const double (*pal)[8],
+                                   uint32_t *slots) {
+    const pair_classes pc = {key_hash_fn, sol_nm_bc5_key_equal_fn, (void *)k, NULL};
+    return sol_nm_bc5_merge_classes(list, count, pal, &pc, slots);
 }
 
 /* Lower bound of every candidate's objective from the hemisphere alone: a decoded normal has
@@ -1536,7 +1271,7 @@ static int y_filter_pass(const y_filter *f, const double b[8])
 /* ---- the pair screen (issue 13: the arcs and cones pointing away, the jittered rims) ----
  *
  * On these blocks the per-candidate bounds reject nearly every candidate they meet (the coupled
- * cosine of bc5_away.c, or joint_objective_lower for rims), but the lists stay long: the x list keeps
+ * cosine of bc5_away.c, or sol_nm_bc5_joint_objective_lower for rims), but the lists stay long: the x list keeps
  * ~14000 pairs under every row bound (the y list's values leave each x pair some partner), and the
  * candidates met, 1-5 million, each cost 16 x 64 decodes. The screen decides them ahead of the
  * enumeration, one y pair B at a time, through the x VALUES instead of the x pairs:
@@ -2143,8 +1878,8 @@ static int pair_screen_remap(pair_screen *sc, size_t skip, const sol_nm_pair *xl
  *
  * With the max metric a candidate (A, B) beats the incumbent E only if EVERY pixel's term is below E.
  * Pixel p's term is f_p(a_i, b_j) = decoded_angle(a_i, b_j, n_p)^2 for the index pair (i, j) that
- * best_pixel_index picks: whichever pair it picks, the term is that function of the decode's two
- * VALUES and n_p alone (joint_objective computes it so), and the values lie in Vx and Vy, the distinct
+ * sol_nm_bc5_best_pixel_index picks: whichever pair it picks, the term is that function of the decode's two
+ * VALUES and n_p alone (sol_nm_bc5_joint_objective computes it so), and the values lie in Vx and Vy, the distinct
  * values of the x and y lists' palettes (a candidate that can beat E has both pairs in the lists: the
  * lists only ever lose pairs that cannot). So if for one pixel p
  *     f_p(a, b) >= E   for every a in Vx and b in Vy,
@@ -2160,7 +1895,7 @@ static int pair_screen_remap(pair_screen *sc, size_t skip, const sol_nm_pair *xl
  * or for a pixel pointing away |u - m_p|^2 <= (E - theta0^2) / k, the rim bound above; both widened
  * against rounding), a superset of {b : f_p(a, b) < E}; each b of Vy in them is bounded below by
  * angle2_lower_bound (<= f_p) and, where that is below E, f_p is computed exactly, as
- * joint_objective does: one f_p(a, b) < E and the pixel cannot decide. The pixels tested are those
+ * sol_nm_bc5_joint_objective does: one f_p(a, b) < E and the pixel cannot decide. The pixels tested are those
  * whose own term in the incumbent is E (the others have a decode below E: the incumbent's).
  * Values are kept by their codes as in the pair screen (K = round((v + 1) Q / 2), at most two
  * doubles per code, else no test). Work: 8 per x pair and y pair read, 1 per x value, 1 per y code
@@ -2312,7 +2047,7 @@ static int floor_first(pixel_floor *pf, const double n[16][3], const double (*pa
                 return 0;
             ++*candidates;
             *work += 512;
-            if (joint_objective(pal[xl[i].pair], pal[yl[j].pair], n, 1, budget, NULL, NULL) == pf->least) {
+            if (sol_nm_bc5_joint_objective(pal[xl[i].pair], pal[yl[j].pair], n, 1, budget, NULL, NULL) == pf->least) {
                 *fi = i;
                 *fj = j;
                 return 1;
@@ -2333,7 +2068,7 @@ static int pixel_floor_solve(pixel_floor *pf, const double n[16][3], const away_
     int first = 1;
     for (int p = 0; p < 16; ++p) {
         int i, j;
-        double e = best_pixel(a, b, n[p], &i, &j);
+        double e = sol_nm_bc5_best_pixel(a, b, n[p], &i, &j);
         *work += 32;
         if (!(e * e >= best))
             continue;
@@ -2356,7 +2091,7 @@ static int pixel_floor_decides(pixel_floor *pf, const double n[16][3], const awa
 {
     for (int p = 0; p < 16; ++p) {
         int i, j;
-        double e = best_pixel(a, b, n[p], &i, &j);
+        double e = sol_nm_bc5_best_pixel(a, b, n[p], &i, &j);
         *work += 32;
         if (e * e >= best && floor_scan(pf, n, aw, p, best, 0, work) == 1)
             return 1;
@@ -2371,7 +2106,7 @@ static int pixel_floor_decides(pixel_floor *pf, const double n[16][3], const awa
  * equivalence key above counts every such entry as usable, so a smooth block pointing away keeps
  * tens of thousands of x pairs, each met by dozens of y pairs within a hair of the incumbent. But a
  * decode needs an actual y value: an x entry a can serve pixel p under the budget only if some value
- * b of the y list gives a decode (a, b) inside pixel p's ball (search_unit's per-pixel budget T_p:
+ * b of the y list gives a decode (a, b) inside pixel p's ball (sol_nm_bc5_search_unit's per-pixel budget T_p:
  * the incumbent minus the other pixels' hemisphere bounds theta0^2 for the sum metric, the
  * incumbent for the max; the ball |u - n| <= sqrt(T_p), or |u - (m, 0)| <= sqrt((T_p - theta0^2) / k)
  * for a pixel pointing away, see "pixels pointing away"). pixel_y_intervals gives the y intervals of
@@ -2629,7 +2364,7 @@ static size_t usable_filter(sol_nm_pair *list, size_t count, const double (*pal)
 /* The usable masks of a palette's entries (bit p: usable for pixel p), every pixel of each entry's
  * value made known (as the key below needs them all; the same tests and work as testing them one
  * pixel at a time), and each pixel's seed key: the seed entry's value if usable, else a marker: a
- * seed that is not usable starts best_pixel's scan from a decode outside the pixel's ball, which
+ * seed that is not usable starts sol_nm_bc5_best_pixel's scan from a decode outside the pixel's ball, which
  * every usable decode beats, so then only the usable entries' order decides the choice. (NaN bits:
  * never a palette value.) */
 static void usable_masks(value_table *t, const double pal[8], const double tc[16], uint16_t m[8], uint64_t seed[16])
@@ -2650,18 +2385,18 @@ static void usable_masks(value_table *t, const double pal[8], const double tc[16
  * Its hash (masks_hash) is a function of the key alone: the seed keys in pixel order, and the sum
  * over entries usable for some pixel of a mix of (value bits, mask), the mask being that of the
  * value (so the multiset of those is fixed by the key: an entry's value appears in the sequence of
- * every pixel of its mask). Equal keys give equal hashes; merge_classes keeps the first of each class
+ * every pixel of its mask). Equal keys give equal hashes; sol_nm_bc5_merge_classes keeps the first of each class
  * whatever the hash, so the classes and the list kept are those of the per-pixel walk. */
 
-/* merge_equivalent's classes at a fraction of its cost (issue 13: on rims and blocks pointing away it
+/* sol_nm_bc5_merge_equivalent's classes at a fraction of its cost (issue 13: on rims and blocks pointing away it
  * hashed 10^4 - 3 10^4 pairs per list, each over 16 pixels x 8 entries with a mix per usable entry,
  * 25-50 ms a block). An entry's usability for a pixel of the key (usable_entry) depends on its value
  * alone, so each value's mask over the key's distinct pixels (bit q: usable for k->t[q]) is computed
  * once, in a table of value codes (every palette value is K / Q exactly, see value_set), and a pair's
  * key is read from its 8 entries' masks and its seeds: the hash is masks_hash's (a function of the
- * key alone; merge_classes keeps the first pair of each class whatever the hash), the equality
- * mask_sequences_equal's, the same relation as pair_key_equal. So the same pairs are kept, in the
- * same order, as merge_equivalent keeps. */
+ * key alone; sol_nm_bc5_merge_classes keeps the first pair of each class whatever the hash), the equality
+ * mask_sequences_equal's, the same relation as sol_nm_bc5_pair_key_equal. So the same pairs are kept, in the
+ * same order, as sol_nm_bc5_merge_equivalent keeps. */
 typedef struct key_mask {
     uint32_t gen; /* the table's generation when filled (0: never) */
     uint16_t mask;
@@ -2700,7 +2435,7 @@ typedef struct pair_key {
     uint16_t m[8];
 } pair_key;
 
-/* Whether pairs of palettes pa, pb with keys ka, kb are equivalent (pair_key_equal): the same seeds
+/* Whether pairs of palettes pa, pb with keys ka, kb are equivalent (sol_nm_bc5_pair_key_equal): the same seeds
  * and, per pixel, the same usable values in palette order; at once when the usable entries sit at
  * the same places with the same values (then every pixel's sequence is the same). */
 static int keys_equal(const double pa[8], const pair_key *ka, const double pb[8], const pair_key *kb, int count)
@@ -2718,10 +2453,10 @@ typedef void (*pair_key_fn)(void *ctx, const double pal[8], uint16_t m[8], uint6
 /* Asks for the memory pair_key_fn will read for palette pal (a hint: no result depends on it). */
 typedef void (*pair_ahead_fn)(void *ctx, const double pal[8]);
 
-/* merge_classes's walk (the same slots, hash tags and probing; work, if not NULL, charged 16 per
+/* sol_nm_bc5_merge_classes's walk (the same slots, hash tags and probing; work, if not NULL, charged 16 per
  * pair) for classes given by keys (key_fn; hash masks_hash, equality keys_equal over count pixels),
  * with each pair's key computed once and the kept pairs' keys stored (ws->kkey; where it cannot grow,
- * a kept pair's key is computed again): the same pairs kept, in the same order, as merge_classes with
+ * a kept pair's key is computed again): the same pairs kept, in the same order, as sol_nm_bc5_merge_classes with
  * a hash and an equality computing the keys afresh. */
 static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[8], pair_key_fn key_fn,
                            pair_ahead_fn ahead, void *ctx, int npix, search_workspace *ws, uint64_t *work)
@@ -2801,13 +2536,13 @@ static void keyed_ahead_fn(void *ctx, const double pal[8])
         __builtin_prefetch(&kt->slot[(long)((pal[e] + 1.0) * kt->half_q + 0.5)]);
 }
 
-/* merge_equivalent(list, count, k, pal, ws->slots): the same result (above), through merge_stored;
- * merge_equivalent itself if the table cannot be allocated. */
+/* sol_nm_bc5_merge_equivalent(list, count, k, pal, ws->slots): the same result (above), through merge_stored;
+ * sol_nm_bc5_merge_equivalent itself if the table cannot be allocated. */
 static size_t merge_keyed(sol_nm_pair *list, size_t count, const channel_key *k, const double (*pal)[8],
                           sol_bc4_precision precision, search_workspace *ws)
 {
     if (!ws->ktab && !(ws->ktab = calloc(VALUE_CODES, sizeof *ws->ktab)))
-        return merge_equivalent(list, count, k, pal, ws->slots);
+        return sol_nm_bc5_merge_equivalent(list, count, k, pal, ws->slots);
     if (++ws->kgen == 0) { /* wrapped: clear the generations */
         memset(ws->ktab, 0, VALUE_CODES * sizeof *ws->ktab);
         ws->kgen = 1;
@@ -2816,8 +2551,8 @@ static size_t merge_keyed(sol_nm_pair *list, size_t count, const channel_key *k,
     return merge_stored(list, count, pal, keyed_key_fn, keyed_ahead_fn, &kt, k->count, ws, NULL);
 }
 
-/* merge_equivalent with the usable entries of the table (targets tc: the channel's components of n):
- * merge_classes with usable_key_hash and usable_key_equal, through merge_stored (the same keys, the
+/* sol_nm_bc5_merge_equivalent with the usable entries of the table (targets tc: the channel's components of n):
+ * sol_nm_bc5_merge_classes with usable_key_hash and usable_key_equal, through merge_stored (the same keys, the
  * same slot_usable tests and work: a kept pair's values were all made known by its own key). */
 typedef struct usable_ctx {
     value_table *t;
@@ -2929,8 +2664,8 @@ static int equal_block_solve(const double n[16][3], const sol_nm_pair *xl, size_
         for (int e = 0; e < 8 && by < 0; ++e)
             if (value_bits(pal[yl[j].pair][e]) == value_bits(b_star))
                 by = yl[j].pair;
-    double v = joint_objective(pal[ax], pal[by], n, use_max, INFINITY, NULL, NULL), floor = 0.0;
-    for (int p = 0; p < 16; ++p) /* the objective of 16 pixels of error e*, as joint_objective sums it */
+    double v = sol_nm_bc5_joint_objective(pal[ax], pal[by], n, use_max, INFINITY, NULL, NULL), floor = 0.0;
+    for (int p = 0; p < 16; ++p) /* the objective of 16 pixels of error e*, as sol_nm_bc5_joint_objective sums it */
         floor = fold_term(floor, e_best * e_best, use_max);
     if (best <= floor) { /* no candidate beats the incumbent: it stays (as in the enumeration) */
         *value = best;
@@ -2949,7 +2684,7 @@ static int equal_block_solve(const double n[16][3], const sol_nm_pair *xl, size_
  * Every pixel picks the same decode, and on the full range every value v of the index of distinct
  * palette entries (bc4_entries.c) is an entry of some x pair and of some y pair, so e* = the least
  * decoded_angle(a, b) over every value pair (a, b) bounds every candidate's pixel error, and
- * L = the objective of 16 pixels of error e* (folded as joint_objective folds) every candidate's
+ * L = the objective of 16 pixels of error e* (folded as sol_nm_bc5_joint_objective folds) every candidate's
  * objective; a candidate whose objective is L is optimal. No lists of anchor pairs are built.
  *
  * The scan: as in equal_block_solve, target q (the normal, or its rim direction with weight and
@@ -3053,7 +2788,7 @@ static int equal_value_solve(const double n[16][3], const away_info *aw, int use
     if (!(e_best < INFINITY))
         return 0;
     double floor = 0.0;
-    for (int p = 0; p < 16; ++p) /* the objective of 16 pixels of error e*, as joint_objective folds it */
+    for (int p = 0; p < 16; ++p) /* the objective of 16 pixels of error e*, as sol_nm_bc5_joint_objective folds it */
         floor = fold_term(floor, e_best * e_best, use_max);
     if (best <= floor) { /* no candidate beats the incumbent: it stays (as in the enumeration) */
         *value = best;
@@ -3068,7 +2803,7 @@ static int equal_value_solve(const double n[16][3], const away_info *aw, int use
                 return 0;
             ++*evals;
             int ax = ix->pair[i], by = ix->pair[j];
-            double v = joint_objective(pal[ax], pal[by], n, use_max, INFINITY, NULL, NULL);
+            double v = sol_nm_bc5_joint_objective(pal[ax], pal[by], n, use_max, INFINITY, NULL, NULL);
             if (v <= floor && v < best) {
                 *px = ax;
                 *py = by;
@@ -3084,7 +2819,7 @@ static int equal_value_solve(const double n[16][3], const away_info *aw, int use
  * Every candidate gives pixel p the angle of one decode (a, b), a a value of the x list and b one
  * of the y list, so e*_p = the least angle decoded_angle(a, b, n_p) over those value pairs is a lower
  * bound of pixel p's error in every candidate, and L = sum_p e*_p^2 (pixels in order 0..15, as
- * joint_objective sums them; rounded addition is monotone, so no candidate's computed objective is
+ * sol_nm_bc5_joint_objective sums them; rounded addition is monotone, so no candidate's computed objective is
  * below the computed L) or max_p e*_p^2 (max metric) bounds every candidate's objective. If one
  * candidate attains L it is optimal. Blocks whose pixels share a rim direction (normals pointing
  * away at one azimuth, different heights) or that one pixel dominates (max metric) have such a
@@ -3115,7 +2850,6 @@ static int equal_value_solve(const double n[16][3], const away_info *aw, int use
  * needs no scan if that one serves it within L.
  * If L is not below the incumbent, or some pixel has no decode within its budget, no candidate beats
  * the incumbent, which is the answer (px, py untouched), as in the enumeration. */
-static void order_worst_first(const double err[16], int order[16]);
 enum { SEPARABLE_TRIES = 4096 };
 
 typedef struct least_scan {
@@ -3221,7 +2955,7 @@ static int separable_solve(const double n[16][3], const int group[16], const sol
     int order[16], top = -1, ok = 1, kept = 0; /* kept: no candidate can beat the incumbent */
     for (int p = 0; p < 16; ++p) /* by decreasing theta0^2, then index */
         order[p] = p;
-    order_worst_first(aw->off, order);
+    sol_nm_bc5_order_worst_first(aw->off, order);
     double L = 0.0;
     for (int k = 0; k < 16 && ok; ++k) {
         int p = order[k];
@@ -3316,7 +3050,7 @@ static int separable_solve(const double n[16][3], const int group[16], const sol
     for (size_t i = 0; i < count[0] && !done && tries < SEPARABLE_TRIES; ++i)
         for (size_t j = 0; j < count[1] && !done && tries < SEPARABLE_TRIES; ++j, ++tries) {
             int ax = (int)holders[i], by = (int)holders[nx + j];
-            double v = joint_objective(pal[ax], pal[by], n, use_max, L * (1.0 + 1e-15), NULL, NULL);
+            double v = sol_nm_bc5_joint_objective(pal[ax], pal[by], n, use_max, L * (1.0 + 1e-15), NULL, NULL);
             *work += 512;
             if (v <= L && v < best) {
                 *px = ax;
@@ -3380,7 +3114,7 @@ static int value_reduce(const double n[16][3], const away_info *aw, int use_max,
                 /* and the classes of the budget-based key (each merge keeps the first of its classes,
                  * so their composition does too) */
                 channel_key k;
-                channel_key_init(&k, c ? ty : tx, loose, best * (1.0 + BOUND_SLACK));
+                sol_nm_bc5_channel_key_init(&k, c ? ty : tx, loose, best * (1.0 + BOUND_SLACK));
                 *count = merge_keyed(list, *count, &k, pal, precision, ws);
             }
         }
@@ -3388,17 +3122,10 @@ static int value_reduce(const double n[16][3], const away_info *aw, int use_max,
     return 1;
 }
 
-/* What search_unit is asked: range, precision, metric, work bound. */
-typedef struct search_request {
-    const sol_bc5_range *range;
-    sol_bc4_precision precision;
-    int use_max;
-    uint64_t work_limit;
-} search_request;
 
 /* sol_nm_channel_argmin for a channel whose 16 pixels are all loose, with, in out, every pair of
  * score <= cap from the same enumeration (*count; SIZE_MAX when not collected). Loose pixels prune
- * no anchors (enumerate_pairs scores all 65536 pairs), so search_unit's argmin and its later collect
+ * no anchors (enumerate_pairs scores all 65536 pairs), so sol_nm_bc5_search_unit's argmin and its later collect
  * (budget <= cap: the incumbent only falls) were two full passes; now one. The argmin is the least
  * (score, pair) of the collected pairs: it has score <= cap (the incumbent's own pair scores at most
  * the incumbent, the channel score being a lower bound of the objective), and a pair's score within
@@ -3422,7 +3149,7 @@ static int argmin_collect(const sol_nm_channel *ch, unsigned loose, double cap, 
 }
 
 /* sol_nm_channel_collect(ch, budget, out), or, if argmin_collect collected `pre` pairs into out with
- * a cap >= budget, those of them within budget (the same set; search_unit sorts it). */
+ * a cap >= budget, those of them within budget (the same set; sol_nm_bc5_search_unit sorts it). */
 static size_t collect_within(const sol_nm_channel *ch, double budget, sol_nm_pair *out, size_t pre)
 {
     if (pre == SIZE_MAX)
@@ -3434,7 +3161,7 @@ static size_t collect_within(const sol_nm_channel *ch, double budget, sol_nm_pai
     return n;
 }
 
-/* search_unit's shortcut for blocks of 16 equal normals on the full range (equal_value_solve):
+/* sol_nm_bc5_search_unit's shortcut for blocks of 16 equal normals on the full range (equal_value_solve):
  * those at a rim or pointing away, and those of the 8-bit decoder (whose lattice values tie
  * thousands of anchor pairs exactly, also with z > 0); others keep the search (already fast).
  * Returns 1 with *best, *px, *py, *candidates updated if it decided the block. */
@@ -3462,8 +3189,7 @@ static int equal_shortcut(const double n[16][3], int full, const search_request 
 
 /* order[0..16) (a permutation) sorted by decreasing err, stable: the pixels most likely to reject a
  * candidate are visited first. Insertion sort: 16 items. */
-static void order_worst_first(const double err[16], int order[16])
-{
+void sol_nm_bc5_order_worst_first(const double err[16], int order[16]) {
     for (int p = 1; p < 16; ++p)
         for (int q = p; q > 0 && err[order[q - 1]] < err[order[q]]; --q) {
             int t = order[q];
@@ -3472,7 +3198,7 @@ static void order_worst_first(const double err[16], int order[16])
         }
 }
 
-/* The pair screen on one candidate, for the tests (normalmaps_internal.h): search_unit's set-up of
+/* The pair screen on one candidate, for the tests (normalmaps_internal.h): sol_nm_bc5_search_unit's set-up of
  * the loose pixels and pixels pointing away at incumbent best (pixels in their own order), then
  * pair_screen_build on one-pair lists whose scores leave room. */
 struct sol_nm_screen {
@@ -3512,7 +3238,7 @@ int sol_nm_screen_rules_out(sol_nm_screen *screen, const double n[16][3], int us
         away_off[k] = aw.off[k];
     }
     channel_side ys;
-    channel_side_init(pal[pair_y], n, order, 1, &aw, &ys);
+    sol_nm_bc5_channel_side_init(pal[pair_y], n, order, 1, &aw, &ys);
     sol_nm_pair xl = {0.0, (uint16_t)pair_x}, yl = {0.0, (uint16_t)pair_y};
     uint64_t work = 0;
     int built = pair_screen_build(sc, n, order, loose, &aw, away_off, use_max, best, pal, precision, &xl, 1, &yl, 1,
@@ -3524,7 +3250,7 @@ int sol_nm_screen_rules_out(sol_nm_screen *screen, const double n[16][3], int us
 }
 
 /* The pixel floor on one candidate's values, for the tests (normalmaps_internal.h): per pixel p,
- * search_unit's set-up of the loose pixels and pixels pointing away at incumbent best[p], then
+ * sol_nm_bc5_search_unit's set-up of the loose pixels and pixels pointing away at incumbent best[p], then
  * floor_scan of pixel p with the value sets of the one-pair lists pair_x, pair_y. */
 int sol_nm_floor_rules_out(const double n[16][3], const double best[16], sol_bc4_precision precision, int pair_x,
                            int pair_y, int out[16])
@@ -3561,14 +3287,13 @@ int sol_nm_floor_rules_out(const double n[16][3], const double best[16], sol_bc4
  * 3. Lists of the pairs of each channel whose score leaves room under the incumbent, sorted by
  *    score, equivalent pairs merged (see above); the double loop stops as soon as the combined bound
  *    reaches the incumbent. Each candidate is first rejected, if it can be, by lower bounds of its
- *    objective without atan2 (joint_objective_quick, then joint_objective_lower), and evaluated
+ *    objective without atan2 (sol_nm_bc5_joint_objective_quick, then sol_nm_bc5_joint_objective_lower), and evaluated
  *    exactly only if it survives both.
  * 4. Work bound: after work_limit work units (a pixel of a candidate through the quick bound 1,
- *    through joint_objective_lower 32, an exact evaluation 512: about their relative costs) the
+ *    through sol_nm_bc5_joint_objective_lower 32, an exact evaluation 512: about their relative costs) the
  *    search stops with the best found (info->bounded = 1). */
-static void search_unit(const double n[16][3], const search_request *rq, search_workspace *ws, sol_bc5_block *out,
-                        sol_bc5_info *info)
-{
+void sol_nm_bc5_search_unit(const double n[16][3], const search_request *rq, search_workspace *ws, sol_bc5_block *out,
+                            sol_bc5_info *info) {
     const sol_bc5_range *r = rq->range;
     const sol_bc4_precision precision = rq->precision;
     const int use_max = rq->use_max;
@@ -3595,7 +3320,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     int px = common ? sol_nm_bc4_common(tx, precision, &sx_min) : sol_nm_channel_argmin(&cx, &sx_min);
     int py = common ? sol_nm_bc4_common(ty, precision, &sy_min) : sol_nm_channel_argmin(&cy, &sy_min);
     const double(*pal)[8] = cx.palettes;
-    double best = joint_objective(pal[px], pal[py], n, use_max, INFINITY, NULL, NULL);
+    double best = sol_nm_bc5_joint_objective(pal[px], pal[py], n, use_max, INFINITY, NULL, NULL);
     uint64_t candidates = 1;
     /* second incumbent: the full-span 6-value pairs, whose entries -1 and +1 reach the rim (blocks
      * pointing away). (Starting from the adaptive window's result instead was measured: it costs
@@ -3604,7 +3329,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     if (pair_in_range(rim, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi) &&
         pair_in_range(rim, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi)) {
         ++candidates;
-        double v = joint_objective(pal[rim], pal[rim], n, use_max, best, NULL, NULL);
+        double v = sol_nm_bc5_joint_objective(pal[rim], pal[rim], n, use_max, best, NULL, NULL);
         if (v < best) {
             best = v;
             px = py = rim;
@@ -3634,7 +3359,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             int ly = argmin_collect(&cy, loose, best * (1.0 + BOUND_SLACK), ws->y, &pre_y, &sy_min);
             /* third incumbent: the pairs of least loose score, which aim at the rim directions */
             ++candidates;
-            double v = joint_objective(pal[lx], pal[ly], n, use_max, best, NULL, NULL);
+            double v = sol_nm_bc5_joint_objective(pal[lx], pal[ly], n, use_max, best, NULL, NULL);
             if (v < best) {
                 best = v;
                 px = lx;
@@ -3672,8 +3397,8 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
          * (x = -1 or +1) has one y pair left and the 33151 x pairs holding -1 or +1, exact ties */
         if (!valued && (nx > 1 || ny > 1) && nx * ny > 256) {
             channel_key kx, ky;
-            channel_key_init(&kx, tx, loose, room);
-            channel_key_init(&ky, ty, loose, room);
+            sol_nm_bc5_channel_key_init(&kx, tx, loose, room);
+            sol_nm_bc5_channel_key_init(&ky, ty, loose, room);
             nx = merge_keyed(ws->x, nx, &kx, pal, precision, ws);
             ny = merge_keyed(ws->y, ny, &ky, pal, precision, ws);
         }
@@ -3697,7 +3422,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             for (int k = 0; k < nc; ++k) {
                 ++candidates;
                 work += 512;
-                double v = joint_objective(pal[cand[k][0]], pal[cand[k][1]], n, use_max, best, NULL, NULL);
+                double v = sol_nm_bc5_joint_objective(pal[cand[k][0]], pal[cand[k][1]], n, use_max, best, NULL, NULL);
                 if (v < best) {
                     best = v;
                     px = cand[k][0];
@@ -3732,10 +3457,10 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
         double pixel_err[16];
         for (int p = 0; p < 16; ++p) {
             int i, j;
-            pixel_err[p] = best_pixel(pal[px], pal[py], n[p], &i, &j);
+            pixel_err[p] = sol_nm_bc5_best_pixel(pal[px], pal[py], n[p], &i, &j);
             order[p] = p;
         }
-        order_worst_first(pixel_err, order);
+        sol_nm_bc5_order_worst_first(pixel_err, order);
         double away_off[16], nz_ord[16]; /* theta0^2 of the pixels pointing away, and nz, in visiting order */
         for (int k = 0; k < 16; ++k) {
             away_off[k] = aw.off[order[k]];
@@ -3753,7 +3478,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
             }
         }
         for (size_t j = 0; quick && !solved && j < ny; ++j)
-            channel_side_init(pal[ws->y[j].pair], n, order, 1, &aw, &ws->yside[j]);
+            sol_nm_bc5_channel_side_init(pal[ws->y[j].pair], n, order, 1, &aw, &ws->yside[j]);
         /* the coupling filter: for rims and pixels pointing away, when the lists are long */
         int filter = 0;
         y_index yix;
@@ -3850,7 +3575,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 if (i >= nx || ny == 0)
                     break;
                 for (size_t j = 0; quick && j < ny; ++j)
-                    channel_side_init(pal[ws->y[j].pair], n, order, 1, &aw, &ws->yside[j]);
+                    sol_nm_bc5_channel_side_init(pal[ws->y[j].pair], n, order, 1, &aw, &ws->yside[j]);
                 work += 16 * ny;
                 if (filter) {
                     y_index_init(&yix, ws->y, ny, pal, ws->ybucket);
@@ -3883,7 +3608,7 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                 continue; /* no candidate of the row can beat the incumbent */
             const double *a = pal[ws->x[i].pair];
             if (quick)
-                channel_side_init(a, n, order, 0, &aw, &xside);
+                sol_nm_bc5_channel_side_init(a, n, order, 0, &aw, &xside);
             int filtered = 0;
             size_t lo_word = 0, hi_word = 0; /* the marked words of ymark */
             if (screened) { /* the row's passing y positions (at least one, see above) */
@@ -3946,7 +3671,8 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                  * the value-reduced lists (blocks near their hemisphere bound) take 1e-12 instead,
                  * which still covers the different summation orders of bound and objective */
                 double margin = best * (1.0 + (valued ? 1e-12 : BOUND_SLACK));
-                if (quick && joint_objective_quick(&xside, &ws->yside[j], n, order, nz_ord, away_off, use_max, margin, &work) >= margin)
+                if (quick && sol_nm_bc5_joint_objective_quick(&xside, &ws->yside[j], n, order, nz_ord, away_off,
+                                                              use_max, margin, &work) >= margin)
                     continue;
                 if (quick && aw.mask && (away_tried < 1024 || 8 * away_hits >= away_tried || (candidates & 15) == 0)) {
                     ++away_tried;
@@ -3956,10 +3682,11 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
                         continue;
                     }
                 }
-                if (joint_objective_lower(a, pal[ws->y[j].pair], n, order, away_off, use_max, best, margin, &work) >= margin)
+                if (sol_nm_bc5_joint_objective_lower(a, pal[ws->y[j].pair], n, order, away_off, use_max, best, margin,
+                                                     &work) >= margin)
                     continue;
                 work += 512;
-                double v = joint_objective(a, pal[ws->y[j].pair], n, use_max, best, NULL, NULL);
+                double v = sol_nm_bc5_joint_objective(a, pal[ws->y[j].pair], n, use_max, best, NULL, NULL);
                 if (v < best) {
                     best = v;
                     px = ws->x[i].pair;
@@ -3979,680 +3706,13 @@ static void search_unit(const double n[16][3], const search_request *rq, search_
     out->x.e1 = (uint8_t)(px & 255);
     out->y.e0 = (uint8_t)(py >> 8);
     out->y.e1 = (uint8_t)(py & 255);
-    double check = joint_objective(pal[px], pal[py], n, use_max, INFINITY, out->x.index, out->y.index);
+    double check = sol_nm_bc5_joint_objective(pal[px], pal[py], n, use_max, INFINITY, out->x.index, out->y.index);
     if (info) {
-        info->error = metric_value(check, use_max ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED);
+        info->error = sol_nm_bc5_metric_value(check, use_max ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED);
         info->searched = 1;
         info->candidates = candidates;
         info->bounded = bounded;
     }
-}
-
-/* ---- the adaptive encoder's window search (T13) ----
- *
- * The same branch and bound as search_unit, specialised to a window of at most WINDOW_PATH_MAX codes
- * around each anchor (the talk's +-4: 81 anchor pairs per channel): each pair's per-pixel nearest
- * entries (its channel side: score, quick-bound terms) are computed once, in one pass, for the
- * pairs whose score leaves room under the incumbent; no full-range scoring, hashing or merging. The
- * incumbent is the base block's anchors with joint indices. It needs every pixel's tight bound
- * (nz_p^2 above the incumbent, so no decode with z clamped can win, see search_unit 2.); blocks with
- * rim or downward pixels, and wider windows, go to search_unit. Exact within the window: the
- * result's error equals the literal brute force's minimum over the window. Ties: the first
- * minimiser in the order incumbent, then x pairs by increasing (score, code), y pairs likewise. */
-enum { WINDOW_PATH_MAX = 8, WINDOW_PAIRS = (2 * WINDOW_PATH_MAX + 1) * (2 * WINDOW_PATH_MAX + 1) };
-
-typedef sol_nm_pair window_entry; /* a pair and its channel score */
-
-struct window_scratch {
-    window_entry list[2][WINDOW_PAIRS];
-    channel_side yside[WINDOW_PAIRS];    /* the sorted y list's channel sides, */
-    unsigned char ready[WINDOW_PAIRS];   /* each computed when first needed */
-    /* the y sides' v, m1, m2 by pixel, then position in the y list (window_chunk_quick's lanes); 4
-     * columns of padding read by its unused lanes (zeroed at allocation, so always defined) */
-    double yt[3][16][WINDOW_PAIRS + 4];
-};
-
-/* Sorts by increasing (score, pair): insertion sort, the lists are short (<= WINDOW_PAIRS). */
-static void sort_window_entries(window_entry *list, int count)
-{
-    for (int k = 1; k < count; ++k) {
-        window_entry e = list[k];
-        int q = k;
-        for (; q > 0 && (list[q - 1].score > e.score || (list[q - 1].score == e.score && list[q - 1].pair > e.pair));
-             --q)
-            list[q] = list[q - 1];
-        list[q] = e;
-    }
-}
-
-/* Scores the window pairs of channel c (sum or max over pixels of the nearest entry's squared
- * distance: the tight per-channel bound) into list, in e0-major order, and returns the count; a
- * pair whose score exceeds budget is left out (no candidate can use it): first when its two extreme
- * pixels (least and largest component) alone exceed it (most pairs of smooth blocks), else once the
- * score's partial sum (pixels in order, 4 at a time; the terms are >= 0, so the partial sums never
- * decrease) exceeds it. A pair kept has the full score, summed in pixel order. (window_channel_scalar;
- * window_channel_avx2 keeps the same pairs with the same scores by other early exits.) */
-#if SEARCH_AVX2
-/* min_i (a_i - t_q)^2 for 4 targets t_q (_mm256_min_pd(d, m) is d < m ? d : m: the scalar loop's
- * minimum, a minimum of the same values). */
-static inline AVX2_FN __m256d nearest4_avx2(const double a[8], const double t[4])
-{
-    __m256d tp = _mm256_loadu_pd(t), d = _mm256_sub_pd(_mm256_set1_pd(a[0]), tp);
-    __m256d mp = _mm256_mul_pd(d, d);
-    for (int i = 1; i < 8; ++i) {
-        d = _mm256_sub_pd(_mm256_set1_pd(a[i]), tp);
-        mp = _mm256_min_pd(_mm256_mul_pd(d, d), mp);
-    }
-    return mp;
-}
-
-/* The least squared distances of palette a to targets u and v (*du, *dv): the scalar loop's minima
- * (a minimum of the same values, whatever the order). */
-static inline AVX2_FN void extreme_distances_avx2(const double a[8], double u, double v, double *du, double *dv)
-{
-    __m256d lo = _mm256_loadu_pd(a), hi = _mm256_loadu_pd(a + 4), tu = _mm256_set1_pd(u), tv = _mm256_set1_pd(v);
-    __m256d d0 = _mm256_sub_pd(lo, tu), d1 = _mm256_sub_pd(hi, tu), d2 = _mm256_sub_pd(lo, tv), d3 = _mm256_sub_pd(hi, tv);
-    __m256d mu = _mm256_min_pd(_mm256_mul_pd(d0, d0), _mm256_mul_pd(d1, d1));
-    __m256d mv = _mm256_min_pd(_mm256_mul_pd(d2, d2), _mm256_mul_pd(d3, d3));
-    __m256d x = _mm256_min_pd(_mm256_unpacklo_pd(mu, mv), _mm256_unpackhi_pd(mu, mv)); /* u0 v0 u2 v2 */
-    __m128d y = _mm_min_pd(_mm256_castpd256_pd128(x), _mm256_extractf128_pd(x, 1));
-    *du = _mm_cvtsd_f64(y);
-    *dv = _mm_cvtsd_f64(_mm_unpackhi_pd(y, y));
-}
-#endif
-
-/* window_channel's scalar loop, t the pixels' components, lo and hi its least and largest. */
-static int window_channel_scalar(const double t[16], int lo, int hi, const double (*pal)[8], int use_max, int e0_lo,
-                                 int e0_hi, int e1_lo, int e1_hi, double budget, window_entry *list)
-{
-    int count = 0;
-    for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
-        for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
-            const double *a = pal[e0 << 8 | e1];
-            double dlo = INFINITY, dhi = INFINITY;
-            for (int i = 0; i < 8; ++i) {
-                double u = (a[i] - t[lo]) * (a[i] - t[lo]), v = (a[i] - t[hi]) * (a[i] - t[hi]);
-                dlo = u < dlo ? u : dlo;
-                dhi = v < dhi ? v : dhi;
-            }
-            if ((lo == hi ? dlo : combine(dlo, dhi, use_max)) > budget)
-                continue;
-            double score = 0.0;
-            int k = 0;
-            for (; k < 16; k += 4) {
-                double m[4];
-                for (int q = 0; q < 4; ++q)
-                    m[q] = (a[0] - t[k + q]) * (a[0] - t[k + q]);
-                for (int i = 1; i < 8; ++i)
-                    for (int q = 0; q < 4; ++q) {
-                        double d = (a[i] - t[k + q]) * (a[i] - t[k + q]);
-                        m[q] = d < m[q] ? d : m[q];
-                    }
-                for (int q = 0; q < 4; ++q)
-                    score = fold_term(score, m[q], use_max);
-                if (score > budget)
-                    break;
-            }
-            if (k < 16)
-                continue;
-            list[count] = (window_entry){score, (uint16_t)(e0 << 8 | e1)};
-            ++count;
-        }
-    return count;
-}
-
-#if SEARCH_AVX2
-/* window_channel_scalar's list by other means (the same pairs, the same scores): a pair is kept iff
- * its score (the terms summed in pixel order) is <= budget, as there (its early exits only drop
- * pairs whose full score exceeds budget: the partial sums of non-negative terms never decrease, and
- * a sum that includes two pixels' terms is at least their sum). Here the pixels are visited in the
- * order `visit` (window_targets: the least and largest first): first the two extreme pixels' terms
- * (window_channel_scalar's extreme test), then 4 pixels at a time, each pixel's term the same least
- * squared distance (a minimum of the same values); a pair is dropped once the visited terms' sum
- * (added in the lanes' order, so rounded differently from the pixel-order sum, by a relative
- * 16 * 2^-53 at most) lowered by a relative 1e-12 exceeds budget (the max metric: their max, exact,
- * exceeds it). A pair left has its score summed in pixel order from its terms (fold_term, as
- * window_channel_scalar) and is kept iff that is <= budget. */
-static inline AVX2_FN __attribute__((always_inline)) int window_channel_avx2_body(const double tv[16], const int pos[16],
-                                                                          const double (*pal)[8], int use_max,
-                                                                          int e0_lo, int e0_hi, int e1_lo, int e1_hi,
-                                                                          double budget, window_entry *list)
-{
-    int count = 0;
-    for (int e0 = e0_lo; e0 <= e0_hi; ++e0)
-        for (int e1 = e1_lo; e1 <= e1_hi; ++e1) {
-            const double *a = pal[e0 << 8 | e1];
-            double m[16], dlo, dhi;
-            extreme_distances_avx2(a, tv[0], tv[1], &dlo, &dhi);
-            if (combine(dlo, dhi, use_max) > budget)
-                continue;
-            /* the 16 terms at once (independent groups, no exit between them: on rough blocks most
-             * pairs reach the last group anyway), then the lanes' sum or max against budget */
-            __m256d m0 = nearest4_avx2(a, tv), m1 = nearest4_avx2(a, tv + 4), m2 = nearest4_avx2(a, tv + 8),
-                    m3 = nearest4_avx2(a, tv + 12);
-            _mm256_storeu_pd(m, m0);
-            _mm256_storeu_pd(m + 4, m1);
-            _mm256_storeu_pd(m + 8, m2);
-            _mm256_storeu_pd(m + 12, m3);
-            __m256d acc = use_max ? _mm256_max_pd(_mm256_max_pd(m0, m1), _mm256_max_pd(m2, m3))
-                                  : _mm256_add_pd(_mm256_add_pd(m0, m1), _mm256_add_pd(m2, m3));
-            __m128d h = use_max ? _mm_max_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1))
-                                : _mm_add_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1));
-            h = use_max ? _mm_max_sd(h, _mm_unpackhi_pd(h, h)) : _mm_add_sd(h, _mm_unpackhi_pd(h, h));
-            double part = _mm_cvtsd_f64(h);
-            if (use_max ? part > budget : part * (1.0 - 1e-12) > budget)
-                continue;
-            double score = 0.0;
-            for (int p = 0; p < 16; ++p)
-                score = fold_term(score, m[pos[p]], use_max);
-            if (score > budget)
-                continue;
-            list[count] = (window_entry){score, (uint16_t)(e0 << 8 | e1)};
-            ++count;
-        }
-    return count;
-}
-
-/* (pos[p]: pixel p's place in the visiting order; the body specialised for either metric) */
-static AVX2_FN int window_channel_avx2(const double tv[16], const int pos[16], const double (*pal)[8], int use_max,
-                                       int e0_lo, int e0_hi, int e1_lo, int e1_hi, double budget, window_entry *list)
-{
-    if (use_max)
-        return window_channel_avx2_body(tv, pos, pal, 1, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
-    return window_channel_avx2_body(tv, pos, pal, 0, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
-}
-#endif
-
-/* One channel's pixel components for window_channel: t by pixel, lo and hi the first pixels of least
- * and largest component; for window_channel_avx2 the visiting order (lo, hi, then the other pixels
- * in pixel order: the extreme pixels first, as window_channel_scalar's extreme test) and the
- * components in that order. */
-typedef struct window_targets {
-    double t[16], tv[16];
-    int visit[16], pos[16], lo, hi;
-} window_targets;
-
-static void window_targets_init(const double n[16][3], int c, window_targets *wt)
-{
-    int lo = 0, hi = 0;
-    for (int p = 0; p < 16; ++p) {
-        wt->t[p] = n[p][c];
-        lo = wt->t[p] < wt->t[lo] ? p : lo;
-        hi = wt->t[p] > wt->t[hi] ? p : hi;
-    }
-    wt->lo = lo;
-    wt->hi = hi;
-    int v = 0;
-    wt->visit[v++] = lo;
-    if (hi != lo)
-        wt->visit[v++] = hi;
-    for (int p = 0; p < 16; ++p)
-        if (p != lo && p != hi)
-            wt->visit[v++] = p;
-    for (int q = 0; q < 16; ++q) {
-        wt->tv[q] = wt->t[wt->visit[q]];
-        wt->pos[wt->visit[q]] = q;
-    }
-}
-
-static int window_channel(const window_targets *wt, const double (*pal)[8], int use_max, int e0_lo, int e0_hi,
-                          int e1_lo, int e1_hi, double budget, window_entry *list)
-{
-#if SEARCH_AVX2
-    if (search_avx2())
-        return window_channel_avx2(wt->tv, wt->pos, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
-#endif
-    return window_channel_scalar(wt->t, wt->lo, wt->hi, pal, use_max, e0_lo, e0_hi, e1_lo, e1_hi, budget, list);
-}
-
-/* Keeps the entries of score <= budget (in order); returns the count. */
-static int window_filter(window_entry *list, int count, double budget)
-{
-    int kept = 0;
-    for (int k = 0; k < count; ++k)
-        if (list[k].score <= budget)
-            list[kept++] = list[k];
-    return kept;
-}
-
-/* The incumbent of the window search per pixel: its decoded components and angle. A candidate whose
- * pixel decodes to bit-identical components has bit-identical angle there (decoded_angle is a
- * function of them and the pixel), so the exact evaluation takes it from here instead of atan2: on
- * nearly flat blocks most candidates that reach the exact evaluation decode every pixel as the
- * incumbent does (ties of the incumbent, then rejected as not strictly better). */
-typedef struct window_incumbent {
-    double a[16], b[16], angle[16];
-} window_incumbent;
-
-static inline int same_bits(double u, double v)
-{
-    return value_bits(u) == value_bits(v);
-}
-
-/* joint_objective_lower and then, if the candidate survives it, joint_objective, with each pixel's
- * jointly best index pair found once (the same pairs, sums and early exits as the two calls in turn):
- * returns the lower bound (>= margin: rejected, *v untouched), else writes the exact objective
- * (stopped once it reaches budget, as joint_objective) to *v, the index pairs to ix, iy and, when
- * complete, each pixel's angle to angle (inc: the incumbent's pixels, see window_incumbent). */
-static double joint_objective_checked(const double a[8], const double b[8], const double n[16][3],
-                                      const int order[16], int use_max, double margin, double budget,
-                                      const window_incumbent *inc, uint64_t *work, double *v, uint8_t ix[16],
-                                      uint8_t iy[16], double angle[16])
-{
-    double s = 0.0;
-    for (int k = 0; k < 16; ++k) {
-        *work += 32;
-        int i, j, p = order[k];
-        best_pixel_index(a, b, n[p], &i, &j);
-        ix[p] = (uint8_t)i;
-        iy[p] = (uint8_t)j;
-        double e2 = angle2_lower_bound(a[i], b[j], n[p]);
-        s = fold_term(s, e2, use_max);
-        if (s >= margin)
-            return s;
-    }
-    *work += 512;
-    double e = 0.0;
-    for (int p = 0; p < 16; ++p) {
-        double u = a[ix[p]], w = b[iy[p]];
-        double d = same_bits(u, inc->a[p]) && same_bits(w, inc->b[p]) ? inc->angle[p] : decoded_angle(u, w, n[p]);
-        angle[p] = d;
-        e = fold_term(e, d * d, use_max);
-        if (e >= budget)
-            break;
-    }
-    *v = e;
-    return s;
-}
-
-/* joint_objective_quick for the window search, whose pixels never point away (every away term 0),
- * with the pixels' nz in visiting order (nz[k] = n[order[k]][2]): the same terms, the same sum in
- * the same order and the same stop, so the same value and work; the AVX2 form computes the terms 4
- * pixels at a time, and only up to the stop (most candidates stop within the first pixels, visited
- * worst first). */
-#if SEARCH_AVX2
-static AVX2_FN double window_quick_avx2(const channel_side *xs, const channel_side *ys, const double nz[16],
-                                        int use_max, double budget, uint64_t *work)
-{
-    double s = 0.0, e2[4];
-    for (int k = 0; k < 16; k += 4) { /* quick_terms_avx2's terms, its away term 0 */
-        _mm256_storeu_pd(e2, _mm256_max_pd(quick_tight4(xs, ys, nz, k), _mm256_setzero_pd()));
-        if (fold_terms_until(&s, e2, 4, use_max, budget, work))
-            return s;
-    }
-    return s;
-}
-#endif
-
-static double window_quick(const channel_side *xs, const channel_side *ys, const double n[16][3], const int order[16],
-                           const double nz[16], int use_max, double budget, uint64_t *work)
-{
-#if SEARCH_AVX2
-    if (search_avx2())
-        return window_quick_avx2(xs, ys, nz, use_max, budget, work);
-#endif
-    static const double away_off[16] = {0};
-    return joint_objective_quick(xs, ys, n, order, nz, away_off, use_max, budget, work);
-}
-
-/* The quick bound of up to 4 consecutive candidates of one x pair (y list positions j..j+lanes-1)
- * at once, one per lane, pixel by pixel: the same terms as window_quick (quick_tight4's operations
- * on the same values, 1 - a^2 computed once per pixel of the x side, as the scalar 1.0 - a * a
- * gives the same bits) folded in the same order, so every lane's partial value after each pixel is
- * bit for bit the one window_quick reaches there. The partial values never decrease (the terms are
- * >= 0), so window_quick with budget M stops at pixel count(M) (the number of partial values below
- * M; 16: it does not stop): below[q] for the margin given, kept in prefix for a lower margin (an
- * improved incumbent within the chunk; margins only decrease). Pixels are computed until every lane
- * has reached the margin (the later partial values are then above any lower margin's stop too). */
-typedef struct window_chunk {
-    double prefix[16][4]; /* partial values by pixel and lane */
-    double margin;        /* the margin of below */
-    int below[4];         /* partial values below margin, per lane */
-    int pixels;           /* pixels computed */
-} window_chunk;
-
-#if SEARCH_AVX2
-static AVX2_FN void window_chunk_quick(const channel_side *xs, const double xa2[16], const window_scratch *w, int j,
-                                       int lanes, const double nz[16], int use_max, double margin, window_chunk *c)
-{
-    const __m256d zero = _mm256_setzero_pd(), lower = _mm256_set1_pd(1.0 - 3e-6), absolute = _mm256_set1_pd(5e-15);
-    const __m256d mm = _mm256_set1_pd(margin);
-    const __m256d active = _mm256_castsi256_pd(
-        _mm256_cmpgt_epi64(_mm256_set1_epi64x(lanes), _mm256_setr_epi64x(0, 1, 2, 3)));
-    __m256d s = zero;
-    __m256i count = _mm256_setzero_si256();
-    int k = 0;
-    while (k < 16) {
-        __m256d lt = zero;
-        for (int g = 0; g < 4; ++g, ++k) {
-            __m256d m1x = _mm256_broadcast_sd(xs->m1 + k), m2x = _mm256_broadcast_sd(xs->m2 + k);
-            __m256d z = _mm256_broadcast_sd(nz + k);
-            __m256d b = _mm256_loadu_pd(&w->yt[0][k][j]), m1y = _mm256_loadu_pd(&w->yt[1][k][j]);
-            __m256d m2y = _mm256_loadu_pd(&w->yt[2][k][j]);
-            __m256d nz2 = _mm256_mul_pd(z, z);
-            __m256d lb = _mm256_min_pd(_mm256_add_pd(m2x, m1y), _mm256_add_pd(m1x, m2y));
-            lb = _mm256_min_pd(nz2, lb);
-            __m256d zz = _mm256_sub_pd(_mm256_broadcast_sd(xa2 + k), _mm256_mul_pd(b, b));
-            __m256d up = _mm256_cmp_pd(zz, zero, _CMP_GT_OQ);
-            __m256d dz = _mm256_sub_pd(_mm256_sqrt_pd(_mm256_and_pd(zz, up)), z);
-            __m256d c2 = _mm256_blendv_pd(nz2, _mm256_add_pd(_mm256_add_pd(m1x, m1y), _mm256_mul_pd(dz, dz)), up);
-            lb = _mm256_min_pd(c2, lb);
-            __m256d e = _mm256_max_pd(_mm256_sub_pd(_mm256_mul_pd(lb, lower), absolute), zero);
-            s = use_max ? _mm256_max_pd(e, s) : _mm256_add_pd(s, e);
-            _mm256_storeu_pd(c->prefix[k], s);
-            lt = _mm256_and_pd(_mm256_cmp_pd(s, mm, _CMP_LT_OQ), active);
-            count = _mm256_sub_epi64(count, _mm256_castpd_si256(lt));
-        }
-        if (!_mm256_movemask_pd(lt))
-            break; /* every lane has reached the margin */
-    }
-    long long below[4];
-    _mm256_storeu_si256((__m256i *)below, count);
-    for (int q = 0; q < 4; ++q)
-        c->below[q] = (int)below[q];
-    c->pixels = k;
-    c->margin = margin;
-}
-#endif
-
-/* window_quick's stop for lane q of c with budget margin (<= c->margin): the number of partial
- * values below it (16: no stop). */
-static int window_chunk_below(const window_chunk *c, int q, double margin)
-{
-    if (same_bits(margin, c->margin))
-        return c->below[q];
-    int k = 0;
-    while (k < c->pixels && c->prefix[k][q] < margin)
-        ++k;
-    return k;
-}
-
-/* channel_side_init for the window search: no pixel points away (lt = 0), t the channel's
- * components in visiting order. */
-static void window_side_init(const double pal[8], const double t[16], channel_side *s)
-{
-    memset(s->lt, 0, sizeof s->lt);
-    channel_side_fill(pal, t, s);
-}
-
-/* order_worst_first's order (pixels by decreasing err, equal errors in pixel order: a stable sort),
- * from each pixel's rank (how many pixels come before it) instead of insertion: no data-dependent
- * branches. */
-static void window_order(const double err[16], int order[16])
-{
-    for (int p = 0; p < 16; ++p) {
-        int rank = 0;
-        for (int q = 0; q < 16; ++q)
-            rank += err[q] > err[p] || (q < p && err[q] == err[p]);
-        order[rank] = p;
-    }
-}
-
-/* merge_equivalent's result (the first pair of each class, in list order): short lists (the
- * window's, on nearly flat blocks, a few to a dozen pairs) compare each pair with the pairs kept so
- * far (pair_key_equal: classes of an equality of keys, so a pair equal to no kept pair opens a class
- * and one equal to a kept pair belongs to that pair's class), which costs less than hashing every
- * pair's key over all its pixels: unequal pairs differ within the first pixels. Longer lists go
- * through merge_classes as merge_equivalent does, with a hash of the seed values alone: any hash
- * that gives equal keys equal values finds the same classes (merge_classes compares every pair
- * met in the probe sequence with pair_key_equal), and the seeds cost a fraction of the usable
- * entries' hashing. */
-static uint64_t window_key_hash(void *ctx, const double pal[8])
-{
-    const channel_key *k = ctx;
-    uint64_t h = 0;
-    for (int p = 0; p < k->count; ++p)
-        h = mix64(h, value_bits(pal[seed_entry(pal, k->t[p])]));
-    return h;
-}
-
-static int window_merge(window_entry *list, int count, const channel_key *k, const double (*pal)[8], uint32_t *slots)
-{
-    if (count > 16) { /* hashed by the seeds alone (a part of the key: equal keys, equal hashes) */
-        const pair_classes pc = {window_key_hash, key_equal_fn, (void *)k, NULL};
-        return (int)merge_classes(list, (size_t)count, pal, &pc, slots);
-    }
-    int kept = 0;
-    for (int i = 0; i < count; ++i) {
-        int dup = 0;
-        for (int q = 0; q < kept && !dup; ++q)
-            dup = pair_key_equal(k, pal[list[q].pair], pal[list[i].pair]);
-        if (!dup)
-            list[kept++] = list[i];
-    }
-    return kept;
-}
-
-/* Returns 0 (and leaves everything untouched) when the block needs search_unit (see above).
- * shrink = 1 / (1 + gap) in (0, 1] (options.gap; 1: the exact window): every pruning test compares
- * a lower bound with cut = best * shrink instead of best, so a candidate is dropped once its bound
- * reaches best / (1 + gap): its objective E >= bound >= best / (1 + gap) >= (final best) / (1 + gap),
- * and the result is within a factor (1 + gap) of the window's optimum (shrink = 1: cut = best exactly,
- * the exact search). The entry test (no clamped decode can go below cut) uses cut likewise. */
-static int window_search(const double n[16][3], const sol_bc5_range *r, int base_x, int base_y, int base_least,
-                         double shrink, const search_request *rq, search_workspace *ws, sol_bc5_block *out,
-                         sol_bc5_info *info)
-{
-    if (r->x0_hi - r->x0_lo > 2 * WINDOW_PATH_MAX || r->x1_hi - r->x1_lo > 2 * WINDOW_PATH_MAX ||
-        r->y0_hi - r->y0_lo > 2 * WINDOW_PATH_MAX || r->y1_hi - r->y1_lo > 2 * WINDOW_PATH_MAX)
-        return 0;
-    const int use_max = rq->use_max;
-    const double(*pal)[8] = sol_nm_palettes(rq->precision);
-    int px = base_x, py = base_y;
-    uint8_t ix[16], iy[16], cx[16], cy[16]; /* the best's indices, a candidate's */
-    double pixel_err[16], best = 0.0;
-    window_incumbent inc;
-    for (int p = 0; p < 16; ++p) { /* joint_objective's sum, keeping each pixel's error */
-        int i, j;
-        double e = best_pixel(pal[px], pal[py], n[p], &i, &j);
-        ix[p] = (uint8_t)i;
-        iy[p] = (uint8_t)j;
-        pixel_err[p] = e;
-        inc.a[p] = pal[px][i];
-        inc.b[p] = pal[py][j];
-        inc.angle[p] = e;
-        best = fold_term(best, e * e, use_max);
-    }
-    double cut = best * shrink;
-    for (int p = 0; p < 16; ++p)
-        if (!(n[p][2] > 0.0) || n[p][2] * n[p][2] <= cut * (1.0 + BOUND_SLACK))
-            return 0; /* a rim or downward pixel: the loose bounds of search_unit */
-    uint64_t candidates = 1, work = 0;
-    int bounded = 0;
-    if (best > 0.0) {
-        window_scratch *w = ws->win;
-        double least_x = INFINITY, least_y = INFINITY, room = cut * (1.0 + BOUND_SLACK);
-        /* y first: an x pair above room - least_y (sum metric) is dropped by the filter below, so
-         * window_channel leaves it out at once. If the pair of least x score is left out, no x pair
-         * passes the filter and there is no candidate, whatever least_x then is.
-         * The y pairs kept in the end are those within room - least_x (sum metric), least_x the
-         * least x score, which is at most the base x pair's score sx (the base is in the window; if
-         * the base pair is filtered out, every x pair kept scores below it). So the y pairs are
-         * first scored against room - sx (with the base's common anchors, usually the least x pair
-         * itself): scores within that budget are the ones room - least_x keeps whenever least_x is
-         * sx, and their least is the least y score whenever any is kept (that pair scores within
-         * every budget a y pair is kept in). Where least_x turns out below sx, or no y pair is kept,
-         * the y pairs are scored again against the original budget: the same lists as scoring y
-         * against room and filtering, without scoring most of the pairs the filter drops. Only
-         * where the base is likely the least x pair (base_least: the common base, least squares
-         * per channel); around the fast base's anchors least_x is nearly always below sx. */
-        int ny = 0, y_final = 0;
-        window_targets wtx, wty;
-        window_targets_init(n, 0, &wtx);
-        window_targets_init(n, 1, &wty);
-        if (!use_max && base_least) {
-            window_entry bx;
-            window_channel(&wtx, pal, 0, base_x >> 8, base_x >> 8, base_x & 255, base_x & 255, INFINITY, &bx);
-            least_x = bx.score;
-            ny = window_channel(&wty, pal, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi,
-                                room - least_x * (1.0 - BOUND_SLACK), w->list[1]);
-            y_final = ny > 0;
-        }
-        if (!y_final)
-            ny = window_channel(&wty, pal, use_max, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi, room, w->list[1]);
-        for (int k = 0; k < ny; ++k)
-            least_y = w->list[1][k].score < least_y ? w->list[1][k].score : least_y;
-        int nx = window_channel(&wtx, pal, use_max, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi,
-                                use_max ? room : room - least_y * (1.0 - BOUND_SLACK), w->list[0]);
-        double guess_x = least_x;
-        least_x = INFINITY;
-        for (int k = 0; k < nx; ++k)
-            least_x = w->list[0][k].score < least_x ? w->list[0][k].score : least_x;
-        if (y_final && nx > 0 && value_bits(least_x) != value_bits(guess_x))
-            ny = window_channel(&wty, pal, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi,
-                                room - least_x * (1.0 - BOUND_SLACK), w->list[1]);
-        /* a pair can only pair up under the incumbent if its score leaves room for the other channel's least */
-        nx = window_filter(w->list[0], nx, use_max ? room : room - least_y * (1.0 - BOUND_SLACK));
-        ny = window_filter(w->list[1], ny, use_max ? room : room - least_x * (1.0 - BOUND_SLACK));
-        sort_window_entries(w->list[0], nx);
-        sort_window_entries(w->list[1], ny);
-        double tx[16], ty[16], span = 0.0;
-        for (int p = 0; p < 16; ++p) {
-            tx[p] = n[p][0];
-            ty[p] = n[p][1];
-            span = fmax(span, fmax(fabs(tx[p] - tx[0]), fabs(ty[p] - ty[0])));
-        }
-        /* Exactly tied pairs (nearly flat blocks, whose targets span a few codes: anchors spanning the
-         * same values near them): one per class, as search_unit. Elsewhere hashing costs more than
-         * the ties it saves; the result is the same either way. */
-        if (nx > 1 && ny > 1 && nx * ny > 4 && span <= 8.0 / 255.0) {
-            channel_key kx, ky;
-            channel_key_init(&kx, tx, 0, room);
-            channel_key_init(&ky, ty, 0, room);
-            nx = window_merge(w->list[0], nx, &kx, pal, ws->slots);
-            ny = window_merge(w->list[1], ny, &ky, pal, ws->slots);
-        }
-        /* Set up when the first candidate needs it (most searched blocks of smooth maps have none):
-         * the pixels' visiting order, worst first (by the incumbent's per-pixel error) when rejecting
-         * candidates, and the y sides' marks (each y side is computed when first needed), the x
-         * side per x pair. */
-        int order[16], prepared = 0, chunked = 0;
-        double nz[16], tord[2][16], xa2[16]; /* nz and the components in visiting order; 1 - x^2 */
-        channel_side xside;
-        window_chunk chunk;
-#if SEARCH_AVX2
-        chunked = search_avx2(); /* the quick bound 4 y pairs at a time (window_chunk_quick) */
-#endif
-        for (int i = 0; i < nx && ny > 0 && !bounded; ++i) {
-            const window_entry *ex = &w->list[0][i];
-            if (combine(ex->score, w->list[1][0].score, use_max) * (1.0 - BOUND_SLACK) >= cut)
-                break;
-            const double *a = pal[ex->pair];
-            int x_ready = 0, chunk_start = 0, chunk_end = 0;
-            for (int j = 0; j < ny; ++j) {
-                const window_entry *ey = &w->list[1][j];
-                if (combine(ex->score, ey->score, use_max) * (1.0 - BOUND_SLACK) >= cut)
-                    break;
-                if (ex->pair == base_x && ey->pair == base_y)
-                    continue; /* the incumbent */
-                if (work >= rq->work_limit) {
-                    bounded = 1;
-                    break;
-                }
-                ++candidates;
-                if (!prepared) {
-                    window_order(pixel_err, order);
-                    for (int k = 0; k < 16; ++k) {
-                        nz[k] = n[order[k]][2];
-                        tord[0][k] = n[order[k]][0];
-                        tord[1][k] = n[order[k]][1];
-                    }
-                    memset(w->ready, 0, (size_t)ny);
-                    prepared = 1;
-                }
-                if (!x_ready) {
-                    window_side_init(a, tord[0], &xside);
-                    for (int k = 0; k < 16; ++k)
-                        xa2[k] = 1.0 - xside.v[k] * xside.v[k];
-                    x_ready = 1;
-                }
-                const double *b = pal[ey->pair];
-                double margin = cut * (1.0 + BOUND_SLACK);
-                if (chunked) {
-#if SEARCH_AVX2
-                    if (j >= chunk_end) { /* the next candidates of this x pair under the incumbent */
-                        int lanes = 1;
-                        while (lanes < 4 && j + lanes < ny &&
-                               combine(ex->score, w->list[1][j + lanes].score, use_max) * (1.0 - BOUND_SLACK) < cut)
-                            ++lanes;
-                        for (int q = j; q < j + lanes; ++q)
-                            if (!w->ready[q]) { /* straight into the columns window_chunk_quick reads */
-                                sol_nm_channel_side_avx2(pal[w->list[1][q].pair], tord[1], &w->yt[0][0][q],
-                                                        &w->yt[1][0][q], &w->yt[2][0][q], WINDOW_PAIRS + 4);
-                                w->ready[q] = 1;
-                            }
-                        window_chunk_quick(&xside, xa2, w, j, lanes, nz, use_max, margin, &chunk);
-                        chunk_start = j;
-                        chunk_end = j + lanes;
-                        /* the whole chunk at once where the quick bound rejects every candidate of it
-                         * (the usual case) and no work check within it can stop the search: the same
-                         * candidates counted and the same work added as one by one below (the
-                         * incumbent, if among them, neither counted nor given work), nothing else
-                         * changes (no candidate reaches the exact evaluation) */
-                        if (work + 16 * (uint64_t)lanes < rq->work_limit) {
-                            uint64_t add = 0;
-                            int counted = 0, all = 1;
-                            for (int q = 0; q < lanes && all; ++q) {
-                                if (q > 0 && ex->pair == base_x && w->list[1][j + q].pair == base_y)
-                                    continue;
-                                all = chunk.below[q] < 16;
-                                add += (uint64_t)chunk.below[q] + 1;
-                                counted += q > 0;
-                            }
-                            if (all) {
-                                candidates += (uint64_t)counted;
-                                work += add;
-                                j = chunk_end - 1;
-                                continue;
-                            }
-                        }
-                    }
-#endif
-                    int below = window_chunk_below(&chunk, j - chunk_start, margin);
-                    work += (uint64_t)(below < 16 ? below + 1 : 16);
-                    if (below < 16)
-                        continue;
-                } else {
-                    if (!w->ready[j]) {
-                        window_side_init(b, tord[1], &w->yside[j]);
-                        w->ready[j] = 1;
-                    }
-                    if (window_quick(&xside, &w->yside[j], n, order, nz, use_max, margin, &work) >= margin)
-                        continue;
-                }
-                double v = INFINITY, angle[16];
-                if (joint_objective_checked(a, b, n, order, use_max, margin, best, &inc, &work, &v, cx, cy, angle) >=
-                    margin)
-                    continue;
-                if (v < best) { /* complete (below the budget): the exact objective and its indices */
-                    best = v;
-                    cut = best * shrink;
-                    px = ex->pair;
-                    py = ey->pair;
-                    memcpy(ix, cx, sizeof ix);
-                    memcpy(iy, cy, sizeof iy);
-                    for (int p = 0; p < 16; ++p) {
-                        inc.a[p] = a[ix[p]];
-                        inc.b[p] = b[iy[p]];
-                        inc.angle[p] = angle[p];
-                    }
-                }
-            }
-        }
-    }
-    out->x.e0 = (uint8_t)(px >> 8);
-    out->x.e1 = (uint8_t)(px & 255);
-    out->y.e0 = (uint8_t)(py >> 8);
-    out->y.e1 = (uint8_t)(py & 255);
-    memcpy(out->x.index, ix, sizeof ix);
-    memcpy(out->y.index, iy, sizeof iy);
-    if (info) {
-        info->error = metric_value(best, use_max ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED);
-        info->searched = 1;
-        info->candidates = candidates;
-        info->bounded = bounded;
-    }
-    return 1;
 }
 
 static sol_status workspace_alloc(search_workspace *ws)
@@ -4676,7 +3736,7 @@ static sol_status workspace_alloc(search_workspace *ws)
     ws->kkey = NULL;
     ws->kkey_cap = 0;
     ws->sort_tmp = NULL;
-    ws->win = calloc(1, sizeof *ws->win); /* zeroed: window_scratch's padding columns */
+    ws->win = sol_nm_bc5_window_scratch_new();
     if (!ws->x || !ws->y || !ws->slots || !ws->win) {
         free(ws->x);
         free(ws->y);
@@ -4726,8 +3786,8 @@ sol_status sol_bc5_search_block(const double normals[16][3], const sol_bc5_range
     search_workspace ws;
     if ((st = workspace_alloc(&ws)) != SOL_OK)
         return st;
-    search_request rq = {r, o->precision, o->metric == SOL_BC5_MAX, work_limit(o)};
-    search_unit(n, &rq, &ws, out, info);
+    search_request rq = {r, o->precision, o->metric == SOL_BC5_MAX, sol_nm_bc5_work_limit(o)};
+    sol_nm_bc5_search_unit(n, &rq, &ws, out, info);
     workspace_free(&ws);
     return SOL_OK;
 }
@@ -4777,8 +3837,8 @@ static void encode_unit(const double n[16][3], const double t[3][16], const sol_
 {
     int use_max = o->metric == SOL_BC5_MAX;
     if (o->encoder == SOL_BC5_OPTIMAL) {
-        search_request rq = {&full_range, o->precision, use_max, work_limit(o)};
-        search_unit(n, &rq, ws, out, info);
+        search_request rq = {&full_range, o->precision, use_max, sol_nm_bc5_work_limit(o)};
+        sol_nm_bc5_search_unit(n, &rq, ws, out, info);
         return;
     }
     const double gap = o->gap == 0.0 ? SOL_BC5_DEFAULT_GAP : o->gap; /* <= 0: no gap test, exact window */
@@ -4823,7 +3883,7 @@ static void encode_unit(const double n[16][3], const double t[3][16], const sol_
     if (!search) {
         *out = base;
         if (info) {
-            info->error = want_error ? metric_value(err, o->metric) : NAN;
+            info->error = want_error ? sol_nm_bc5_metric_value(err, o->metric) : NAN;
             info->searched = 0;
             info->candidates = 1;
             info->bounded = 0;
@@ -4834,12 +3894,12 @@ static void encode_unit(const double n[16][3], const double t[3][16], const sol_
     sol_bc5_range r = {clamp_code(base.x.e0 - w), clamp_code(base.x.e0 + w), clamp_code(base.x.e1 - w),
                        clamp_code(base.x.e1 + w), clamp_code(base.y.e0 - w), clamp_code(base.y.e0 + w),
                        clamp_code(base.y.e1 - w), clamp_code(base.y.e1 + w)};
-    search_request rq = {&r, o->precision, use_max, work_limit(o)};
+    search_request rq = {&r, o->precision, use_max, sol_nm_bc5_work_limit(o)};
     /* the window's relative tolerance (either base): 1 / (1 + gap), 1 = exact */
     double shrink = gap > 0.0 ? 1.0 / (1.0 + gap) : 1.0;
-    if (!window_search(n, &r, base.x.e0 << 8 | base.x.e1, base.y.e0 << 8 | base.y.e1, o->base != SOL_BC5_BASE_FAST,
-                       shrink, &rq, ws, out, info))
-        search_unit(n, &rq, ws, out, info);
+    if (!sol_nm_bc5_window_search(n, &r, base.x.e0 << 8 | base.x.e1, base.y.e0 << 8 | base.y.e1,
+                                  o->base != SOL_BC5_BASE_FAST, shrink, &rq, ws, out, info))
+        sol_nm_bc5_search_unit(n, &rq, ws, out, info);
 }
 
 /* sol_bc5_encode_block's checks and encode with workspace ws (NULL: one allocated for the call, if

@@ -172,7 +172,7 @@ void sol_nm_bc4_fast_anchors(const double t[16], int *lo, int *hi, int *lo6, int
  * results are bit-identical either way, the tests compare them). Zero (the default) otherwise. */
 extern int sol_nm_simd_disable;
 
-/* The channel side of palette pal against targets t (bc5_side.c; bc5.c's exact search and window
+/* The channel side of palette pal against targets t (bc5_side.c; bc5.c's exact search and bc5_window.c's window
  * search): for pixel k, v[k stride] the first nearest entry's value, m1[k stride] its squared
  * distance, m2[k stride] the least squared distance of an entry of another value (INFINITY if none),
  * in one pass over the entries (proof in bc5_side.c). The AVX2
