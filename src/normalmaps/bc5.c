@@ -892,9 +892,9 @@ static int cone_line(double a, double dx, double dy, double c, double s, double 
 /* What the intervals of one ball (target q, squared radius R2) share across x values: (q[1], q[2])
  * in polar form (r, psi: sphere_line's; they depend on q alone, so a caller testing many radii around
  * one pixel computes them once), and the cone of the clamped decodes that reach the ball (clamped: 0
- * none, 1 the cone of half-angle acos c around (dx, dy), 2 every direction). Splitting them out of
- * pixel_intervals changes no double: the same expressions on the same inputs (issue 13: the pair
- * screen asked pixel_intervals for one value at a time, ~1.2 M calls on `away-cone s=1 sum p16`, each
+ * none, 1 the cone of half-angle acos c around (dx, dy), 2 every direction). Computing them apart
+ * from the values changes no double: the same expressions on the same inputs (issue 13: the pair
+ * screen asked for one value's intervals at a time, ~1.2 M calls on `away-cone s=1 sum p16`, each
  * redoing two hypots and an atan2 that depend on the pixel only). */
 typedef struct ball_lines {
     const double *q;
@@ -912,7 +912,7 @@ static void ball_lines_polar(ball_lines *bl, const double q[3])
 }
 
 /* bl's radius R2 and its cone of clamped decodes: 0, or -1 if the ball constrains nothing (R2 >= 4,
- * or a cone of half a plane or more), as pixel_intervals returns it. */
+ * or a cone of half a plane or more), as the interval functions return it. */
 static int ball_lines_radius(ball_lines *bl, double R2, double cone_slack)
 {
     const double *q = bl->q;
@@ -984,7 +984,8 @@ static int sphere_line(double a, const ball_lines *bl, double *lo, double *hi, i
     return k;
 }
 
-/* The intervals of one x value a against bl's ball (pixel_intervals' body for one entry): appends up
+/* The intervals of one x value a against bl's ball (one entry's part of ball_intervals_exact or
+ * pixel_y_intervals): appends up
  * to five (exact) or two at lo[k], hi[k] and returns the new k. */
 static int ball_lines_value(const ball_lines *bl, double a, int exact, double *lo, double *hi, int k)
 {
@@ -1033,38 +1034,12 @@ static int ball_lines_value(const ball_lines *bl, double a, int exact, double *l
     return k;
 }
 
-/* The y intervals for one pixel (target q, squared radius R2) and x palette a: returns their
- * count (up to cap, at least 16), or -1 if the pixel constrains nothing. exact (unit q only): the
- * unclamped decodes' intervals from sphere_line instead of the projection that drops z, and the
- * clamped ones' (the cone) only off the unit disc, where decodes are clamped: up to five intervals per
- * distinct entry (-1 once cap could overflow; callers pass a palette with cap Y_FILTER_CAP, or use
- * ball_lines_value per value). Not exact: at most two per entry (cap 16 always suffices). */
-static int pixel_intervals(const double a[8], const double q[3], double R2, double cone_slack, int exact,
-                           int cap, double *lo, double *hi)
-{
-    ball_lines bl;
-    bl.q = q;
-    if (ball_lines_radius(&bl, R2, cone_slack) < 0)
-        return -1;
-    if (exact)
-        ball_lines_polar(&bl, q);
-    int k = 0;
-    for (int e = 0; e < 8; ++e) {
-        int dup = 0;
-        for (int f = 0; f < e && !dup; ++f)
-            dup = a[f] == a[e];
-        if (dup)
-            continue;
-        if (exact && k > cap - 5)
-            return -1; /* no room for this entry's five intervals: constrain nothing (valid) */
-        k = ball_lines_value(&bl, a[e], exact, lo, hi, k);
-    }
-    return k;
-}
 
-/* pixel_intervals' exact mode with its per-call parts taken out: bl holds the polar form of the
- * target (ball_lines_polar, set up once per pixel), a[0 .. na) the palette's distinct entries in
- * palette order (palette_distinct, once per palette); the same intervals, count and -1 verdicts. */
+/* The exact intervals (z kept: sphere_line; clamped decodes only off the unit disc) of the entries
+ * a[0 .. na) against the ball of squared radius R2 around bl's target: up to five per entry; their
+ * count, or -1 if the ball constrains nothing or cap could overflow (constraining nothing is valid).
+ * bl holds the target's polar form (ball_lines_polar, set up once per pixel), a the palette's
+ * distinct entries in palette order (palette_distinct, once per palette). */
 static int ball_intervals_exact(ball_lines bl, double R2, double cone_slack, const double *a, int na, int cap,
                                 double *lo, double *hi)
 {
@@ -1079,7 +1054,7 @@ static int ball_intervals_exact(ball_lines bl, double R2, double cone_slack, con
     return k;
 }
 
-/* The distinct entries of palette a in palette order (pixel_intervals' duplicate rule); their count. */
+/* The distinct entries of palette a in palette order (the first of equal entries); their count. */
 static int palette_distinct(const double a[8], double out[8])
 {
     int na = 0;
@@ -1093,14 +1068,26 @@ static int palette_distinct(const double a[8], double out[8])
     return na;
 }
 
+/* The y intervals for one pixel (target q, squared radius R2) and x palette a, from the projection
+ * that drops z (ball_intervals_exact keeps it): at most two per distinct entry, so 16 always suffice;
+ * their count, or -1 if the pixel constrains nothing. */
 static int pixel_y_intervals(const double a[8], const double q[3], double R2, double cone_slack, double lo[16],
                              double hi[16])
 {
-    return pixel_intervals(a, q, R2, cone_slack, 0, 16, lo, hi);
+    ball_lines bl;
+    bl.q = q;
+    if (ball_lines_radius(&bl, R2, cone_slack) < 0)
+        return -1;
+    double d[8];
+    const int na = palette_distinct(a, d);
+    int k = 0;
+    for (int e = 0; e < na; ++e)
+        k = ball_lines_value(&bl, d[e], 0, lo, hi, k);
+    return k;
 }
 
 /* The coupling filter for one x palette: np constrained pixels, rank[0] the most selective; per pixel
- * up to Y_FILTER_CAP intervals (pixel_intervals' exact mode: up to five per distinct entry). */
+ * up to Y_FILTER_CAP intervals (ball_intervals_exact: up to five per distinct entry). */
 #define Y_FILTER_CAP 40
 typedef struct y_filter {
     int np, pix[16], cnt[16], rank[16];
@@ -1169,7 +1156,7 @@ static int pixel_ball(const away_info *aw, const double n[16][3], int p, double 
  * metric's units): every decode u whose computed term dN^2 is below t lies within the chord
  * 2 sin(sqrt t / 2) of n_p (dN = 2 asin(|u - n| / 2)), so q = n_p and *R2 that chord squared, widened
  * by 1e-9 relative and 1e-12 absolute (sqrt t by 1e-12 relative) against the rounding of the angle and
- * of sin; 4 (no constraint) when sqrt t reaches pi. With pixel_intervals' exact mode it is the set of
+ * of sin; 4 (no constraint) when sqrt t reaches pi. With ball_intervals_exact it is the set of
  * decodes within the budget itself: pixel_ball's balls (the budget as a squared chord; for a pixel
  * pointing away the rim bound's tangent around its rim target, loose away from it) hold it, and held
  * most of the arcs and cones pointing away's values that the screen then had to rule out one by one
@@ -1196,7 +1183,7 @@ static int y_filter_init(y_filter *f, const double a[8], const channel_side *xs,
                          const y_index *ix)
 {
     /* a's distinct entries once for its pixels, the pixels' polar forms (nball: of n[p], the exact
-     * balls' centre) once per search (issue 13 deg-speed: pixel_intervals redid both per pixel, a
+     * balls' centre) once per search (issue 13 deg-speed: the per-palette interval call redid both per pixel, a
      * third of the cones' time) */
     double ad[8];
     const int na = palette_distinct(a, ad);
@@ -1701,7 +1688,7 @@ static int pair_screen_build(pair_screen *sc, const double n[16][3], const int o
                 break;
             }
             pixel_chord_ball(n, p, T, q, &R2); /* pixel_ball decided only whether the pixel takes part */
-            /* the ball's intervals of x values (pixel_intervals' exact mode, one entry at a time; its
+            /* the ball's intervals of x values (ball_intervals_exact's, one entry at a time; its
              * target is the pixel's normal, x and y swapped, whatever the y pair: polar part hoisted) */
             ball_lines bl = xball[k];
             int any = 0, unconstrained = ball_lines_radius(&bl, R2, 1e-9) < 0; /* it constrains nothing */
@@ -1962,7 +1949,7 @@ static int floor_scan(pixel_floor *pf, const double n[16][3], const away_info *a
     const double half_q = pf->half_q;
     const long top = lround(2.0 * half_q);
     const value_codes *vx = &pf->v[0], *vy = &pf->v[1];
-    ball_lines bl; /* one ball for every x value (pixel_intervals' exact mode, one value at a time) */
+    ball_lines bl; /* one ball for every x value (ball_intervals_exact's, one value at a time) */
     ball_lines_polar(&bl, q);
     const int unconstrained = ball_lines_radius(&bl, R2, 1e-9) < 0;
     for (long w = 0; w <= top >> 6; ++w)

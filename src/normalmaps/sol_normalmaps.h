@@ -255,8 +255,9 @@ sol_status sol_bc5_encode_block(const double normals[16][3], const sol_bc5_optio
 /* A reusable workspace for block encodes: the searches' scratch, kept (and grown on demand) between
  * calls, so that a caller encoding blocks one at a time does not allocate and fault in fresh memory
  * per block (issue 13: on the hard blocks of the degenerate survey, first-touch page faults were up
- * to half of a single block's time; sol_bc5_encode_image keeps one per thread). One workspace per thread (calls with one workspace must not overlap); the
- * results are those of sol_bc5_encode_block, bit for bit, whatever blocks it encoded before.
+ * to half of a single block's time; sol_bc5_encode_image keeps one per thread). One workspace per
+ * thread (calls with one workspace must not overlap); the results are those of sol_bc5_encode_block,
+ * bit for bit, whatever blocks it encoded before.
  * sol_bc5_workspace_new: NULL if out of memory. sol_bc5_workspace_free(NULL) does nothing.
  * sol_bc5_encode_block_with: as sol_bc5_encode_block (same errors), plus SOL_ERR_NULL_ARG for a NULL
  * workspace. */
