@@ -1457,7 +1457,9 @@ static size_t distinct_entries(sol_bc4_precision prec, double *out)
 
 /* Blocks of 16 equal normals on the full range (issue 13: thousands of exactly tied anchor pairs;
  * the 8-bit decoder's flat block took ~48 ms and 19602 candidates, equal rim and away blocks
- * 14-166 ms) are decided by their decode values (bc5.c, equal_value_solve). Every candidate serves
+ * 14-166 ms; the equal blocks of z > 0 that an 8-bit source makes, ~225 us each in the search, were
+ * 40% of the hood map's time) are decided by their decode values (bc5.c, equal_value_solve), at every
+ * precision and direction. Every candidate serves
  * all 16 pixels with one decode (a, b), a and b entries of its palettes, so the least angle over
  * every pair of entry values, e*, gives a lower bound of every candidate's objective (16 e*^2 summed
  * in pixel order, or e*^2 for the max); the result must attain it (literal brute force over all
@@ -1525,7 +1527,7 @@ Test(normalmaps, equal_blocks_are_decided_by_their_values, .timeout = 120)
                 floor = metric ? sqrt(floor) : floor;
                 cr_assert_eq(info.error, floor, "prec %d case %d metric %d: %.17g, value brute force %.17g", prec, c,
                              metric, info.error, floor);
-                cr_assert(info.candidates < 20000, "prec %d case %d metric %d: %llu candidates", prec, c, metric,
+                cr_assert(info.candidates < 2000, "prec %d case %d metric %d: %llu candidates", prec, c, metric,
                           (unsigned long long)info.candidates);
                 sol_bc5_range r = range_around(&b, 2);
                 cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "prec %d case %d metric %d", prec, c, metric);
