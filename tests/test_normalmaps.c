@@ -3586,3 +3586,55 @@ Test(normalmaps, span_masks_keep_every_span_within_the_budget, .timeout = 120)
     }
     cr_assert_gt(tight, 10, "only %ld edge spans with a bound within 2%% of their least score", tight);
 }
+
+static int cmp_pair_literal(const void *pa, const void *pb)
+{
+    const sol_nm_pair *a = pa, *b = pb;
+    if (a->score != b->score)
+        return a->score < b->score ? -1 : 1;
+    return (int)a->pair - (int)b->pair;
+}
+
+/* The exact search's list sort (bc5.c, sol_nm_bc5_sort_pairs: merge sort under 1024 pairs, radix
+ * passes above, qsort without scratch or for a negative score) gives qsort's (score, pair) order for
+ * every length across the switch, with scores drawn from few values (ties broken by the pair code),
+ * -0 among them, and with a negative score or no scratch. */
+Test(normalmaps, sort_pairs_equals_qsort_order)
+{
+    sol_nm_pair *list = malloc(4096 * sizeof *list), *ref = malloc(4096 * sizeof *ref),
+                *tmp = malloc(4096 * sizeof *tmp);
+    uint16_t *codes = malloc(65536 * sizeof *codes);
+    cr_assert(list && ref && tmp && codes);
+    for (int k = 0; k < 65536; ++k)
+        codes[k] = (uint16_t)k;
+    const size_t counts[] = {0, 1, 2, 15, 16, 17, 31, 33, 100, 255, 256, 257, 1000, 1023, 1024, 1025, 4096};
+    for (size_t c = 0; c < sizeof counts / sizeof counts[0]; ++c)
+        for (int variant = 0; variant < 4; ++variant) {
+            size_t count = counts[c];
+            for (size_t k = 0; k < count; ++k) { /* distinct codes: a partial Fisher-Yates shuffle */
+                size_t r = k + (size_t)(uniform() * (65536 - k));
+                r = r < 65536 ? r : 65535;
+                uint16_t t = codes[k];
+                codes[k] = codes[r];
+                codes[r] = t;
+                list[k].pair = codes[k];
+                list[k].score = variant == 0 ? uniform() : floor(uniform() * 4.0) * 0.25;
+                if (variant == 1 && k % 7 == 0)
+                    list[k].score = -0.0;
+            }
+            if (variant == 3 && count > 0)
+                list[count / 2].score = -1.0;
+            for (size_t k = 0; k < count; ++k)
+                list[k].score += 0.0; /* the sort's own -0 -> +0 */
+            memcpy(ref, list, count * sizeof *list);
+            qsort(ref, count, sizeof *ref, cmp_pair_literal);
+            sol_nm_bc5_sort_pairs(list, count, variant == 2 ? NULL : tmp);
+            for (size_t k = 0; k < count; ++k)
+                cr_assert(list[k].pair == ref[k].pair && list[k].score == ref[k].score,
+                          "count %zu variant %d position %zu", count, variant, k);
+        }
+    free(list);
+    free(ref);
+    free(tmp);
+    free(codes);
+}

@@ -81,7 +81,7 @@ typedef struct search_workspace {
     uint32_t kgen;
     struct pair_key *kkey; /* merge_keyed's keys of the kept pairs, grown on demand */
     size_t kkey_cap;
-    sol_nm_pair *sort_tmp; /* sort_pairs' scratch (65536 pairs), allocated on demand */
+    sol_nm_pair *sort_tmp; /* sol_nm_bc5_sort_pairs' scratch (65536 pairs), allocated on demand */
 } search_workspace;
 
 typedef struct channel_key {

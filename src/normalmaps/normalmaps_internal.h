@@ -208,6 +208,11 @@ void sol_nm_couple_reduce(sol_nm_couple *cs, const double n[16][3], int use_max,
 int sol_nm_couple_descent(sol_nm_couple *cs, const double n[16][3], int use_max, const double (*pal)[8],
                           sol_bc4_precision precision, const sol_nm_pair *xl, size_t nx, const sol_nm_pair *yl,
                           size_t ny, int start_x, int out[][2], uint64_t *work);
+/* The exact search's sort of an anchor-pair list (bc5.c): list[0..count) in increasing (score, pair),
+ * the order qsort gives with score first and the pair's code breaking ties (pairs distinct). tmp:
+ * count elements of scratch, or NULL (then qsort itself). Radix passes from 1024 pairs, a merge sort
+ * below; qsort for a negative or NaN score. A score of -0 is stored as +0. */
+void sol_nm_bc5_sort_pairs(sol_nm_pair *list, size_t count, sol_nm_pair *tmp);
 /* The exact search's pair screen (bc5.c) on one candidate, for the tests: 1 if it rules out the x pair
  * pair_x with the y pair pair_y (e0 << 8 | e1) at incumbent best (their objective, sum or max of dN^2,
  * is then at least best), 0 if it lets the candidate through, -1 if out of memory. screen: the
