@@ -3638,3 +3638,64 @@ Test(normalmaps, sort_pairs_equals_qsort_order)
     free(tmp);
     free(codes);
 }
+
+/* The grouped objectives (bc5.c: one term per group of bit-identical normals, folded at every pixel)
+ * equal the plain ones bit for bit, work counted included, on blocks of 1-5 distinct normals (up,
+ * rim and pointing away) with random palettes, visiting orders, hemisphere floors, budgets that stop
+ * early and incumbents near the value (the max metric's exact check). */
+Test(normalmaps, grouped_objectives_equal_the_plain_ones)
+{
+    for (int trial = 0; trial < 20000; ++trial) {
+        const sol_bc4_precision prec = (sol_bc4_precision)(trial % 3);
+        const double(*pal)[8] = sol_nm_palettes(prec);
+        int distinct = 1 + trial % 5;
+        double d[5][3], off[5];
+        for (int k = 0; k < distinct; ++k) {
+            double phi = 2 * M_PI * uniform(), h = 2.0 * uniform() - 1.0;
+            if (trial % 7 == 0)
+                h = 0.0;
+            d[k][0] = sqrt(1 - h * h) * cos(phi);
+            d[k][1] = sqrt(1 - h * h) * sin(phi);
+            d[k][2] = h;
+            off[k] = h < 0.0 ? asin(-h) * asin(-h) : 0.0;
+        }
+        double n[16][3], away_off[16];
+        int pick[16], group[16], order[16];
+        for (int p = 0; p < 16; ++p) {
+            pick[p] = (int)(uniform() * distinct) % distinct;
+            memcpy(n[p], d[pick[p]], sizeof n[p]);
+            order[p] = p;
+        }
+        for (int p = 0; p < 16; ++p) {
+            group[p] = p;
+            for (int q = 0; q < p && group[p] == p; ++q)
+                if (memcmp(n[q], n[p], sizeof n[p]) == 0)
+                    group[p] = q;
+        }
+        for (int p = 15; p > 0; --p) {
+            int r = (int)(uniform() * (p + 1)) % (p + 1), t = order[p];
+            order[p] = order[r];
+            order[r] = t;
+        }
+        for (int k = 0; k < 16; ++k)
+            away_off[k] = off[pick[order[k]]];
+        const double *a = pal[(int)(uniform() * 65536) & 65535], *b = pal[(int)(uniform() * 65536) & 65535];
+        for (int use_max = 0; use_max < 2; ++use_max) {
+            double full = sol_nm_bc5_joint_objective(a, b, n, use_max, INFINITY, NULL, NULL);
+            const double budgets[] = {INFINITY, full, full * 0.5, full * (1.0 + 1e-12), full * uniform()};
+            for (int k = 0; k < 5; ++k) {
+                cr_assert_eq(sol_nm_bc5_joint_objective_grouped(a, b, n, group, use_max, budgets[k]),
+                             sol_nm_bc5_joint_objective(a, b, n, use_max, budgets[k], NULL, NULL),
+                             "trial %d max %d budget %d", trial, use_max, k);
+                const double best = k == 4 ? full * (1.0 + 1e-7) : budgets[k] * (1.0 - 1e-9);
+                uint64_t w_plain = 0, w_grouped = 0;
+                double lp = sol_nm_bc5_joint_objective_lower(a, b, n, order, away_off, use_max, best, budgets[k],
+                                                             &w_plain);
+                double lg = sol_nm_bc5_joint_objective_lower_grouped(a, b, n, group, order, away_off, use_max, best,
+                                                                     budgets[k], &w_grouped);
+                cr_assert(lp == lg && w_plain == w_grouped, "trial %d max %d budget %d: %.17g %.17g, work %llu %llu",
+                          trial, use_max, k, lp, lg, (unsigned long long)w_plain, (unsigned long long)w_grouped);
+            }
+        }
+    }
+}

@@ -208,6 +208,24 @@ void sol_nm_couple_reduce(sol_nm_couple *cs, const double n[16][3], int use_max,
 int sol_nm_couple_descent(sol_nm_couple *cs, const double n[16][3], int use_max, const double (*pal)[8],
                           sol_bc4_precision precision, const sol_nm_pair *xl, size_t nx, const sol_nm_pair *yl,
                           size_t ny, int start_x, int out[][2], uint64_t *work);
+/* The exact search's objectives (bc5.c) for blocks whose pixels repeat normals: group[p] is the first
+ * pixel q <= p whose normal is bit-identical to n[p]. sol_nm_bc5_joint_objective_grouped equals
+ * sol_nm_bc5_joint_objective(a, b, n, use_max, budget, NULL, NULL) and
+ * sol_nm_bc5_joint_objective_lower_grouped equals sol_nm_bc5_joint_objective_lower(a, b, n, order,
+ * away_off, use_max, best, budget, work), bit for bit (work counted alike), computing each group's
+ * term once. a, b: the 8 decoded palette values of each channel; order: a permutation of 0..15;
+ * away_off: per visiting position, equal for equal normals. */
+double sol_nm_bc5_joint_objective_grouped(const double a[8], const double b[8], const double n[16][3],
+                                          const int group[16], int use_max, double budget);
+double sol_nm_bc5_joint_objective_lower_grouped(const double a[8], const double b[8], const double n[16][3],
+                                                const int group[16], const int order[16],
+                                                const double away_off[16], int use_max, double best, double budget,
+                                                uint64_t *work);
+double sol_nm_bc5_joint_objective(const double a[8], const double b[8], const double n[16][3], int use_max,
+                                  double budget, uint8_t *ix, uint8_t *iy);
+double sol_nm_bc5_joint_objective_lower(const double a[8], const double b[8], const double n[16][3],
+                                        const int order[16], const double away_off[16], int use_max, double best,
+                                        double budget, uint64_t *work);
 /* The exact search's sort of an anchor-pair list (bc5.c): list[0..count) in increasing (score, pair),
  * the order qsort gives with score first and the pair's code breaking ties (pairs distinct). tmp:
  * count elements of scratch, or NULL (then qsort itself). Radix passes from 1024 pairs, a merge sort
