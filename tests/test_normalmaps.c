@@ -3699,3 +3699,36 @@ Test(normalmaps, grouped_objectives_equal_the_plain_ones)
         }
     }
 }
+
+/* Rim blocks (z = 0) of 2-4 distinct normals, sum metric (bc5.c: separable_solve takes blocks of at
+ * most SEPARABLE_GROUPS normals whatever their azimuths; issue 13's survey, tied rim normals on the
+ * axes, 8-bit decoder: 6088 -> 672 candidates): proven, their own error, and no better quadruple
+ * within +-2 codes (literal brute force), on the axes and at random azimuths, every precision. */
+Test(normalmaps, rim_blocks_of_few_normals_are_proven_exactly, .timeout = 120)
+{
+    for (int c = 0; c < 12; ++c) {
+        int distinct = 2 + c % 3;
+        double d[4][3];
+        for (int k = 0; k < distinct; ++k) {
+            double phi = c < 6 ? (M_PI / 2) * ((k + c) % 4) : 2 * M_PI * uniform();
+            d[k][0] = cos(phi);
+            d[k][1] = sin(phi);
+            d[k][2] = 0.0;
+        }
+        double n[16][3];
+        for (int p = 0; p < 16; ++p)
+            memcpy(n[p], d[p % distinct], sizeof n[p]);
+        for (int prec = 0; prec < 3; ++prec) {
+            sol_bc5_options o = {.encoder = SOL_BC5_OPTIMAL, .precision = (sol_bc4_precision)prec};
+            sol_bc5_block b;
+            sol_bc5_info info;
+            cr_assert_eq(sol_bc5_encode_block(n, &o, &b, &info), SOL_OK);
+            cr_assert(!info.bounded, "case %d prec %d: bounded", c, prec);
+            double own;
+            cr_assert_eq(sol_bc5_block_error(&b, n, o.precision, o.metric, &own), SOL_OK);
+            cr_assert_eq(own, info.error, "case %d prec %d", c, prec);
+            sol_bc5_range r = range_around(&b, 2);
+            cr_assert_eq(bc5_brute_force(n, &r, &o), info.error, "case %d prec %d", c, prec);
+        }
+    }
+}

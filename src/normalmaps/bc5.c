@@ -2925,7 +2925,8 @@ static int equal_value_solve(const double n[16][3], const away_info *aw, int use
  * candidate attains L it is optimal. Blocks whose pixels share a rim direction (normals pointing
  * away at one azimuth, different heights) or that one pixel dominates (max metric) have such a
  * candidate: the decode nearest to the shared rim direction serves every pixel. (The sum metric
- * tries it only when the pixels share one azimuth.)
+ * tries it only when the pixels share one azimuth or hold at most SEPARABLE_GROUPS distinct normals,
+ * such as rim normals on the axes, whose least decodes one candidate often holds together.)
  *
  * e*_p (pixel_least_decode) is found as in equal_block_solve: per distinct value a of the x list,
  * only the b of the y list inside the coupling filter's intervals for a budget T (the incumbent less
@@ -2952,6 +2953,9 @@ static int equal_value_solve(const double n[16][3], const away_info *aw, int use
  * If L is not below the incumbent, or some pixel has no decode within its budget, no candidate beats
  * the incumbent, which is the answer (px, py untouched), as in the enumeration. */
 enum { SEPARABLE_TRIES = 4096 };
+/* separable_solve's sum metric also takes blocks of at most this many distinct normals, whatever
+ * their azimuths (sol_nm_bc5_search_unit tries rim blocks of so few normals too) */
+enum { SEPARABLE_GROUPS = 4 };
 
 typedef struct least_scan {
     const double (*pal)[8];
@@ -3016,7 +3020,7 @@ static int pixel_least_decode(least_scan *ls, const double n[3], int p, double t
     return 1;
 }
 
-static int separable_solve(const double n[16][3], const int group[16], const sol_nm_pair *xl, size_t nx,
+static int separable_solve(const double n[16][3], const int group[16], int few, const sol_nm_pair *xl, size_t nx,
                            const sol_nm_pair *yl, size_t ny, const double (*pal)[8], const y_index *yix,
                            const away_info *aw, int use_max, double best, uint64_t cap, uint32_t *slots, int *px,
                            int *py, double *value, uint64_t *evals, uint64_t *work)
@@ -3024,8 +3028,9 @@ static int separable_solve(const double n[16][3], const int group[16], const sol
     for (int p = 0; p < 16; ++p)
         if (((aw->mask >> p) & 1) && !(aw->w[p] > 0.0))
             return 0; /* (0, 0, -1): every rim decode ties */
-    if (!use_max) /* the sum: only blocks whose pixels share one azimuth (within 0.05 rad): else the scans
-                   * cost much and the bound is rarely attained */
+    if (!use_max && !few) /* the sum: only blocks whose pixels share one azimuth (within 0.05 rad) or that
+                           * hold few distinct normals: else the scans cost much and the bound is rarely
+                           * attained */
         for (int p = 1; p < 16; ++p) {
             double r0 = hypot(n[0][0], n[0][1]), rp = hypot(n[p][0], n[p][1]);
             if (!(n[0][0] * n[p][0] + n[0][1] * n[p][1] >= cos(0.05) * r0 * rp) || !(r0 * rp > 0.0))
@@ -3618,17 +3623,23 @@ void sol_nm_bc5_search_unit(const double n[16][3], const search_request *rq, sea
         }
         if (filter && (loose & 1)) {
 
-            int equal = 1;
-            for (int p = 1; p < 16; ++p)
+            int equal = 1, groups = 0;
+            for (int p = 0; p < 16; ++p) {
                 equal &= group[p] == 0;
+                groups += group[p] == p;
+            }
+            /* rim blocks of few distinct normals (no pixel pointing away) with the sum metric: the
+             * per-pixel floor is cheap (a scan per distinct normal) and often attained (issue 13's
+             * survey: tied rim normals on the axes, 8-bit decoder, 6088 -> 672 candidates) */
+            const int few = !use_max && groups <= SEPARABLE_GROUPS;
             double v;
             uint64_t evals = 0;
             if (equal && equal_block_solve(n, ws->x, nx, ws->y, ny, pal, &yix, &aw, use_max, best, ws->slots, &px,
                                            &py, &v, &evals)) {
                 best = v;
                 solved = 1;
-            } else if (!equal && aw.mask &&
-                       separable_solve(n, group, ws->x, nx, ws->y, ny, pal, &yix, &aw, use_max, best,
+            } else if (!equal && (aw.mask || few) &&
+                       separable_solve(n, group, few, ws->x, nx, ws->y, ny, pal, &yix, &aw, use_max, best,
                                        rq->work_limit / 8, ws->slots, &px, &py, &v, &evals, &work)) {
                 best = v;
                 solved = 1;
