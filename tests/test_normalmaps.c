@@ -3704,7 +3704,7 @@ Test(normalmaps, grouped_objectives_equal_the_plain_ones)
  * most SEPARABLE_GROUPS normals whatever their azimuths; issue 13's survey, tied rim normals on the
  * axes, 8-bit decoder: 6088 -> 672 candidates): proven, their own error, and no better quadruple
  * within +-2 codes (literal brute force), on the axes and at random azimuths, every precision. */
-Test(normalmaps, rim_blocks_of_few_normals_are_proven_exactly, .timeout = 120)
+Test(normalmaps, rim_blocks_of_few_normals_are_proven_exactly)
 {
     for (int c = 0; c < 12; ++c) {
         int distinct = 2 + c % 3;
