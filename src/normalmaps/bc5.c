@@ -2402,22 +2402,6 @@ static inline int slot_usable(value_table *t, value_mask *s, double v, int p)
     return (s->usable & bit) != 0;
 }
 
-/* Asks for the table slots of a palette's 8 values ahead of their use (the table is 512 KB, the
- * values scattered over it; a hint only). */
-static inline void value_slots_prefetch(const value_table *t, const double pal[8])
-{
-    for (int e = 0; e < 8; ++e)
-        __builtin_prefetch(&t->slot[(long)((pal[e] + 1.0) * t->other->half_q + 0.5)]);
-}
-
-/* The slots of the pair PREFETCH_AHEAD / 2 places down the list (its palette was asked for by
- * PREFETCH_PAIR before). */
-#define PREFETCH_SLOTS(t, pal, list, i, count)                                                               \
-    do {                                                                                                     \
-        if ((i) + PREFETCH_AHEAD / 2 < (count))                                                              \
-            value_slots_prefetch((t), (pal)[(list)[(i) + PREFETCH_AHEAD / 2].pair]);                          \
-    } while (0)
-
 /* Drops the pairs of which no entry is usable for some constrained pixel; returns the count kept. */
 static size_t usable_filter(sol_nm_pair *list, size_t count, const double (*pal)[8], value_table *t)
 {
@@ -2427,7 +2411,6 @@ static size_t usable_filter(sol_nm_pair *list, size_t count, const double (*pal)
         need |= 1u << t->pr->order[k];
     for (size_t i = 0; i < count; ++i) {
         PREFETCH_PAIR(pal, list, i, count);
-        PREFETCH_SLOTS(t, pal, list, i, count);
         const double *a = pal[list[i].pair];
         value_mask *s[8];
         for (int e = 0; e < 8; ++e)
@@ -2551,7 +2534,7 @@ static int keys_equal(const double pa[8], const pair_key *ka, const double pb[8]
 
 /* A pair's key for merge_stored: its entries' masks m and per pixel its seed key (count pixels). */
 typedef void (*pair_key_fn)(void *ctx, const double pal[8], uint16_t m[8], uint64_t seed[16]);
-/* Asks for the memory pair_key_fn will read for palette pal (a hint: no result depends on it). */
+/* Asks for the memory pair_key_fn will read for palette pal (a hint: no result depends on it; may be NULL). */
 typedef void (*pair_ahead_fn)(void *ctx, const double pal[8]);
 
 /* sol_nm_bc5_merge_classes's walk (the same slots, hash tags and probing; work, if not NULL, charged 16 per
@@ -2575,7 +2558,7 @@ static size_t merge_stored(sol_nm_pair *list, size_t count, const double (*pal)[
     for (size_t j = 0; j < count + MERGE_LAG; ++j) {
         if (j < count) { /* the key of pair j */
             PREFETCH_PAIR(pal, list, j, count);
-            if (j + PREFETCH_AHEAD / 2 < count) /* the tables key_fn reads for a pair further down */
+            if (ahead && j + PREFETCH_AHEAD / 2 < count) /* the tables key_fn reads for a pair further down */
                 ahead(ctx, pal[list[j + PREFETCH_AHEAD / 2].pair]);
             pair_key *kj = &ring[j % MERGE_RING];
             if (work)
@@ -2666,16 +2649,11 @@ static void usable_key_fn(void *ctx, const double pal[8], uint16_t m[8], uint64_
     usable_masks(u->t, pal, u->tc, m, seed);
 }
 
-static void usable_ahead_fn(void *ctx, const double pal[8])
-{
-    value_slots_prefetch(((usable_ctx *)ctx)->t, pal);
-}
-
 static size_t merge_usable(sol_nm_pair *list, size_t count, const double (*pal)[8], value_table *t,
                            const double tc[16], search_workspace *ws)
 {
     usable_ctx u = {t, tc};
-    return merge_stored(list, count, pal, usable_key_fn, usable_ahead_fn, &u, 16, ws, t->work);
+    return merge_stored(list, count, pal, usable_key_fn, NULL, &u, 16, ws, t->work);
 }
 
 /* The open-addressing set of the distinct entry values of list xl (slot 8 i + e + 1 holds entry e

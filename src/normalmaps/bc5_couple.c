@@ -81,25 +81,6 @@ static float *entry_row(sol_nm_couple *cs, double v, double half_q, int *stale)
     return cs->e2[k];
 }
 
-/* Prefetches for a walk over list at position i (issue 13: the lists are in score order, so each
- * pair's palette and its entries' rows are scattered over the 4 MB palette table and the 4 MB row
- * cache; the walks waited on them): the palette of the pair 16 ahead, and the rows and stamps of
- * the entries of the pair 8 ahead, whose palette the previous call fetched. No effect on results. */
-static inline void prefetch_rows(const sol_nm_couple *cs, const double (*pal)[8], const sol_nm_pair *list, size_t i,
-                                 size_t count, double half_q)
-{
-    if (i + 16 < count)
-        __builtin_prefetch(pal[list[i + 16].pair]);
-    if (i + 8 < count) {
-        const double *a = pal[list[i + 8].pair];
-        for (int e = 0; e < 8; ++e) {
-            long k = value_code(a[e], half_q);
-            __builtin_prefetch(cs->e2[k]);
-            __builtin_prefetch(&cs->stamp[k]);
-        }
-    }
-}
-
 /* The block objective's fold of 16 per-pixel floors: their sum, or their max for SOL_BC5_MAX. */
 static double fold_row(const float row[16], int use_max)
 {
@@ -282,7 +263,6 @@ static size_t row_filter(sol_nm_couple *cs, const couple_pixels *px, int use_max
     next_generation(cs);
     size_t kept = 0;
     for (size_t i = 0; i < count; ++i) {
-        prefetch_rows(cs, pal, list, i, count, half_q);
         const double *a = pal[list[i].pair];
         float row[16];
         for (int e = 0; e < 8; ++e) {
@@ -364,7 +344,6 @@ static size_t best_partner(sol_nm_couple *cs, const double n[16][3], int c, int 
     size_t arg = 0;
     double least = INFINITY;
     for (size_t i = 0; i < count; ++i) {
-        prefetch_rows(cs, pal, list, i, count, half_q);
         const double *a = pal[list[i].pair];
         float row[16];
         for (int e = 0; e < 8; ++e) {
