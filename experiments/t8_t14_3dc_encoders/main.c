@@ -1653,6 +1653,7 @@ typedef struct degen_time {
     int family, metric, precision;
     double spread, ms, cold_ms; /* ms: with the reused workspace */
     uint64_t candidates;
+    int bounded, exact; /* stopped by the work bound; equal to the +-1 window's minimum */
 } degen_time;
 
 static int degen_time_cmp(const void *pa, const void *pb)
@@ -1691,10 +1692,10 @@ static double degen_quantile(const degen_time *t, int count, double q)
 }
 
 /* One row of the summary: the blocks t[0 .. count) sorted by time. */
-static void degen_summary_row(exp_table *tab, const char *family, degen_time *t, int count, int bounded, int exact)
+static void degen_summary_row(exp_table *tab, const char *family, degen_time *t, int count)
 {
     qsort(t, (size_t)count, sizeof *t, degen_time_cmp);
-    int over100 = 0, within10 = 0, over1s = 0;
+    int over100 = 0, within10 = 0, over1s = 0, bounded = 0, exact = 0;
     uint64_t cand_max = 0;
     double cand_sum = 0.0, cold_max = 0.0;
     for (int i = 0; i < count; ++i) {
@@ -1702,12 +1703,44 @@ static void degen_summary_row(exp_table *tab, const char *family, degen_time *t,
         over100 += t[i].ms > 100.0;
         over1s += t[i].ms > 1000.0;
         within10 += t[i].ms <= 10.0;
+        bounded += t[i].bounded;
+        exact += t[i].exact;
         cand_sum += (double)t[i].candidates;
         cand_max = t[i].candidates > cand_max ? t[i].candidates : cand_max;
     }
     exp_table_row(tab, "%s|%d|%.2f|%.2f|%.2f|%.2f|%d|%d|%d|%.0f|%llu|%d|%d", family, count,
                   degen_quantile(t, count, 0.5), degen_quantile(t, count, 0.9), t[count - 1].ms, cold_max, within10,
                   over100, over1s, cand_sum / count, (unsigned long long)cand_max, bounded, exact);
+}
+
+#define DEGEN_COLUMNS                                                                                            \
+    "blocks,median ms,p90 ms,max ms,cold max ms,blocks <= 10 ms,blocks > 100 ms,blocks > 1 s,mean candidates,"   \
+    "max candidates,bounded,exact in +-1 window"
+
+/* The survey by spread: the arc and cone families' blocks at each spread (0: the exactly
+ * degenerate arrangements, tied or equal normals, before any spread), then the fixed families
+ * (flat, equal, down, ...). Separates the goal's exactly degenerate blocks from the spread ones. */
+static void bench_degenerate_spread(const exp_run *exp, const degen_time *all, int count, degen_time *sel)
+{
+    exp_table *tab = exp_table_new("make bench: degenerate survey by spread (the same blocks and times as bench_degenerate)",
+                                   "blocks of," DEGEN_COLUMNS);
+    char label[64];
+    for (int s = 0; s < SURVEY_SPREADS; ++s) {
+        int m = 0;
+        for (int i = 0; i < count; ++i)
+            if (all[i].family < SURVEY_SPREAD_FAMILIES && all[i].spread == survey_spreads[s])
+                sel[m++] = all[i];
+        snprintf(label, sizeof label, "arcs and cones, spread %g rad", survey_spreads[s]);
+        if (m > 0)
+            degen_summary_row(tab, label, sel, m);
+    }
+    int m = 0;
+    for (int i = 0; i < count; ++i)
+        if (all[i].family >= SURVEY_SPREAD_FAMILIES)
+            sel[m++] = all[i];
+    if (m > 0)
+        degen_summary_row(tab, "fixed families", sel, m);
+    exp_table_write(tab, exp, "bench_degenerate_spread");
 }
 
 static void bench_degenerate(const exp_run *exp)
@@ -1717,7 +1750,6 @@ static void bench_degenerate(const exp_run *exp)
     if (!all || !fam)
         exp_die("out of memory");
     int count = 0, bounded_all = 0, exact_all = 0;
-    int fam_bounded[SURVEY_FAMILIES] = {0}, fam_exact[SURVEY_FAMILIES] = {0};
     int threads = omp_get_max_threads();
     omp_set_num_threads(1);
     sol_bc5_workspace *ws = sol_bc5_workspace_new();
@@ -1751,12 +1783,11 @@ static void bench_degenerate(const exp_run *exp)
                 if (memcmp(&b, &cold_b, sizeof b) != 0 || info.error != cold_info.error)
                     exp_die("degenerate survey: a reused workspace changed a block");
                 int exact = !info.bounded && window_minimum(&b, n, &o) == info.error;
-                all[count] = (degen_time){family, metric, prec, spread, least, cold, info.candidates};
+                all[count] = (degen_time){family, metric, prec, spread, least, cold, info.candidates, info.bounded != 0,
+                                          exact};
                 ++count;
                 bounded_all += info.bounded != 0;
                 exact_all += exact;
-                fam_bounded[family] += info.bounded != 0;
-                fam_exact[family] += exact;
                 exp_progress("degenerate survey", (size_t)count, (size_t)total);
             }
     }
@@ -1766,18 +1797,18 @@ static void bench_degenerate(const exp_run *exp)
     exp_table *sum = exp_table_new(
         "make bench: degenerate survey, optimal encoder per block (one thread, CPU ms with a reused workspace; "
         "cold: sol_bc5_encode_block; both metrics, 3 precisions)",
-        "family,blocks,median ms,p90 ms,max ms,cold max ms,blocks <= 10 ms,blocks > 100 ms,blocks > 1 s,"
-        "mean candidates,max candidates,bounded,exact in +-1 window");
+        "family," DEGEN_COLUMNS);
     for (int f = 0; f < SURVEY_FAMILIES; ++f) {
         int m = 0;
         for (int i = 0; i < count; ++i)
             if (all[i].family == f)
                 fam[m++] = all[i];
         if (m > 0)
-            degen_summary_row(sum, survey_family_name(f), fam, m, fam_bounded[f], fam_exact[f]);
+            degen_summary_row(sum, survey_family_name(f), fam, m);
     }
-    degen_summary_row(sum, "all", all, count, bounded_all, exact_all);
+    degen_summary_row(sum, "all", all, count);
     exp_table_write(sum, exp, "bench_degenerate");
+    bench_degenerate_spread(exp, all, count, fam);
     static const char *const prec_names[] = {"16-bit", "8-bit", "float"};
     exp_table *slow = exp_table_new("make bench: degenerate survey, the 10 slowest blocks",
                                     "family,spread rad,metric,interpolation,ms,cold ms,candidates");
