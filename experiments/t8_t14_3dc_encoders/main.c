@@ -1713,6 +1713,18 @@ static void degen_summary_row(exp_table *tab, const char *family, degen_time *t,
                   over100, over1s, cand_sum / count, (unsigned long long)cand_max, bounded, exact);
 }
 
+/* Copies into sel the blocks of all[0 .. count) whose family is in [family_lo, family_hi) and, unless
+ * spread is NaN, whose spread equals it; returns how many. */
+static int degen_select(const degen_time *all, int count, int family_lo, int family_hi, double spread,
+                        degen_time *sel)
+{
+    int m = 0;
+    for (int i = 0; i < count; ++i)
+        if (all[i].family >= family_lo && all[i].family < family_hi && (isnan(spread) || all[i].spread == spread))
+            sel[m++] = all[i];
+    return m;
+}
+
 #define DEGEN_COLUMNS                                                                                            \
     "blocks,median ms,p90 ms,max ms,cold max ms,blocks <= 10 ms,blocks > 100 ms,blocks > 1 s,mean candidates,"   \
     "max candidates,bounded,exact in +-1 window"
@@ -1726,18 +1738,12 @@ static void bench_degenerate_spread(const exp_run *exp, const degen_time *all, i
                                    "blocks of," DEGEN_COLUMNS);
     char label[64];
     for (int s = 0; s < SURVEY_SPREADS; ++s) {
-        int m = 0;
-        for (int i = 0; i < count; ++i)
-            if (all[i].family < SURVEY_SPREAD_FAMILIES && all[i].spread == survey_spreads[s])
-                sel[m++] = all[i];
+        int m = degen_select(all, count, 0, SURVEY_SPREAD_FAMILIES, survey_spreads[s], sel);
         snprintf(label, sizeof label, "arcs and cones, spread %g rad", survey_spreads[s]);
         if (m > 0)
             degen_summary_row(tab, label, sel, m);
     }
-    int m = 0;
-    for (int i = 0; i < count; ++i)
-        if (all[i].family >= SURVEY_SPREAD_FAMILIES)
-            sel[m++] = all[i];
+    int m = degen_select(all, count, SURVEY_SPREAD_FAMILIES, SURVEY_FAMILIES, NAN, sel);
     if (m > 0)
         degen_summary_row(tab, "fixed families", sel, m);
     exp_table_write(tab, exp, "bench_degenerate_spread");
@@ -1799,10 +1805,7 @@ static void bench_degenerate(const exp_run *exp)
         "cold: sol_bc5_encode_block; both metrics, 3 precisions)",
         "family," DEGEN_COLUMNS);
     for (int f = 0; f < SURVEY_FAMILIES; ++f) {
-        int m = 0;
-        for (int i = 0; i < count; ++i)
-            if (all[i].family == f)
-                fam[m++] = all[i];
+        int m = degen_select(all, count, f, f + 1, NAN, fam);
         if (m > 0)
             degen_summary_row(sum, survey_family_name(f), fam, m);
     }
