@@ -3365,456 +3365,628 @@ int sol_nm_floor_rules_out(const double n[16][3], const double best[16], sol_bc4
     return built ? 0 : -1;
 }
 
+/* ---- the stages of the exact search (sol_nm_bc5_search_unit, in this order) ---- */
+
+/* What the stages of one search share: the block and the request, the incumbent (objective best,
+ * pairs px, py), the two lists ws->x[0 .. nx) and ws->y[0 .. ny), the counters, the loose pixels
+ * and pixels pointing away, which reductions ran and the incumbents at which they run again, the
+ * pixels' groups and visiting order, and the per-candidate helpers that were set up. */
+typedef struct search_state {
+    const double (*n)[3];
+    const search_request *rq;
+    search_workspace *ws;
+    const double (*pal)[8];
+    int use_max;
+    double tx[16], ty[16];
+    sol_nm_channel cx, cy;
+    double best;
+    int px, py;
+    uint64_t candidates, work; /* work: pixel evaluations of candidates (see the work bound) */
+    int bounded, solved;
+    size_t nx, ny;
+    unsigned loose; /* bit p: pixel p takes the loose channel terms (rims, pixels pointing away) */
+    away_info aw;
+    int valued;  /* the value-level filter and merge ran */
+    int coupled; /* the coupled row bounds ran */
+    int floored; /* the pixel floor's value sets are built */
+    double floor_all, reduce_at, couple_at;
+    int all_equal;  /* 16 equal normals: equal_block_solve decides them */
+    int group[16];  /* the first pixel with a bit-identical normal */
+    int repeats;    /* some pixel repeats an earlier one's normal */
+    int order[16];  /* pixels worst-first by the incumbent's per-pixel error */
+    double away_off[16], nz_ord[16]; /* theta0^2 of the pixels pointing away, and nz, in visiting order */
+    int quick;  /* the y list's channel sides are set up (the quick bound runs) */
+    int filter; /* the coupling filter's y index is set up */
+    y_index yix;
+} search_state;
+
+/* The first two incumbents. The least-squares pairs: on the full range with the sum metric they come
+ * from bc4_common.c's search: the same pair and score as sol_nm_channel_argmin, bit for bit (its
+ * documented contract, tested against the brute force and against sol_nm_channel_argmin on random,
+ * flat, few-valued and map blocks), at a few microseconds a channel instead of the enumeration's ~100
+ * (issue 13: the two argmin enumerations were ~30% of the optimal encoder's time on the
+ * terrain-derived map, perf). Flat channels (16 equal targets: flat blocks, equal normals, a rim
+ * block on an axis) are decided there by a walk over the entry values instead of scoring every tied
+ * pair (x = -1: 33151 pairs). Then the full-span 6-value pairs, whose entries -1 and +1 reach the rim
+ * (blocks pointing away). (Starting from the adaptive window's result instead was measured: it costs
+ * more than the candidates it saves on the benchmark maps.) *sx_min, *sy_min: the channels' least
+ * scores. */
+static void first_incumbents(search_state *st, int full, double *sx_min, double *sy_min)
+{
+    const sol_bc5_range *r = st->rq->range;
+    const sol_bc4_precision precision = st->rq->precision;
+    sol_nm_channel_init(&st->cx, st->tx, precision, st->use_max, 0, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi);
+    sol_nm_channel_init(&st->cy, st->ty, precision, st->use_max, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi);
+    const int common = full && !st->use_max;
+    st->px = common ? sol_nm_bc4_common(st->tx, precision, sx_min) : sol_nm_channel_argmin(&st->cx, sx_min);
+    st->py = common ? sol_nm_bc4_common(st->ty, precision, sy_min) : sol_nm_channel_argmin(&st->cy, sy_min);
+    st->pal = st->cx.palettes;
+    st->best = sol_nm_bc5_joint_objective(st->pal[st->px], st->pal[st->py], st->n, st->use_max, INFINITY, NULL, NULL);
+    st->candidates = 1;
+    const int rim = 0x00ff;
+    if (pair_in_range(rim, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi) &&
+        pair_in_range(rim, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi)) {
+        ++st->candidates;
+        double v = sol_nm_bc5_joint_objective(st->pal[rim], st->pal[rim], st->n, st->use_max, st->best, NULL, NULL);
+        if (v < st->best) {
+            st->best = v;
+            st->px = st->py = rim;
+        }
+    }
+}
+
+/* Rim pixels (nz^2 within the incumbent) take the loose channel terms, pixels pointing away their rim
+ * targets, weights and offsets (see "pixels pointing away"); the pairs of least loose score, which aim
+ * at the rim directions, are the third incumbent. *pre_x, *pre_y: the pairs argmin_collect collected
+ * with them; *sx_min, *sy_min: the loose channels' least scores. */
+static void loose_incumbent(search_state *st, size_t *pre_x, size_t *pre_y, double *sx_min, double *sy_min)
+{
+    const sol_bc5_range *r = st->rq->range;
+    const sol_bc4_precision precision = st->rq->precision;
+    const double(*n)[3] = st->n;
+    unsigned loose = 0;
+    for (int p = 0; p < 16; ++p)
+        if (n[p][2] * n[p][2] <= st->best * (1.0 + BOUND_SLACK))
+            loose |= 1u << p;
+    st->loose = loose;
+    away_info_init(&st->aw, n, loose);
+    sol_nm_channel_init(&st->cx, st->aw.m[0], precision, st->use_max, loose, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi);
+    sol_nm_channel_init(&st->cy, st->aw.m[1], precision, st->use_max, loose, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi);
+    for (int p = 0; p < 16; ++p)
+        if ((st->aw.mask >> p) & 1) {
+            double off = st->use_max ? st->aw.off[p] : 0.5 * st->aw.off[p];
+            sol_nm_channel_rim_weight(&st->cx, p, st->aw.w[p], off);
+            sol_nm_channel_rim_weight(&st->cy, p, st->aw.w[p], off);
+        }
+    int lx = argmin_collect(&st->cx, loose, st->best * (1.0 + BOUND_SLACK), st->ws->x, pre_x, sx_min);
+    int ly = argmin_collect(&st->cy, loose, st->best * (1.0 + BOUND_SLACK), st->ws->y, pre_y, sy_min);
+    ++st->candidates;
+    double v = sol_nm_bc5_joint_objective(st->pal[lx], st->pal[ly], n, st->use_max, st->best, NULL, NULL);
+    if (v < st->best) {
+        st->best = v;
+        st->px = lx;
+        st->py = ly;
+    }
+}
+
+/* The lists: each channel's pairs whose score leaves room under the incumbent with the other
+ * channel's least score (sum metric), sorted by score. */
+static void collect_lists(search_state *st, size_t pre_x, size_t pre_y, double sx_min, double sy_min)
+{
+    search_workspace *ws = st->ws;
+    const double room = st->best * (1.0 + BOUND_SLACK);
+    st->nx = collect_within(&st->cx, st->use_max ? room : room - sy_min * (1.0 - BOUND_SLACK), ws->x, pre_x);
+    st->ny = collect_within(&st->cy, st->use_max ? room : room - sx_min * (1.0 - BOUND_SLACK), ws->y, pre_y);
+    if (!ws->sort_tmp)
+        ws->sort_tmp = malloc(65536 * sizeof *ws->sort_tmp); /* NULL: sol_nm_bc5_sort_pairs uses qsort */
+    sol_nm_bc5_sort_pairs(ws->x, st->nx, ws->sort_tmp);
+    sol_nm_bc5_sort_pairs(ws->y, st->ny, ws->sort_tmp);
+}
+
+/* The incumbent at which the value-level reduction runs again on the lists' rest: once the
+ * incumbent's distance to the floor of every objective halved, or fell by 64 if the last reduction
+ * kept over 90% of the pairs (coarse values: it rarely pays). */
+static double next_reduce_at(const search_state *st, size_t pairs_before, size_t pairs_after)
+{
+    return st->floor_all + (10 * pairs_after > 9 * pairs_before ? 1.0 / 64 : 0.5) * (st->best - st->floor_all);
+}
+
+/* The lists' first reductions: the value-level filter and merge (blocks with pixels pointing away),
+ * else the merge of equivalent pairs; then the coupled row bounds with their descent's incumbents. */
+static void reduce_lists(search_state *st)
+{
+    search_workspace *ws = st->ws;
+    const double(*n)[3] = st->n;
+    const int use_max = st->use_max;
+    const sol_bc4_precision precision = st->rq->precision;
+    st->all_equal = 1;
+    for (int p = 1; p < 16; ++p)
+        st->all_equal &= memcmp(n[0], n[p], sizeof n[p]) == 0;
+    const size_t pairs_before = st->nx + st->ny;
+    /* rim-only blocks (no pixel pointing away) skip it: measured (issue 13, survey of rim arcs, rims
+     * with pixels a hair off, equal rim normals, and the alternating +-x axis block), it leaves the
+     * same candidates to within a few % (rim-arc 2 rad: 212440 vs 219070 before the work bound)
+     * and proves nothing more, while its value table and filter passes over the 33k pairs holding
+     * -1 or +1 cost ~2M work units (the axis block: 2.0M instead of 58k in all) */
+    if (st->aw.mask && !st->all_equal && st->nx > 1 && st->ny > 1 && st->nx * st->ny > 4096)
+        st->valued = value_reduce(n, &st->aw, use_max, st->best, st->pal, precision, ws, ws->x, &st->nx, ws->y,
+                                  &st->ny, st->tx, st->ty, st->loose, &st->work);
+    /* the floor of every objective (hemisphere bounds) */
+    st->floor_all = 0.0;
+    for (int p = 0; p < 16; ++p)
+        st->floor_all = fold_term(st->floor_all, st->aw.off[p], use_max);
+    if (st->valued)
+        st->reduce_at = next_reduce_at(st, pairs_before, st->nx + st->ny);
+    /* merging pays only for long lists; one list may be a single pair: a rim block near an axis
+     * (x = -1 or +1) has one y pair left and the 33151 x pairs holding -1 or +1, exact ties */
+    if (!st->valued && (st->nx > 1 || st->ny > 1) && st->nx * st->ny > 256) {
+        const double room = st->best * (1.0 + BOUND_SLACK);
+        channel_key kx, ky;
+        sol_nm_bc5_channel_key_init(&kx, st->tx, st->loose, room);
+        sol_nm_bc5_channel_key_init(&ky, st->ty, st->loose, room);
+        st->nx = merge_keyed(ws->x, st->nx, &kx, st->pal, precision, ws);
+        st->ny = merge_keyed(ws->y, st->ny, &ky, st->pal, precision, ws);
+    }
+    /* the coupled row bounds (bc5_couple.c): for rims and pixels pointing away whose lists are long,
+     * coordinate descent from the incumbent's x pair for a better incumbent (its candidates
+     * evaluated exactly), then drop the pairs whose every candidate the channels' coupling rules
+     * out under it. Both lists keep their order and only pairs that cannot beat the incumbent go:
+     * the enumeration's result is unchanged except that a descent candidate met first wins exact
+     * ties. (The reduction ran before the descent too until issue 13's survey showed it wasted
+     * there: at the incumbent before the descent it kept 95-99% of the pairs of blocks pointing
+     * away (away-zvar: x 25098 -> 24852) at 15-40 ms, while under the descent's incumbent it cuts
+     * them to a few (half-away-arc: 19736 x 40789 -> 2 x 21); the descent on the unreduced lists
+     * costs about the same, and finds the same candidates on the survey.) */
+    if (st->loose && !st->all_equal && st->nx * st->ny > 4096 && (ws->couple || (ws->couple = sol_nm_couple_new()))) {
+        st->coupled = 1;
+        int cand[4][2];
+        int nc = sol_nm_couple_descent(ws->couple, n, use_max, st->pal, precision, ws->x, st->nx, ws->y, st->ny,
+                                       st->px, cand, &st->work);
+        for (int k = 0; k < nc; ++k) {
+            ++st->candidates;
+            st->work += 512;
+            double v = sol_nm_bc5_joint_objective(st->pal[cand[k][0]], st->pal[cand[k][1]], n, use_max, st->best,
+                                                  NULL, NULL);
+            if (v < st->best) {
+                st->best = v;
+                st->px = cand[k][0];
+                st->py = cand[k][1];
+            }
+        }
+        sol_nm_couple_reduce(ws->couple, n, use_max, st->best * (1.0 + BOUND_SLACK), st->pal, precision, ws->x,
+                             &st->nx, ws->y, &st->ny, &st->work);
+        st->couple_at = st->best - (st->best - st->floor_all) / 16.0;
+    }
+}
+
+/* The pixel floor (see there): with the max metric one pixel may decide the block, now (the
+ * incumbent, or the enumeration's first candidate attaining that pixel's least term) or at a later
+ * incumbent (the value sets stay valid as the lists shrink); for long lists only, like the stages
+ * above (short ones enumerate quickly; floor_first's tries would not pay). */
+static void floor_stage(search_state *st)
+{
+    search_workspace *ws = st->ws;
+    if (!st->use_max || st->nx * st->ny <= 4096 || !(ws->floor || (ws->floor = malloc(sizeof *ws->floor))))
+        return;
+    st->floored = pixel_floor_init(ws->floor, st->pal, st->rq->precision, ws->x, st->nx, ws->y, st->ny, &st->work);
+    size_t fi, fj;
+    int fs = st->floored ? pixel_floor_solve(ws->floor, st->n, &st->aw, st->pal, st->pal[st->px], st->pal[st->py],
+                                             st->best, ws->x, st->nx, ws->y, st->ny, &fi, &fj, &st->candidates,
+                                             &st->work)
+                         : 0;
+    if (fs == 2) {
+        st->best = ws->floor->least;
+        st->px = ws->x[fi].pair;
+        st->py = ws->y[fj].pair;
+    }
+    st->solved = fs != 0;
+}
+
+/* The pixels' groups of bit-identical normals (they share their terms, see
+ * sol_nm_bc5_joint_objective_grouped), and the order in which the bounds visit them: worst first by
+ * the incumbent's per-pixel error. */
+static void visiting_order(search_state *st)
+{
+    const double(*n)[3] = st->n;
+    st->repeats = 0;
+    for (int p = 0; p < 16; ++p) {
+        st->group[p] = p;
+        for (int q = 0; q < p && st->group[p] == p; ++q)
+            if (memcmp(n[q], n[p], sizeof n[p]) == 0)
+                st->group[p] = q;
+        st->repeats |= st->group[p] != p;
+    }
+    double pixel_err[16];
+    for (int p = 0; p < 16; ++p) {
+        int i, j;
+        pixel_err[p] = sol_nm_bc5_best_pixel(st->pal[st->px], st->pal[st->py], n[p], &i, &j);
+        st->order[p] = p;
+    }
+    sol_nm_bc5_order_worst_first(pixel_err, st->order);
+    for (int k = 0; k < 16; ++k) {
+        st->away_off[k] = st->aw.off[st->order[k]];
+        st->nz_ord[k] = n[st->order[k]][2];
+    }
+}
+
+/* The y list's channel sides for the quick bound (while the search is not solved). */
+static void y_sides_init(search_state *st)
+{
+    for (size_t j = 0; st->quick && !st->solved && j < st->ny; ++j)
+        sol_nm_bc5_channel_side_init(st->pal[st->ws->y[j].pair], st->n, st->order, 1, &st->aw, &st->ws->yside[j]);
+}
+
+/* The per-candidate helpers: the y list's channel sides (without memory, the search runs without the
+ * quick bound), and for rims and pixels pointing away, when the lists are long, the coupling filter's
+ * index of the y list's entries. */
+static void helpers_setup(search_state *st)
+{
+    search_workspace *ws = st->ws;
+    const size_t ny = st->ny;
+    st->quick = 1;
+    if (ny > ws->yside_cap) {
+        channel_side *grown = realloc(ws->yside, ny * sizeof *grown);
+        if (grown) {
+            ws->yside = grown;
+            ws->yside_cap = ny;
+        } else {
+            st->quick = 0;
+        }
+    }
+    y_sides_init(st);
+    if (!st->quick || !st->loose || st->solved || st->nx * ny <= 4096)
+        return;
+    size_t words = (ny + 63) / 64;
+    if (ws->ybucket_cap < 8 * ny) {
+        y_item *grown = realloc(ws->ybucket, 8 * ny * sizeof *grown);
+        if (grown) {
+            ws->ybucket = grown;
+            ws->ybucket_cap = 8 * ny;
+        }
+    }
+    if (ws->ymark_cap < words) {
+        uint64_t *grown = realloc(ws->ymark, words * sizeof *grown);
+        if (grown) {
+            ws->ymark = grown;
+            ws->ymark_cap = words;
+        }
+    }
+    if (ws->ybucket_cap >= 8 * ny && ws->ymark_cap >= words) {
+        st->filter = 1;
+        memset(ws->ymark, 0, words * sizeof *ws->ymark);
+        y_index_init(&st->yix, ws->y, ny, st->pal, ws->ybucket);
+        st->work += 8 * ny;
+    }
+}
+
+/* Blocks a rule decides: 16 equal normals (equal_block_solve), blocks with pixels pointing away and
+ * rim blocks of few distinct normals with the sum metric (separable_solve: the per-pixel floor is
+ * cheap, a scan per distinct normal, and often attained; issue 13's survey: tied rim normals on the
+ * axes, 8-bit decoder, 6088 -> 672 candidates). Equal normals pointing away that no rule decided
+ * (e.g. coarse 8-bit values) get the value-level reduction at once. */
+static void solve_by_rule(search_state *st)
+{
+    search_workspace *ws = st->ws;
+    int equal = 1, groups = 0;
+    for (int p = 0; p < 16; ++p) {
+        equal &= st->group[p] == 0;
+        groups += st->group[p] == p;
+    }
+    const int few = !st->use_max && groups <= SEPARABLE_GROUPS;
+    double v;
+    uint64_t evals = 0;
+    if (equal && equal_block_solve(st->n, ws->x, st->nx, ws->y, st->ny, st->pal, &st->yix, &st->aw, st->use_max,
+                                   st->best, ws->slots, &st->px, &st->py, &v, &evals)) {
+        st->best = v;
+        st->solved = 1;
+    } else if (!equal && (st->aw.mask || few) &&
+               separable_solve(st->n, st->group, few, ws->x, st->nx, ws->y, st->ny, st->pal, &st->yix, &st->aw,
+                               st->use_max, st->best, st->rq->work_limit / 8, ws->slots, &st->px, &st->py, &v,
+                               &evals, &st->work)) {
+        st->best = v;
+        st->solved = 1;
+    } else if (equal && st->aw.mask && !st->valued) {
+        st->valued = 1;
+        st->reduce_at = INFINITY;
+    }
+    st->candidates += evals;
+    st->work += 8 * st->nx + 32 * evals;
+}
+
+/* The pair screen's state during the enumeration: built (screened) or due to be built, its row 0
+ * (x list position base) and the x rows plus y pairs it was built on. */
+typedef struct screen_track {
+    int screened, due;
+    size_t base, pairs;
+} screen_track;
+
+/* The reductions due at row i (the incumbent fell below reduce_at or couple_at), on the lists' rest
+ * ws->x[i ..) and ws->y, then the y sides, the y index and the screen brought up to date: while the
+ * lists keep most of the pairs the screen was built on (the incumbent fell a little), the screen is
+ * carried over to them, else built again on the rest at the new incumbent. Returns 0 if the
+ * enumeration is over (a list emptied, or row i's bound reaches the incumbent). */
+static int reduce_rest(search_state *st, size_t i, screen_track *sc)
+{
+    search_workspace *ws = st->ws;
+    size_t rest = st->nx - i;
+    if (st->valued && st->best < st->reduce_at) {
+        const size_t pairs_before = rest + st->ny;
+        value_reduce(st->n, &st->aw, st->use_max, st->best, st->pal, st->rq->precision, ws, ws->x + i, &rest, ws->y,
+                     &st->ny, st->tx, st->ty, st->loose, &st->work);
+        st->reduce_at = next_reduce_at(st, pairs_before, rest + st->ny);
+    }
+    if (st->coupled && st->best < st->couple_at) {
+        sol_nm_couple_reduce(ws->couple, st->n, st->use_max, st->best * (1.0 + BOUND_SLACK), st->pal,
+                             st->rq->precision, ws->x + i, &rest, ws->y, &st->ny, &st->work);
+        st->couple_at = st->best - (st->best - st->floor_all) / 16.0;
+    }
+    st->nx = i + rest;
+    if (i >= st->nx || st->ny == 0)
+        return 0;
+    y_sides_init(st);
+    st->work += 16 * st->ny;
+    if (st->filter) {
+        y_index_init(&st->yix, ws->y, st->ny, st->pal, ws->ybucket);
+        st->work += 8 * st->ny;
+    }
+    if (sc->screened) {
+        if (4 * (st->nx - i + st->ny) >= 3 * sc->pairs &&
+            pair_screen_remap(ws->screen, i - sc->base, ws->x + i, st->nx - i, ws->y, st->ny, &st->work)) {
+            sc->base = i;
+        } else {
+            sc->screened = 0;
+            sc->due = 1;
+        }
+    }
+    return !(combine(ws->x[i].score, ws->y[0].score, st->use_max) * (1.0 - BOUND_SLACK) >= st->best);
+}
+
+/* Marks row i's passing y positions of the screen in ws->ymark (at least one: the caller skips empty
+ * rows); *lo_word, *hi_word: the marked words. */
+static void screen_marks(search_state *st, const screen_track *sc, size_t i, size_t *lo_word, size_t *hi_word)
+{
+    const pair_screen *s = st->ws->screen;
+    const size_t row = i - sc->base;
+    *lo_word = s->col[s->start[row]] >> 6;
+    *hi_word = (s->col[s->start[row + 1] - 1] >> 6) + 1;
+    for (uint32_t t = s->start[row]; t < s->start[row + 1]; ++t)
+        st->ws->ymark[s->col[t] >> 6] |= UINT64_C(1) << (s->col[t] & 63);
+    st->work += s->start[row + 1] - s->start[row];
+}
+
+/* The coupling filter of the row of x palette a: -1 if it rules the whole row out; 1 with the y
+ * positions its most selective pixel lets through marked in ws->ymark (words *lo_word .. *hi_word),
+ * when that pixel is selective enough to pay; else 0 (nothing marked). */
+static int filter_marks(search_state *st, const double a[8], const channel_side *xside, const ball_lines nball[16],
+                        y_filter *yf, size_t *lo_word, size_t *hi_word)
+{
+    search_workspace *ws = st->ws;
+    int filtered = y_filter_init(yf, a, xside, st->n, nball, st->order, st->loose, &st->aw, st->away_off, st->group,
+                                 st->use_max, st->best, &st->yix);
+    st->work += 64;
+    if (filtered < 0)
+        return -1;
+    const int r0 = filtered > 0 ? yf->rank[0] : 0;
+    if (!filtered || yf->items[r0] >= st->ny)
+        return 0;
+    *lo_word = (st->ny + 63) / 64;
+    for (int k = 0; k < yf->cnt[r0]; ++k) {
+        uint32_t s0 = st->yix.start[y_bucket(yf->lo[r0][k])], s1 = st->yix.start[y_bucket(yf->hi[r0][k]) + 1];
+        for (uint32_t t = s0; t < s1; ++t) {
+            if (st->yix.items[t].v < yf->lo[r0][k] || st->yix.items[t].v > yf->hi[r0][k])
+                continue;
+            uint32_t j = st->yix.items[t].j;
+            ws->ymark[j >> 6] |= UINT64_C(1) << (j & 63);
+            *lo_word = j >> 6 < *lo_word ? j >> 6 : *lo_word;
+            *hi_word = (j >> 6) + 1 > *hi_word ? (j >> 6) + 1 : *hi_word;
+        }
+        st->work += s1 - s0;
+    }
+    return 1;
+}
+
+/* How often joint_objective_away rejects the candidates it meets: it runs while it rejects at least 1
+ * in 8 (after 1024; else on every 16th candidate only, which keeps the count current). */
+typedef struct away_use {
+    uint64_t tried, hits;
+} away_use;
+
+/* The candidates of row i (x palette a, its channel side xside): the y positions marked in ws->ymark
+ * below word hi_word (filtered) or all of them, in list order, until the combined score reaches the
+ * incumbent or the work limit is met. Each candidate is rejected, if it can be, by the quick bound,
+ * the coupled bound of pixels pointing away, and the lower bound, and evaluated exactly otherwise. */
+static void enumerate_row(search_state *st, size_t i, const double a[8], const channel_side *xside, int filtered,
+                          int screened, const y_filter *yf, size_t hi_word, away_use *au)
+{
+    search_workspace *ws = st->ws;
+    const double(*n)[3] = st->n;
+    const int use_max = st->use_max;
+    for (size_t j = 0; j < st->ny; ++j) {
+        if (filtered) { /* the next marked position */
+            size_t w = j >> 6;
+            uint64_t bits = w < hi_word ? ws->ymark[w] & (~UINT64_C(0) << (j & 63)) : 0;
+            while (!bits && ++w < hi_word)
+                bits = ws->ymark[w];
+            if (!bits)
+                break;
+            j = 64 * w + (size_t)__builtin_ctzll(bits);
+        }
+        if (combine(ws->x[i].score, ws->y[j].score, use_max) * (1.0 - BOUND_SLACK) >= st->best)
+            break;
+        if (st->work >= st->rq->work_limit) {
+            st->bounded = 1;
+            break;
+        }
+        if (filtered && !screened) {
+            st->work += 4;
+            if (!y_filter_pass(yf, st->pal[ws->y[j].pair]))
+                continue;
+        }
+        ++st->candidates;
+        /* the bounds are lowered against rounding already, BOUND_SLACK is a second margin; the
+         * value-reduced lists (blocks near their hemisphere bound) take 1e-12 instead, which still
+         * covers the different summation orders of bound and objective */
+        const double margin = st->best * (1.0 + (st->valued ? 1e-12 : BOUND_SLACK));
+        if (st->quick && sol_nm_bc5_joint_objective_quick(xside, &ws->yside[j], n, st->order, st->nz_ord,
+                                                          st->away_off, use_max, margin, &st->work) >= margin)
+            continue;
+        if (st->quick && st->aw.mask && (au->tried < 1024 || 8 * au->hits >= au->tried || (st->candidates & 15) == 0)) {
+            ++au->tried;
+            if (joint_objective_away(a, st->pal[ws->y[j].pair], xside, &ws->yside[j], n, st->order, st->away_off,
+                                     &st->aw, use_max, margin, &st->work) >= margin) {
+                ++au->hits;
+                continue;
+            }
+        }
+        const double *b = st->pal[ws->y[j].pair];
+        if ((st->repeats ? sol_nm_bc5_joint_objective_lower_grouped(a, b, n, st->group, st->order, st->away_off,
+                                                                    use_max, st->best, margin, &st->work)
+                         : sol_nm_bc5_joint_objective_lower(a, b, n, st->order, st->away_off, use_max, st->best,
+                                                            margin, &st->work)) >= margin)
+            continue;
+        st->work += 512;
+        double v = st->repeats ? sol_nm_bc5_joint_objective_grouped(a, b, n, st->group, use_max, st->best)
+                               : sol_nm_bc5_joint_objective(a, b, n, use_max, st->best, NULL, NULL);
+        if (v < st->best) {
+            st->best = v;
+            st->px = ws->x[i].pair;
+            st->py = ws->y[j].pair;
+            if (st->floored && pixel_floor_decides(ws->floor, n, &st->aw, st->pal[st->px], st->pal[st->py], st->best,
+                                                   &st->work)) {
+                st->solved = 1;
+                break;
+            }
+        }
+    }
+}
+
+/* The double loop over the lists, rows in x list order, stopping as soon as a row's combined bound
+ * reaches the incumbent: the reductions due at each row (reduce_rest), then the row's y positions
+ * that can still win (the pair screen's, or the coupling filter's) and its candidates. The pair screen
+ * is built where the enumeration first reads it, after the reductions due at that row (issue 13:
+ * built before the loop, it was built again at row 0 whenever reductions were due there, on the same
+ * incumbent - a second identical screen when they removed nothing, a third of the survey's slowest
+ * block), and again after later reductions (screen_due). */
+static void enumerate_candidates(search_state *st)
+{
+    search_workspace *ws = st->ws;
+    screen_track sc = {0, st->filter && !st->solved && (ws->screen || (ws->screen = pair_screen_new())), 0, 0};
+    channel_side xside;
+    y_filter yf;
+    ball_lines nball[16]; /* y_filter_init's exact balls' polar forms (their centre is n[p]) */
+    for (int p = 0; p < 16 && st->filter; ++p)
+        ball_lines_polar(&nball[p], st->n[p]);
+    away_use au = {0, 0};
+    for (size_t i = 0; i < st->nx && st->ny > 0 && !st->bounded && !st->solved; ++i) {
+        if (combine(ws->x[i].score, ws->y[0].score, st->use_max) * (1.0 - BOUND_SLACK) >= st->best)
+            break;
+        if (st->work >= st->rq->work_limit) {
+            st->bounded = 1;
+            break;
+        }
+        if (((st->valued && st->best < st->reduce_at) || (st->coupled && st->best < st->couple_at)) &&
+            !reduce_rest(st, i, &sc))
+            break;
+        if (sc.due) {
+            sc.due = 0;
+            sc.base = i;
+            sc.screened = pair_screen_build(ws->screen, st->n, st->order, st->loose, &st->aw, st->away_off,
+                                            st->use_max, st->best, st->pal, st->rq->precision, ws->x + i, st->nx - i,
+                                            ws->y, st->ny, ws->yside, &st->work, st->rq->work_limit);
+            sc.pairs = st->nx - i + st->ny;
+        }
+        if (sc.screened && ws->screen->start[i - sc.base] == ws->screen->start[i - sc.base + 1])
+            continue; /* no candidate of the row can beat the incumbent */
+        const double *a = st->pal[ws->x[i].pair];
+        if (st->quick)
+            sol_nm_bc5_channel_side_init(a, st->n, st->order, 0, &st->aw, &xside);
+        int filtered = 0;
+        size_t lo_word = 0, hi_word = 0; /* the marked words of ymark */
+        if (sc.screened) {
+            screen_marks(st, &sc, i, &lo_word, &hi_word);
+            filtered = 1;
+        } else if (st->filter) {
+            filtered = filter_marks(st, a, &xside, nball, &yf, &lo_word, &hi_word);
+            if (filtered < 0)
+                continue;
+        }
+        enumerate_row(st, i, a, &xside, filtered, sc.screened, &yf, hi_word, &au);
+        if (filtered)
+            for (size_t w = lo_word; w < hi_word; ++w)
+                ws->ymark[w] = 0;
+    }
+}
+
 /* Branch and bound over (x pair, y pair) inside the range, for unit normals n.
  * 1. Incumbent: the better (first on ties) of the per-channel least-squares pairs (the common
  *    anchors) and the full-span 6-value pairs (0, 255) whose entries -1 and +1 reach the rim, both
- *    with joint indices. If it meets hemisphere_bound it is optimal.
+ *    with joint indices (first_incumbents). If it meets hemisphere_bound it is optimal; blocks of 16
+ *    equal normals are decided by a rule (equal_shortcut).
  * 2. Bound: for a candidate whose pixels all decode with x^2 + y^2 <= 1, dN_p^2 >= chord_p^2 >=
  *    min_a (a - nx_p)^2 + min_b (b - ny_p)^2, so the objective >= SX + SY (sum) or max(SX, SY) (max),
  *    with SX, SY the per-channel scores. A pixel decoding with z clamped to 0 has dN_p^2 >= chord^2
  *    >= nz_p^2, so where nz_p^2 exceeds the incumbent such a decode cannot win and the tight term is
- *    a valid bound; rim pixels (nz_p^2 <= incumbent) take the loose term, valid in every case.
+ *    a valid bound; rim pixels (nz_p^2 <= incumbent) take the loose term, valid in every case
+ *    (loose_incumbent, which adds the third incumbent).
  * 3. Lists of the pairs of each channel whose score leaves room under the incumbent, sorted by
- *    score, equivalent pairs merged (see above); the double loop stops as soon as the combined bound
- *    reaches the incumbent. Each candidate is first rejected, if it can be, by lower bounds of its
- *    objective without atan2 (sol_nm_bc5_joint_objective_quick, then sol_nm_bc5_joint_objective_lower), and evaluated
- *    exactly only if it survives both.
+ *    score (collect_lists), reduced (reduce_lists, floor_stage; equivalent pairs merged, see above);
+ *    some blocks are then decided by a rule (solve_by_rule). The double loop (enumerate_candidates)
+ *    stops as soon as the combined bound reaches the incumbent. Each candidate is first rejected, if
+ *    it can be, by lower bounds of its objective without atan2 (sol_nm_bc5_joint_objective_quick, then
+ *    sol_nm_bc5_joint_objective_lower), and evaluated exactly only if it survives both.
  * 4. Work bound: after work_limit work units (a pixel of a candidate through the quick bound 1,
  *    through sol_nm_bc5_joint_objective_lower 32, an exact evaluation 512: about their relative costs) the
  *    search stops with the best found (info->bounded = 1). */
 void sol_nm_bc5_search_unit(const double n[16][3], const search_request *rq, search_workspace *ws, sol_bc5_block *out,
                             sol_bc5_info *info) {
     const sol_bc5_range *r = rq->range;
-    const sol_bc4_precision precision = rq->precision;
-    const int use_max = rq->use_max;
-    double tx[16], ty[16], min_nz2 = INFINITY;
+    search_state st; /* not zero-initialised as a whole: its y index alone is 16 KB, set up where used */
+    st.n = n;
+    st.rq = rq;
+    st.ws = ws;
+    st.use_max = rq->use_max;
+    st.bounded = st.solved = 0;
+    st.work = 0;
+    st.loose = 0;
+    st.valued = st.coupled = st.floored = 0;
+    st.reduce_at = st.couple_at = -1.0;
+    st.quick = st.filter = 0;
+    double min_nz2 = INFINITY;
     for (int p = 0; p < 16; ++p) {
-        tx[p] = n[p][0];
-        ty[p] = n[p][1];
+        st.tx[p] = n[p][0];
+        st.ty[p] = n[p][1];
         min_nz2 = n[p][2] * n[p][2] < min_nz2 ? n[p][2] * n[p][2] : min_nz2;
     }
-    sol_nm_channel cx, cy;
-    sol_nm_channel_init(&cx, tx, precision, use_max, 0, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi);
-    sol_nm_channel_init(&cy, ty, precision, use_max, 0, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi);
-    double sx_min, sy_min;
-    /* the least-squares pairs. On the full range with the sum metric they come from bc4_common.c's
-     * search: the same pair and score as sol_nm_channel_argmin, bit for bit (its documented contract,
-     * tested against the brute force and against sol_nm_channel_argmin on random, flat, few-valued and
-     * map blocks), at a few microseconds a channel instead of the enumeration's ~100 (issue 13: the two
-     * argmin enumerations were ~30% of the optimal encoder's time on the terrain-derived map, perf).
-     * Flat channels (16 equal targets: flat blocks, equal normals, a rim block on an axis) are decided
-     * there by a walk over the entry values instead of scoring every tied pair (x = -1: 33151 pairs). */
     const int full = r->x0_lo == 0 && r->x0_hi == 255 && r->x1_lo == 0 && r->x1_hi == 255 && r->y0_lo == 0 &&
                      r->y0_hi == 255 && r->y1_lo == 0 && r->y1_hi == 255;
-    const int common = full && !use_max;
-    int px = common ? sol_nm_bc4_common(tx, precision, &sx_min) : sol_nm_channel_argmin(&cx, &sx_min);
-    int py = common ? sol_nm_bc4_common(ty, precision, &sy_min) : sol_nm_channel_argmin(&cy, &sy_min);
-    const double(*pal)[8] = cx.palettes;
-    double best = sol_nm_bc5_joint_objective(pal[px], pal[py], n, use_max, INFINITY, NULL, NULL);
-    uint64_t candidates = 1;
-    /* second incumbent: the full-span 6-value pairs, whose entries -1 and +1 reach the rim (blocks
-     * pointing away). (Starting from the adaptive window's result instead was measured: it costs
-     * more than the candidates it saves on the benchmark maps.) */
-    const int rim = 0x00ff;
-    if (pair_in_range(rim, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi) &&
-        pair_in_range(rim, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi)) {
-        ++candidates;
-        double v = sol_nm_bc5_joint_objective(pal[rim], pal[rim], n, use_max, best, NULL, NULL);
-        if (v < best) {
-            best = v;
-            px = py = rim;
-        }
-    }
-    int bounded = 0;
-    uint64_t work = 0; /* pixel evaluations of candidates */
-    if (best > 0.0 && best > hemisphere_bound(n, use_max) && !equal_shortcut(n, full, rq, &best, &px, &py, &candidates)) {
-        unsigned loose = 0;
+    double sx_min, sy_min;
+    first_incumbents(&st, full, &sx_min, &sy_min);
+    if (st.best > 0.0 && st.best > hemisphere_bound(n, st.use_max) &&
+        !equal_shortcut(n, full, rq, &st.best, &st.px, &st.py, &st.candidates)) {
         size_t pre_x = SIZE_MAX, pre_y = SIZE_MAX; /* pairs collected with the argmins (argmin_collect) */
-        away_info aw;
-        away_info_init(&aw, n, 0);
-        if (best * (1.0 + BOUND_SLACK) >= min_nz2) { /* rim pixels: loose bounds for them */
-            for (int p = 0; p < 16; ++p)
-                if (n[p][2] * n[p][2] <= best * (1.0 + BOUND_SLACK))
-                    loose |= 1u << p;
-            away_info_init(&aw, n, loose); /* pixels pointing away: rim targets, weights, offsets */
-            sol_nm_channel_init(&cx, aw.m[0], precision, use_max, loose, r->x0_lo, r->x0_hi, r->x1_lo, r->x1_hi);
-            sol_nm_channel_init(&cy, aw.m[1], precision, use_max, loose, r->y0_lo, r->y0_hi, r->y1_lo, r->y1_hi);
-            for (int p = 0; p < 16; ++p)
-                if ((aw.mask >> p) & 1) {
-                    double off = use_max ? aw.off[p] : 0.5 * aw.off[p];
-                    sol_nm_channel_rim_weight(&cx, p, aw.w[p], off);
-                    sol_nm_channel_rim_weight(&cy, p, aw.w[p], off);
-                }
-            int lx = argmin_collect(&cx, loose, best * (1.0 + BOUND_SLACK), ws->x, &pre_x, &sx_min);
-            int ly = argmin_collect(&cy, loose, best * (1.0 + BOUND_SLACK), ws->y, &pre_y, &sy_min);
-            /* third incumbent: the pairs of least loose score, which aim at the rim directions */
-            ++candidates;
-            double v = sol_nm_bc5_joint_objective(pal[lx], pal[ly], n, use_max, best, NULL, NULL);
-            if (v < best) {
-                best = v;
-                px = lx;
-                py = ly;
-            }
-        }
-        double room = best * (1.0 + BOUND_SLACK);
-        size_t nx = collect_within(&cx, use_max ? room : room - sy_min * (1.0 - BOUND_SLACK), ws->x, pre_x);
-        size_t ny = collect_within(&cy, use_max ? room : room - sx_min * (1.0 - BOUND_SLACK), ws->y, pre_y);
-        if (!ws->sort_tmp)
-            ws->sort_tmp = malloc(65536 * sizeof *ws->sort_tmp); /* NULL: sol_nm_bc5_sort_pairs uses qsort */
-        sol_nm_bc5_sort_pairs(ws->x, nx, ws->sort_tmp);
-        sol_nm_bc5_sort_pairs(ws->y, ny, ws->sort_tmp);
-        int valued = 0; /* the value-level filter and merge ran */
-        int all_equal = 1; /* 16 equal normals: equal_block_solve below decides them */
-        for (int p = 1; p < 16; ++p)
-            all_equal &= memcmp(n[0], n[p], sizeof n[p]) == 0;
-        size_t pairs_before = nx + ny;
-        /* rim-only blocks (no pixel pointing away) skip it: measured (issue 13, survey of rim arcs, rims
-         * with pixels a hair off, equal rim normals, and the alternating +-x axis block), it leaves the
-         * same candidates to within a few % (rim-arc 2 rad: 212440 vs 219070 before the work bound)
-         * and proves nothing more, while its value table and filter passes over the 33k pairs holding
-         * -1 or +1 cost ~2M work units (the axis block: 2.0M instead of 58k in all) */
-        if (aw.mask && !all_equal && nx > 1 && ny > 1 && nx * ny > 4096) /* pixels pointing away */
-            valued = value_reduce(n, &aw, use_max, best, pal, precision, ws, ws->x, &nx, ws->y, &ny, tx, ty, loose, &work);
-        /* the floor of every objective (hemisphere bounds), and the incumbent at which the value-level
-         * reduction runs again on the lists' rest: once the incumbent's distance to the floor halved,
-         * or fell by 64 if the last reduction kept over 90% of the pairs (coarse values: it rarely pays) */
-        double floor_all = 0.0, reduce_at = -1.0;
-        for (int p = 0; p < 16; ++p)
-            floor_all = fold_term(floor_all, aw.off[p], use_max);
-        if (valued)
-            reduce_at = floor_all + (10 * (nx + ny) > 9 * pairs_before ? 1.0 / 64 : 0.5) * (best - floor_all);
-        /* merging pays only for long lists; one list may be a single pair: a rim block near an axis
-         * (x = -1 or +1) has one y pair left and the 33151 x pairs holding -1 or +1, exact ties */
-        if (!valued && (nx > 1 || ny > 1) && nx * ny > 256) {
-            channel_key kx, ky;
-            sol_nm_bc5_channel_key_init(&kx, tx, loose, room);
-            sol_nm_bc5_channel_key_init(&ky, ty, loose, room);
-            nx = merge_keyed(ws->x, nx, &kx, pal, precision, ws);
-            ny = merge_keyed(ws->y, ny, &ky, pal, precision, ws);
-        }
-        /* the coupled row bounds (bc5_couple.c): for rims and pixels pointing away whose lists are long,
-         * coordinate descent from the incumbent's x pair for a better incumbent (its candidates
-         * evaluated exactly), then drop the pairs whose every candidate the channels' coupling rules
-         * out under it. Both lists keep their order and only pairs that cannot beat the incumbent go:
-         * the enumeration's result is unchanged except that a descent candidate met first wins exact
-         * ties. (The reduction ran before the descent too until issue 13's survey showed it wasted
-         * there: at the incumbent before the descent it kept 95-99% of the pairs of blocks pointing
-         * away (away-zvar: x 25098 -> 24852) at 15-40 ms, while under the descent's incumbent it cuts
-         * them to a few (half-away-arc: 19736 x 40789 -> 2 x 21); the descent on the unreduced lists
-         * costs about the same, and finds the same candidates on the survey.) */
-        int coupled = 0;
-        double couple_at = -1.0; /* the incumbent at which the reduction runs again on the lists' rest */
-        if (loose && !all_equal && nx * ny > 4096 && (ws->couple || (ws->couple = sol_nm_couple_new()))) {
-            coupled = 1;
-            int cand[4][2];
-            int nc = sol_nm_couple_descent(ws->couple, n, use_max, pal, precision, ws->x, nx, ws->y, ny, px, cand,
-                                           &work);
-            for (int k = 0; k < nc; ++k) {
-                ++candidates;
-                work += 512;
-                double v = sol_nm_bc5_joint_objective(pal[cand[k][0]], pal[cand[k][1]], n, use_max, best, NULL, NULL);
-                if (v < best) {
-                    best = v;
-                    px = cand[k][0];
-                    py = cand[k][1];
-                }
-            }
-            sol_nm_couple_reduce(ws->couple, n, use_max, best * (1.0 + BOUND_SLACK), pal, precision, ws->x, &nx,
-                                 ws->y, &ny, &work);
-            couple_at = best - (best - floor_all) / 16.0;
-        }
-        int solved = 0;
-        /* the pixel floor (see there): with the max metric one pixel may decide the block, now (the
-         * incumbent, or the enumeration's first candidate attaining that pixel's least term) or at a
-         * later incumbent (the value sets stay valid as the lists shrink); for long lists only, like the
-         * stages above (short ones enumerate quickly; floor_first's tries would not pay) */
-        int floored = 0;
-        if (use_max && nx * ny > 4096 && (ws->floor || (ws->floor = malloc(sizeof *ws->floor)))) {
-            floored = pixel_floor_init(ws->floor, pal, precision, ws->x, nx, ws->y, ny, &work);
-            size_t fi, fj;
-            int fs = floored ? pixel_floor_solve(ws->floor, n, &aw, pal, pal[px], pal[py], best, ws->x, nx, ws->y, ny,
-                                                 &fi, &fj, &candidates, &work)
-                             : 0;
-            if (fs == 2) {
-                best = ws->floor->least;
-                px = ws->x[fi].pair;
-                py = ws->y[fj].pair;
-            }
-            solved = fs != 0;
-        }
-        /* pixels of bit-identical normals share their terms (see sol_nm_bc5_joint_objective_grouped) */
-        int group[16]; /* the first pixel with a bit-identical normal */
-        int repeats = 0; /* some pixel repeats an earlier one's normal */
-        for (int p = 0; p < 16; ++p) {
-            group[p] = p;
-            for (int q = 0; q < p && group[p] == p; ++q)
-                if (memcmp(n[q], n[p], sizeof n[p]) == 0)
-                    group[p] = q;
-            repeats |= group[p] != p;
-        }
-        /* visit pixels worst-first (by the incumbent's per-pixel error) when rejecting candidates */
-        int order[16];
-        double pixel_err[16];
-        for (int p = 0; p < 16; ++p) {
-            int i, j;
-            pixel_err[p] = sol_nm_bc5_best_pixel(pal[px], pal[py], n[p], &i, &j);
-            order[p] = p;
-        }
-        sol_nm_bc5_order_worst_first(pixel_err, order);
-        double away_off[16], nz_ord[16]; /* theta0^2 of the pixels pointing away, and nz, in visiting order */
-        for (int k = 0; k < 16; ++k) {
-            away_off[k] = aw.off[order[k]];
-            nz_ord[k] = n[order[k]][2];
-        }
-        /* the y list's channel sides for the quick bound (without memory, the search runs without it) */
-        int quick = 1;
-        if (ny > ws->yside_cap) {
-            channel_side *grown = realloc(ws->yside, ny * sizeof *grown);
-            if (grown) {
-                ws->yside = grown;
-                ws->yside_cap = ny;
-            } else {
-                quick = 0;
-            }
-        }
-        for (size_t j = 0; quick && !solved && j < ny; ++j)
-            sol_nm_bc5_channel_side_init(pal[ws->y[j].pair], n, order, 1, &aw, &ws->yside[j]);
-        /* the coupling filter: for rims and pixels pointing away, when the lists are long */
-        int filter = 0;
-        y_index yix;
-        if (quick && loose && !solved && nx * ny > 4096) {
-            size_t words = (ny + 63) / 64;
-            if (ws->ybucket_cap < 8 * ny) {
-                y_item *grown = realloc(ws->ybucket, 8 * ny * sizeof *grown);
-                if (grown) {
-                    ws->ybucket = grown;
-                    ws->ybucket_cap = 8 * ny;
-                }
-            }
-            if (ws->ymark_cap < words) {
-                uint64_t *grown = realloc(ws->ymark, words * sizeof *grown);
-                if (grown) {
-                    ws->ymark = grown;
-                    ws->ymark_cap = words;
-                }
-            }
-            if (ws->ybucket_cap >= 8 * ny && ws->ymark_cap >= words) {
-                filter = 1;
-                memset(ws->ymark, 0, words * sizeof *ws->ymark);
-                y_index_init(&yix, ws->y, ny, pal, ws->ybucket);
-                work += 8 * ny;
-            }
-        }
-        if (filter && (loose & 1)) {
-
-            int equal = 1, groups = 0;
-            for (int p = 0; p < 16; ++p) {
-                equal &= group[p] == 0;
-                groups += group[p] == p;
-            }
-            /* rim blocks of few distinct normals (no pixel pointing away) with the sum metric: the
-             * per-pixel floor is cheap (a scan per distinct normal) and often attained (issue 13's
-             * survey: tied rim normals on the axes, 8-bit decoder, 6088 -> 672 candidates) */
-            const int few = !use_max && groups <= SEPARABLE_GROUPS;
-            double v;
-            uint64_t evals = 0;
-            if (equal && equal_block_solve(n, ws->x, nx, ws->y, ny, pal, &yix, &aw, use_max, best, ws->slots, &px,
-                                           &py, &v, &evals)) {
-                best = v;
-                solved = 1;
-            } else if (!equal && (aw.mask || few) &&
-                       separable_solve(n, group, few, ws->x, nx, ws->y, ny, pal, &yix, &aw, use_max, best,
-                                       rq->work_limit / 8, ws->slots, &px, &py, &v, &evals, &work)) {
-                best = v;
-                solved = 1;
-            } else if (equal && aw.mask && !valued) {
-                valued = 1; /* not decided (e.g. coarse 8-bit values): the value-level reduction, at once */
-                reduce_at = INFINITY;
-            }
-            candidates += evals;
-            work += 8 * nx + 32 * evals;
-        }
-        /* the pair screen (see there): every candidate that can still beat the incumbent, per row. It is
-         * built where the enumeration first reads it, after the reductions due at that row (issue 13:
-         * built before the loop, it was built again at row 0 whenever reductions were due there, on
-         * the same incumbent - a second identical screen when they removed nothing, a third of the
-         * survey's slowest block), and again after later reductions (screen_due) */
-        int screened = 0, screen_due = filter && !solved && (ws->screen || (ws->screen = pair_screen_new()));
-        size_t screen_base = 0; /* the screen's row 0 is x list position screen_base */
-        size_t screen_pairs = 0; /* x rows and y pairs at the screen's last build */
-        channel_side xside;
-        y_filter yf;
-        ball_lines nball[16]; /* y_filter_init's exact balls' polar forms (their centre is n[p]) */
-        for (int p = 0; p < 16 && filter; ++p)
-            ball_lines_polar(&nball[p], n[p]);
-        /* joint_objective_away's use: while it rejects at least 1 in 8 candidates it meets (after 1024;
-         * else on every 16th candidate only, which keeps the count current) */
-        uint64_t away_tried = 0, away_hits = 0;
-        for (size_t i = 0; i < nx && ny > 0 && !bounded && !solved; ++i) {
-            if (combine(ws->x[i].score, ws->y[0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
-                break;
-            if (work >= rq->work_limit) {
-                bounded = 1;
-                break;
-            }
-            if ((valued && best < reduce_at) || (coupled && best < couple_at)) {
-                size_t rest = nx - i;
-                if (valued && best < reduce_at) {
-                    pairs_before = rest + ny;
-                    value_reduce(n, &aw, use_max, best, pal, precision, ws, ws->x + i, &rest, ws->y, &ny, tx, ty, loose,
-                                 &work);
-                    reduce_at = floor_all + (10 * (rest + ny) > 9 * pairs_before ? 1.0 / 64 : 0.5) * (best - floor_all);
-                }
-                if (coupled && best < couple_at) {
-                    sol_nm_couple_reduce(ws->couple, n, use_max, best * (1.0 + BOUND_SLACK), pal, precision, ws->x + i,
-                                         &rest, ws->y, &ny, &work);
-                    couple_at = best - (best - floor_all) / 16.0;
-                }
-                nx = i + rest;
-                if (i >= nx || ny == 0)
-                    break;
-                for (size_t j = 0; quick && j < ny; ++j)
-                    sol_nm_bc5_channel_side_init(pal[ws->y[j].pair], n, order, 1, &aw, &ws->yside[j]);
-                work += 16 * ny;
-                if (filter) {
-                    y_index_init(&yix, ws->y, ny, pal, ws->ybucket);
-                    work += 8 * ny;
-                }
-                /* the lists changed: while they keep most of the pairs the screen was built on (the
-                 * incumbent fell a little), the screen carried over to them; else built again, on the
-                 * rest, at the new incumbent */
-                if (screened) {
-                    if (4 * (nx - i + ny) >= 3 * screen_pairs &&
-                        pair_screen_remap(ws->screen, i - screen_base, ws->x + i, nx - i, ws->y, ny, &work)) {
-                        screen_base = i;
-                    } else {
-                        screened = 0;
-                        screen_due = 1;
-                    }
-                }
-                if (combine(ws->x[i].score, ws->y[0].score, use_max) * (1.0 - BOUND_SLACK) >= best)
-                    break;
-            }
-            if (screen_due) {
-                screen_due = 0;
-                screen_base = i;
-                screened = pair_screen_build(ws->screen, n, order, loose, &aw, away_off, use_max, best, pal,
-                                             precision, ws->x + i, nx - i, ws->y, ny, ws->yside, &work,
-                                             rq->work_limit);
-                screen_pairs = nx - i + ny;
-            }
-            if (screened && ws->screen->start[i - screen_base] == ws->screen->start[i - screen_base + 1])
-                continue; /* no candidate of the row can beat the incumbent */
-            const double *a = pal[ws->x[i].pair];
-            if (quick)
-                sol_nm_bc5_channel_side_init(a, n, order, 0, &aw, &xside);
-            int filtered = 0;
-            size_t lo_word = 0, hi_word = 0; /* the marked words of ymark */
-            if (screened) { /* the row's passing y positions (at least one, see above) */
-                const pair_screen *sc = ws->screen;
-                const size_t row = i - screen_base;
-                filtered = 1;
-                lo_word = sc->col[sc->start[row]] >> 6;
-                hi_word = (sc->col[sc->start[row + 1] - 1] >> 6) + 1;
-                for (uint32_t t = sc->start[row]; t < sc->start[row + 1]; ++t)
-                    ws->ymark[sc->col[t] >> 6] |= UINT64_C(1) << (sc->col[t] & 63);
-                work += sc->start[row + 1] - sc->start[row];
-            } else if (filter) {
-                filtered = y_filter_init(&yf, a, &xside, n, nball, order, loose, &aw, away_off, group, use_max, best,
-                                         &yix);
-                work += 64;
-                if (filtered < 0)
-                    continue;
-                const int r0 = filtered > 0 ? yf.rank[0] : 0;
-                if (filtered && yf.items[r0] < ny) { /* selective enough to pay */
-                    lo_word = (ny + 63) / 64;
-                    for (int k = 0; k < yf.cnt[r0]; ++k) {
-                        uint32_t s0 = yix.start[y_bucket(yf.lo[r0][k])], s1 = yix.start[y_bucket(yf.hi[r0][k]) + 1];
-                        for (uint32_t t = s0; t < s1; ++t) {
-                            if (yix.items[t].v < yf.lo[r0][k] || yix.items[t].v > yf.hi[r0][k])
-                                continue;
-                            uint32_t j = yix.items[t].j;
-                            ws->ymark[j >> 6] |= UINT64_C(1) << (j & 63);
-                            lo_word = j >> 6 < lo_word ? j >> 6 : lo_word;
-                            hi_word = (j >> 6) + 1 > hi_word ? (j >> 6) + 1 : hi_word;
-                        }
-                        work += s1 - s0;
-                    }
-                } else {
-                    filtered = 0;
-                }
-            }
-            for (size_t j = 0; j < ny; ++j) {
-                if (filtered) { /* the next marked position */
-                    size_t w = j >> 6;
-                    uint64_t bits = w < hi_word ? ws->ymark[w] & (~UINT64_C(0) << (j & 63)) : 0;
-                    while (!bits && ++w < hi_word)
-                        bits = ws->ymark[w];
-                    if (!bits)
-                        break;
-                    j = 64 * w + (size_t)__builtin_ctzll(bits);
-                }
-                if (combine(ws->x[i].score, ws->y[j].score, use_max) * (1.0 - BOUND_SLACK) >= best)
-                    break;
-                if (work >= rq->work_limit) {
-                    bounded = 1;
-                    break;
-                }
-                if (filtered && !screened) {
-                    work += 4;
-                    if (!y_filter_pass(&yf, pal[ws->y[j].pair]))
-                        continue;
-                }
-                ++candidates;
-                /* the bounds are lowered against rounding already, BOUND_SLACK is a second margin;
-                 * the value-reduced lists (blocks near their hemisphere bound) take 1e-12 instead,
-                 * which still covers the different summation orders of bound and objective */
-                double margin = best * (1.0 + (valued ? 1e-12 : BOUND_SLACK));
-                if (quick && sol_nm_bc5_joint_objective_quick(&xside, &ws->yside[j], n, order, nz_ord, away_off,
-                                                              use_max, margin, &work) >= margin)
-                    continue;
-                if (quick && aw.mask && (away_tried < 1024 || 8 * away_hits >= away_tried || (candidates & 15) == 0)) {
-                    ++away_tried;
-                    if (joint_objective_away(a, pal[ws->y[j].pair], &xside, &ws->yside[j], n, order, away_off, &aw,
-                                             use_max, margin, &work) >= margin) {
-                        ++away_hits;
-                        continue;
-                    }
-                }
-                const double *b = pal[ws->y[j].pair];
-                if ((repeats ? sol_nm_bc5_joint_objective_lower_grouped(a, b, n, group, order, away_off, use_max, best,
-                                                                        margin, &work)
-                             : sol_nm_bc5_joint_objective_lower(a, b, n, order, away_off, use_max, best, margin,
-                                                                &work)) >= margin)
-                    continue;
-                work += 512;
-                double v = repeats ? sol_nm_bc5_joint_objective_grouped(a, b, n, group, use_max, best)
-                                   : sol_nm_bc5_joint_objective(a, b, n, use_max, best, NULL, NULL);
-                if (v < best) {
-                    best = v;
-                    px = ws->x[i].pair;
-                    py = ws->y[j].pair;
-                    if (floored && pixel_floor_decides(ws->floor, n, &aw, pal[px], pal[py], best, &work)) {
-                        solved = 1;
-                        break;
-                    }
-                }
-            }
-            if (filtered)
-                for (size_t w = lo_word; w < hi_word; ++w)
-                    ws->ymark[w] = 0;
-        }
+        away_info_init(&st.aw, n, 0);
+        if (st.best * (1.0 + BOUND_SLACK) >= min_nz2)
+            loose_incumbent(&st, &pre_x, &pre_y, &sx_min, &sy_min);
+        collect_lists(&st, pre_x, pre_y, sx_min, sy_min);
+        reduce_lists(&st);
+        floor_stage(&st);
+        visiting_order(&st);
+        helpers_setup(&st);
+        if (st.filter && (st.loose & 1))
+            solve_by_rule(&st);
+        enumerate_candidates(&st);
     }
-    out->x.e0 = (uint8_t)(px >> 8);
-    out->x.e1 = (uint8_t)(px & 255);
-    out->y.e0 = (uint8_t)(py >> 8);
-    out->y.e1 = (uint8_t)(py & 255);
-    double check = sol_nm_bc5_joint_objective(pal[px], pal[py], n, use_max, INFINITY, out->x.index, out->y.index);
+    out->x.e0 = (uint8_t)(st.px >> 8);
+    out->x.e1 = (uint8_t)(st.px & 255);
+    out->y.e0 = (uint8_t)(st.py >> 8);
+    out->y.e1 = (uint8_t)(st.py & 255);
+    double check = sol_nm_bc5_joint_objective(st.pal[st.px], st.pal[st.py], n, st.use_max, INFINITY, out->x.index,
+                                              out->y.index);
     if (info) {
-        info->error = sol_nm_bc5_metric_value(check, use_max ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED);
+        info->error = sol_nm_bc5_metric_value(check, st.use_max ? SOL_BC5_MAX : SOL_BC5_SUM_SQUARED);
         info->searched = 1;
-        info->candidates = candidates;
-        info->bounded = bounded;
+        info->candidates = st.candidates;
+        info->bounded = st.bounded;
     }
 }
 
