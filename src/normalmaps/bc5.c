@@ -3793,8 +3793,10 @@ typedef struct away_use {
 
 /* The candidates of row i (x palette a, its channel side xside): the y positions marked in ws->ymark
  * below word hi_word (filtered) or all of them, in list order, until the combined score reaches the
- * incumbent or the work limit is met. Each candidate is rejected, if it can be, by the quick bound,
- * the coupled bound of pixels pointing away, and the lower bound, and evaluated exactly otherwise. */
+ * incumbent, the work limit is met, or a new incumbent lets the pixel floor decide the block (solved).
+ * Each candidate is rejected, if it can be, by the coupling filter's remaining pixels (filtered rows
+ * without the screen), the quick bound, the coupled bound of pixels pointing away, and the lower
+ * bound, and evaluated exactly otherwise. */
 static void enumerate_row(search_state *st, size_t i, const double a[8], const channel_side *xside, int filtered,
                           int screened, const y_filter *yf, size_t hi_word, away_use *au)
 {
@@ -3866,7 +3868,7 @@ static void enumerate_row(search_state *st, size_t i, const double a[8], const c
  * is built where the enumeration first reads it, after the reductions due at that row (issue 13:
  * built before the loop, it was built again at row 0 whenever reductions were due there, on the same
  * incumbent - a second identical screen when they removed nothing, a third of the survey's slowest
- * block), and again after later reductions (screen_due). */
+ * block), and again after later reductions that it cannot be carried over to (sc.due, reduce_rest). */
 static void enumerate_candidates(search_state *st)
 {
     search_workspace *ws = st->ws;
@@ -3920,8 +3922,9 @@ static void enumerate_candidates(search_state *st)
 /* Branch and bound over (x pair, y pair) inside the range, for unit normals n.
  * 1. Incumbent: the better (first on ties) of the per-channel least-squares pairs (the common
  *    anchors) and the full-span 6-value pairs (0, 255) whose entries -1 and +1 reach the rim, both
- *    with joint indices (first_incumbents). If it meets hemisphere_bound it is optimal; blocks of 16
- *    equal normals are decided by a rule (equal_shortcut).
+ *    with joint indices (first_incumbents). If it meets hemisphere_bound it is optimal; on the full
+ *    range, blocks of 16 equal normals are decided by a rule (equal_shortcut) where their values
+ *    allow it (the others go on to solve_by_rule's equal_block_solve or the value-level reduction).
  * 2. Bound: for a candidate whose pixels all decode with x^2 + y^2 <= 1, dN_p^2 >= chord_p^2 >=
  *    min_a (a - nx_p)^2 + min_b (b - ny_p)^2, so the objective >= SX + SY (sum) or max(SX, SY) (max),
  *    with SX, SY the per-channel scores. A pixel decoding with z clamped to 0 has dN_p^2 >= chord^2
@@ -3929,8 +3932,9 @@ static void enumerate_candidates(search_state *st)
  *    a valid bound; rim pixels (nz_p^2 <= incumbent) take the loose term, valid in every case
  *    (loose_incumbent, which adds the third incumbent).
  * 3. Lists of the pairs of each channel whose score leaves room under the incumbent, sorted by
- *    score (collect_lists), reduced (reduce_lists, floor_stage; equivalent pairs merged, see above);
- *    some blocks are then decided by a rule (solve_by_rule). The double loop (enumerate_candidates)
+ *    score (collect_lists), reduced (reduce_lists; equivalent pairs merged, see above); with the max
+ *    metric the pixel floor may decide the block (floor_stage), and some blocks are decided by a rule
+ *    (solve_by_rule). The double loop (enumerate_candidates)
  *    stops as soon as the combined bound reaches the incumbent. Each candidate is first rejected, if
  *    it can be, by lower bounds of its objective without atan2 (sol_nm_bc5_joint_objective_quick, then
  *    sol_nm_bc5_joint_objective_lower), and evaluated exactly only if it survives both.
