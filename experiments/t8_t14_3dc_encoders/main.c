@@ -1756,7 +1756,7 @@ static void bench_degenerate(const exp_run *exp)
     degen_time *all = malloc(sizeof *all * (size_t)total), *fam = malloc(sizeof *fam * (size_t)total);
     if (!all || !fam)
         exp_die("out of memory");
-    int count = 0, bounded_all = 0, exact_all = 0;
+    int count = 0;
     int threads = omp_get_max_threads();
     omp_set_num_threads(1);
     sol_bc5_workspace *ws = sol_bc5_workspace_new();
@@ -1793,8 +1793,6 @@ static void bench_degenerate(const exp_run *exp)
                 all[count] = (degen_time){family, metric, prec, spread, least, cold, info.candidates, info.bounded != 0,
                                           exact};
                 ++count;
-                bounded_all += info.bounded != 0;
-                exact_all += exact;
                 exp_progress("degenerate survey", (size_t)count, (size_t)total);
             }
     }
@@ -1821,8 +1819,13 @@ static void bench_degenerate(const exp_run *exp)
                       all[i].metric ? "max" : "sum", prec_names[all[i].precision], all[i].ms, all[i].cold_ms,
                       (unsigned long long)all[i].candidates);
     exp_table_write(slow, exp, "bench_degenerate_slowest");
-    fprintf(stderr, "bench: degenerate survey: %d blocks, %d bounded, %d exact in the +-1 window\n", count, bounded_all,
-            exact_all);
+    int bounded = 0, exact = 0;
+    for (int i = 0; i < count; ++i) {
+        bounded += all[i].bounded;
+        exact += all[i].exact;
+    }
+    fprintf(stderr, "bench: degenerate survey: %d blocks, %d bounded, %d exact in the +-1 window\n", count, bounded,
+            exact);
     free(all);
     free(fam);
 }
